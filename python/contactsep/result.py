@@ -1,0 +1,90 @@
+"""What the restored core returns for one data set: every printed quantity."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactsep.dataset import DataSet
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """Every quantity the Appendix G listing prints for one data set.
+
+    Names follow the listing (lower-cased); arrays are NumPy arrays of the
+    build's precision (float32 for ``"single"``, float64 for ``"double"``).
+    """
+
+    #: The data set that was run.
+    inputs: DataSet
+    #: ``"single"`` (the listing's REAL) or ``"double"``.
+    precision: str
+    #: Upper-contact natural frequencies P(I), rad/s.
+    p: np.ndarray
+    #: Initial modal amplitudes APE(I) (the D1-D8 closed-form integrals), in.
+    ape: np.ndarray
+    #: Impact-search trace, one entry per printed line: T, s.
+    trace_t: np.ndarray
+    #: Impact-search trace: tip displacement TY, in.
+    trace_ty: np.ndarray
+    #: Impact-search trace: tip velocity TYDTL, in/s.
+    trace_tydtl: np.ndarray
+    #: Time of the first impact T (the last point of the search above DELY), s.
+    t_impact: float
+    #: Impulse EY (the listing's psi, eq. 20 with its ACT), lb s.
+    ey: float
+    #: Sums of squared mode values CT (upper tip), CT2 (separator mid-span),
+    #: CT3 (lower tip) used in the impulse.
+    ct: float
+    ct2: float
+    ct3: float
+    #: Post-impact coefficients A1(I), B1(I,1) of the upper contact.
+    a1: np.ndarray
+    b1: np.ndarray
+    #: Upper-contact tip state printed at line 315 (T = 0 after impact):
+    #: displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the tip
+    #: velocity just before impact).
+    tip_ty: float
+    tip_tydtl: float
+    tip_act: float
+    #: Separator mid-span velocity TY2DT after impact, in/s.
+    ty2dt: float
+    #: Lower-contact tip history: times T and displacements TY3, up to TAU.
+    history_t: np.ndarray
+    history_ty3: np.ndarray
+    #: Separator and lower-contact frequencies P2(I), P3(I), rad/s.
+    p2: np.ndarray
+    p3: np.ndarray
+    #: Masses WM, WM2 (after the XL2C correction, as printed), WM3, lb s^2/in.
+    wm: float
+    wm2: float
+    wm3: float
+    #: Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 = WM2/WM,
+    #: MR3 = WM2/WM3.
+    gr: float
+    beta: float
+    mr1: float
+    mr3: float
+    #: This data set's part of the listing, exactly as the program prints it.
+    listing: str
+
+    @property
+    def tip_velocity_before(self) -> float:
+        """Tip velocity at the impact time (the last trace line's TYDTL)."""
+        return float(self.trace_tydtl[-1]) if self.trace_tydtl.size else float("nan")
+
+    @property
+    def extreme_ty3(self) -> float:
+        """Largest-magnitude lower-contact displacement in the history."""
+        if not self.history_ty3.size:
+            return float("nan")
+        return float(self.history_ty3[np.argmax(np.abs(self.history_ty3))])
+
+    @property
+    def extreme_time(self) -> float:
+        """Time of :attr:`extreme_ty3` on the listing's time grid."""
+        if not self.history_ty3.size:
+            return float("nan")
+        return float(self.history_t[np.argmax(np.abs(self.history_ty3))])
