@@ -1,0 +1,187 @@
+"""The restored Fortran core (fortran/*.f90), called through f2py.
+
+Two extension modules are built from one generic source: ``_core_single``
+(the listing's REAL, float32) and ``_core_double`` (float64).  This module is
+the thin layer between them and Python: it reads decks with the core's own
+card reader, runs data sets, and turns status codes into
+:class:`~contactsep.errors.DeckError`.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import os
+from dataclasses import dataclass
+from typing import Iterator
+
+import numpy as np
+
+from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
+from contactsep.errors import DeckError
+from contactsep.result import Result
+
+PRECISIONS = ("single", "double")
+BLANK_MODES = ("null", "zero")
+
+#: Scalar inputs in the order of the core's ``scalars`` array (card order).
+SCALAR_NAMES = tuple(
+    name for _, names in SCALAR_CARDS for name in names if name != "n")
+#: Mode inputs in the order of the columns of the core's ``modes`` array.
+MODE_NAMES = tuple(name for group in MODE_GROUPS for name in group)
+
+#: The listing's fixed end of the lower-contact history (TAU = 0.060 s).
+TAU = 0.060
+#: Most impact-search lines the core may print before it gives up.
+MAX_SEARCH_LINES = 100_000
+#: Widest line the listing writes: 7 fields of F15.9 and a newline.
+_LINE_BYTES = 7 * 15 + 1
+_STATUS_END_OF_DECK = 1
+
+
+def _api(precision: str):
+    if precision not in PRECISIONS:
+        raise ValueError(
+            f"precision must be one of {PRECISIONS}, not {precision!r}")
+    module = importlib.import_module(f"contactsep._core_{precision}")
+    return module.contactsep_api
+
+
+def _text(message: bytes | str) -> str:
+    if isinstance(message, bytes):
+        message = message.decode("ascii", "replace")
+    return message.strip()
+
+
+@dataclass(frozen=True)
+class DeckSet:
+    """One data set as read from a deck, with where it stands in the file."""
+
+    #: 1-based position of the data set in the deck.
+    index: int
+    #: 1-based line numbers of its first and last card.
+    first_card: int
+    last_card: int
+    data_set: DataSet
+
+
+def read_text(path: str | os.PathLike) -> str:
+    """The deck file as text (card images are ASCII; anything else is kept
+    so the reader can point at it)."""
+    with open(path, "rb") as handle:
+        return handle.read().decode("latin-1")
+
+
+def iter_deck(text: str, *, precision: str = "single",
+              blank: str = "null") -> Iterator[DeckSet]:
+    """Read data sets from deck ``text`` with the core's card reader.
+
+    Values are read in the working precision of ``precision``, exactly as the
+    original program reads them.  Raises :class:`DeckError` at the first bad
+    card; data sets before it have already been yielded.
+    """
+    if blank not in BLANK_MODES:
+        raise ValueError(f"blank must be one of {BLANK_MODES}, not {blank!r}")
+    api = _api(precision)
+    max_modes = max(1, text.count("\n") // 3 + 1)
+    first_card, index = 1, 0
+    while True:
+        index += 1
+        (scalars, n, modes, next_card, status, message, card, first_col,
+         last_col) = api.read_data_set(
+             text=text, first_card=first_card,
+             blank_zero=int(blank == "zero"), max_modes=max_modes)
+        if status == _STATUS_END_OF_DECK:
+            if index == 1:
+                raise DeckError("the deck holds no data set "
+                                "(expected 6 + 3N cards)", data_set=None)
+            return
+        if status != 0:
+            raise DeckError(
+                f"data set {index}: {_text(message)}", data_set=index,
+                card=card or None,
+                columns=(first_col, last_col) if first_col else None)
+        values = dict(zip(SCALAR_NAMES, (float(x) for x in scalars)))
+        for column, name in enumerate(MODE_NAMES):
+            values[name] = np.array(modes[:n, column], dtype=np.float64)
+        yield DeckSet(index, first_card, next_card - 1,
+                      DataSet(n=int(n), **values))
+        first_card = next_card
+
+
+def history_length(delt: float) -> int:
+    """Upper bound on the lines of the history loop T = 0, DELT, ... < TAU."""
+    if not delt > 0:
+        return 1
+    return int(math.ceil(TAU / delt)) + 2
+
+
+def solve(data_set: DataSet, precision: str = "single", *,
+          data_set_index: int | None = None) -> Result:
+    """Run one data set through the restored core.
+
+    This is the call a designer makes in a loop: no deck file is involved.
+    Inputs are rounded to the build's precision on the way in.
+    """
+    api = _api(precision)
+    dtype = np.float32 if precision == "single" else np.float64
+    scalars = np.array([getattr(data_set, name) for name in SCALAR_NAMES],
+                       dtype=dtype)
+    modes = np.asfortranarray(
+        np.column_stack([getattr(data_set, name) for name in MODE_NAMES]),
+        dtype=dtype)
+    n = data_set.n
+    max_history = history_length(data_set.delt)
+    max_lines = MAX_SEARCH_LINES + max_history + 5 * n + 10
+    (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history, n_history,
+     p2, p3, closing, listing, listing_length, status, message) = api.solve(
+         scalars=scalars, n=n, modes=modes, max_trace=MAX_SEARCH_LINES,
+         max_history=max_history, max_listing=max_lines * _LINE_BYTES)
+    text = listing[:listing_length].tobytes().decode("ascii")
+    if status != 0:
+        where = f"data set {data_set_index}: " if data_set_index else ""
+        raise DeckError(f"{where}{_text(message)}", data_set=data_set_index,
+                        listing=text)
+    return Result(
+        inputs=data_set, precision=precision,
+        p=p.copy(), ape=ape.copy(),
+        trace_t=trace[:n_trace, 0].copy(),
+        trace_ty=trace[:n_trace, 1].copy(),
+        trace_tydtl=trace[:n_trace, 2].copy(),
+        t_impact=float(impact[0]), ey=float(impact[1]),
+        ct=float(impact[2]), ct2=float(impact[3]), ct3=float(impact[4]),
+        a1=a1.copy(), b1=b1.copy(),
+        tip_ty=float(tip[1]), tip_tydtl=float(tip[2]), tip_act=float(tip[3]),
+        ty2dt=float(ty2dt),
+        history_t=history[:n_history, 0].copy(),
+        history_ty3=history[:n_history, 1].copy(),
+        p2=p2.copy(), p3=p3.copy(),
+        wm=float(closing[0]), wm2=float(closing[1]), wm3=float(closing[2]),
+        gr=float(closing[4]), beta=float(closing[5]),
+        mr1=float(closing[6]), mr3=float(closing[7]),
+        listing=text)
+
+
+def replay_text(text: str, precision: str = "single", *,
+                blank: str = "null") -> list[Result]:
+    """Run every data set of deck ``text``; see :func:`replay`."""
+    results: list[Result] = []
+    try:
+        for item in iter_deck(text, precision=precision, blank=blank):
+            results.append(solve(item.data_set, precision,
+                                 data_set_index=item.index))
+    except DeckError as error:
+        error.partial = results
+        raise
+    return results
+
+
+def replay(path: str | os.PathLike, precision: str = "single", *,
+           blank: str = "null") -> list[Result]:
+    """Replay an original card deck: one :class:`Result` per data set.
+
+    ``"".join(r.listing for r in results)`` is what the original program
+    prints for the deck.  On a bad data set :class:`DeckError` is raised with
+    the results of the data sets before it in ``error.partial``.
+    """
+    return replay_text(read_text(path), precision, blank=blank)

@@ -1,0 +1,110 @@
+"""Run the transcribed Appendix G program (fortran/legacy/appg.f) on a deck.
+
+The program is installed with the package in two builds: ``appg-single``
+(the listing's REAL) and ``appg-double`` (``-fdefault-real-8``).  It reads
+the deck on standard input and prints its listing on standard output.
+
+The original program trusts its cards: given a bad one it stops with a
+runtime error, loops for ever or prints garbage.  So every data set is first
+read and run by the restored core, which reports bad cards precisely, and
+only the cards of data sets that passed are fed to the program, under a time
+limit.  Its output is returned unchanged.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from importlib import resources
+from pathlib import Path
+
+from contactsep import core
+from contactsep.errors import DeckError
+
+#: The listing's DIMENSION (4): the most modes the original program holds.
+LEGACY_MAX_MODES = 4
+#: Seconds the program may run on one deck before it is stopped.
+TIME_LIMIT = 120.0
+
+
+class LegacyError(RuntimeError):
+    """The original program failed on cards the restored core accepted."""
+
+
+def executable(precision: str = "single") -> Path:
+    """Path of the installed legacy program for ``precision``."""
+    if precision not in core.PRECISIONS:
+        raise ValueError(
+            f"precision must be one of {core.PRECISIONS}, not {precision!r}")
+    path = resources.files("contactsep") / "_bin" / f"appg-{precision}"
+    return Path(os.fspath(path))
+
+
+def run_cards(cards: str, precision: str = "single", *,
+              program: str | os.PathLike | None = None,
+              time_limit: float = TIME_LIMIT) -> str:
+    """Feed card images to the program and return what it prints.
+
+    No validation: the caller vouches for the cards.  ``program`` overrides
+    the installed executable (tests use a build with larger DIMENSIONs).
+    """
+    command = [os.fspath(program or executable(precision))]
+    try:
+        completed = subprocess.run(
+            command, input=cards.encode("latin-1"), capture_output=True,
+            timeout=time_limit, check=False)
+    except subprocess.TimeoutExpired as error:
+        raise LegacyError(
+            f"the original program did not finish within {time_limit:g} s"
+        ) from error
+    if completed.returncode != 0:
+        detail = completed.stderr.decode("latin-1", "replace").strip()
+        raise LegacyError(
+            f"the original program failed (exit status "
+            f"{completed.returncode}): {detail.splitlines()[:2]}")
+    return completed.stdout.decode("latin-1")
+
+
+def validated_cards(text: str, precision: str = "single", *,
+                    max_modes: int | None = LEGACY_MAX_MODES,
+                    blank: str = "null") -> tuple[str, DeckError | None]:
+    """The cards of the leading data sets that pass validation.
+
+    Returns the card images (one line each, as in the file) of every data
+    set up to the first bad one, and the error for that one (or None).
+    """
+    lines = text.splitlines()
+    kept_through = 0
+    failure: DeckError | None = None
+    try:
+        for item in core.iter_deck(text, precision=precision, blank=blank):
+            if max_modes is not None and item.data_set.n > max_modes:
+                first_card = item.first_card + 4
+                raise DeckError(
+                    f"data set {item.index}, card {first_card}, columns "
+                    f"16-17: N = {item.data_set.n}, but the original program "
+                    f"holds at most {max_modes} modes (DIMENSION (4))",
+                    data_set=item.index, card=first_card, columns=(16, 17))
+            core.solve(item.data_set, precision, data_set_index=item.index)
+            kept_through = item.last_card
+    except DeckError as error:
+        failure = error
+    cards = "".join(line + "\n" for line in lines[:kept_through])
+    return cards, failure
+
+
+def run(path: str | os.PathLike, precision: str = "single", *,
+        max_modes: int | None = LEGACY_MAX_MODES,
+        program: str | os.PathLike | None = None) -> str:
+    """The listing the original program prints for the deck at ``path``.
+
+    Raises :class:`DeckError` for the first bad data set, with the listing of
+    the data sets before it in ``error.listing_before``.
+    """
+    cards, failure = validated_cards(core.read_text(path), precision,
+                                     max_modes=max_modes)
+    listing = run_cards(cards, precision, program=program) if cards else ""
+    if failure is not None:
+        failure.listing_before = listing
+        raise failure
+    return listing
