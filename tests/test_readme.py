@@ -1,0 +1,32 @@
+"""README.md's set-up commands stay true: CI runs the same test command, and
+the deck the first command runs exists."""
+
+from __future__ import annotations
+
+import re
+
+from conftest import ROOT
+
+
+def setup_commands() -> list[str]:
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Set-up", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```sh\n(.*?)\n```", section, flags=re.S)
+
+
+def test_exactly_two_setup_commands():
+    commands = setup_commands()
+    assert len(commands) == 2
+    assert all("\n" not in c for c in commands)
+
+
+def test_ci_runs_the_readme_test_command():
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert setup_commands()[1] in ci.splitlines()
+
+
+def test_install_command_runs_a_thesis_deck():
+    install = setup_commands()[0]
+    deck = re.search(r"contactsep legacy (\S+)", install).group(1)
+    assert (ROOT / deck).is_file()
+    assert "gfortran" in install
