@@ -105,6 +105,8 @@ def _compare(args: argparse.Namespace) -> int:
 
     report = compare.compare_deck(args.deck)
     sys.stdout.write(report.text)
+    if report.error is not None:
+        raise report.error
     return EXIT_OK if report.passed else EXIT_TOLERANCE
 
 

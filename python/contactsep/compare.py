@@ -1,0 +1,210 @@
+"""``contactsep compare``: every implementation side by side.
+
+For each data set of a deck, four columns: the original program in single
+precision (its listing read back), the restored core in single and in
+double precision, and the NumPy reference (float64, the listing's algorithm
+choices).  Three checks, each with its own tolerance:
+
+``restored single = legacy single``
+    Identical printed digits: the restored core is bit-identical, so its
+    listing, read back the same way, must give the same numbers (tolerance 0).
+``restored double ~ NumPy``
+    Two float64 implementations of the same equations, one translated from
+    the listing and one written from the thesis: 1e-9 relative.  Quantities
+    that depend on the impact time get an extra allowance, because the
+    listing's search stops at the last point above the separator with a
+    step of at most 1e-8 s while the reference finds the crossing itself:
+    |dq/dt| * 1e-8 s.
+``single ~ double``
+    What the listing's REAL arithmetic loses.  The D1-D8 integrals subtract
+    terms of size y_s e^{kL}/(kL) to get A_j, so float32 leaves an absolute
+    error of about eps * y_s e^{kL}/(kL) in A_j; the tolerance is that bound
+    (times 8 for the dozen roundings on the way), carried through to the
+    quantities built from the A_j.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactsep import core, legacy, listing, reference
+from contactsep.errors import DeckError
+from contactsep.result import Result
+
+#: The listing's impact-search resolution (its stopping rule), s.
+SEARCH_STEP = 1e-8
+#: Relative agreement required of the two float64 implementations.
+DOUBLE_RTOL = 1e-9
+_EPS32 = float(np.finfo(np.float32).eps)
+
+
+@dataclass(frozen=True)
+class Row:
+    """One quantity of one data set across the implementations."""
+
+    name: str
+    legacy_single: float
+    restored_single: float
+    restored_double: float
+    numpy_double: float
+    #: Tolerances of the three checks (relative).
+    tol_double: float
+    tol_single: float
+
+    @staticmethod
+    def _rel(a: float, b: float) -> float:
+        if a == b:
+            return 0.0
+        scale = max(abs(a), abs(b))
+        return abs(a - b) / scale if scale else float("inf")
+
+    @property
+    def rel_legacy(self) -> float:
+        return self._rel(self.restored_single, self.legacy_single)
+
+    @property
+    def rel_double(self) -> float:
+        return self._rel(self.restored_double, self.numpy_double)
+
+    @property
+    def rel_single(self) -> float:
+        return self._rel(self.restored_single, self.restored_double)
+
+    @property
+    def passed(self) -> bool:
+        if np.isnan(self.legacy_single) and np.isnan(self.restored_single):
+            legacy_ok = True   # both printed asterisks
+        else:
+            legacy_ok = self.rel_legacy == 0.0
+        return (legacy_ok and self.rel_double <= self.tol_double
+                and self.rel_single <= self.tol_single)
+
+
+@dataclass
+class Comparison:
+    """The comparison of one deck."""
+
+    tables: list[tuple[int, list[Row]]] = field(default_factory=list)
+    error: DeckError | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.error is None and all(
+            row.passed for _, rows in self.tables for row in rows)
+
+    @property
+    def text(self) -> str:
+        out = io.StringIO()
+        header = (f"{'quantity':<14}{'legacy single':>16}{'restored sgl':>16}"
+                  f"{'restored dbl':>16}{'numpy dbl':>16}  "
+                  f"{'rs/ls':>7}  {'rd/np':>7} {'tol':>7}  "
+                  f"{'rs/rd':>7} {'tol':>7}  ok")
+        for index, rows in self.tables:
+            out.write(f"data set {index}\n{header}\n")
+            for r in rows:
+                out.write(
+                    f"{r.name:<14}{r.legacy_single:>16.9g}"
+                    f"{r.restored_single:>16.9g}{r.restored_double:>16.9g}"
+                    f"{r.numpy_double:>16.9g}  {r.rel_legacy:7.1e}  "
+                    f"{r.rel_double:7.1e} {r.tol_double:7.1e}  "
+                    f"{r.rel_single:7.1e} {r.tol_single:7.1e}  "
+                    f"{'yes' if r.passed else 'NO'}\n")
+            out.write("\n")
+        failed = sum(not r.passed for _, rows in self.tables for r in rows)
+        total = sum(len(rows) for _, rows in self.tables)
+        out.write(f"{total - failed} within tolerance, {failed} outside\n")
+        return out.getvalue()
+
+
+def _float32_amplitude_error(result: Result) -> np.ndarray:
+    """Bound on the absolute float32 error of each A_j (module docstring)."""
+    ds = result.inputs
+    v = np.asarray(ds.v, dtype=float)
+    return 8 * _EPS32 * 1.5 * abs(ds.ystat) * np.exp(v) / v
+
+
+def _rows(printed: listing.DataSetListing,
+          single_printed: listing.DataSetListing, double: Result,
+          ref: reference.ReferenceResult) -> list[Row]:
+    rows: list[Row] = []
+    d_ape = _float32_amplitude_error(double)
+    p, c = np.asarray(double.p, float), np.asarray(double.inputs.c, float)
+    # the impulse and what follows from it scale with ACT = sum -P APE C
+    act = float(np.sum(-p * np.asarray(double.ape, float) * c))
+    tol_act = float(np.sum(p * abs(c) * d_ape)) / abs(act) + 16 * _EPS32
+
+    def add(name, legacy_value, single_value, double_value, ref_value,
+            tol_double=DOUBLE_RTOL, tol_single=16 * _EPS32):
+        rows.append(Row(name, float(legacy_value), float(single_value),
+                        float(double_value), float(ref_value),
+                        float(tol_double), float(tol_single)))
+
+    for j in range(double.inputs.n):
+        add(f"p_{j + 1}", printed.modal_table[j, 3],
+            single_printed.modal_table[j, 3], double.p[j], ref.p[j])
+    for j in range(double.inputs.n):
+        add(f"A_{j + 1}", printed.modal_table[j, 4],
+            single_printed.modal_table[j, 4], double.ape[j], ref.ape[j],
+            tol_single=d_ape[j] / abs(double.ape[j]) + 16 * _EPS32)
+    # the impact time: the search resolution, plus float32 drift of T and
+    # of the tip sum (relative to the tip speed)
+    t1 = double.t_impact
+    v_before = abs(double.tip_velocity_before)
+    tol_t = SEARCH_STEP / t1
+    tol_t_single = (SEARCH_STEP + np.sum(abs(c) * d_ape) / v_before
+                    + 64 * _EPS32 * t1) / t1
+    add("t_impact", printed.impact[0], single_printed.impact[0], t1,
+        ref.t_impact, tol_double=tol_t, tol_single=tol_t_single)
+    add("impulse", printed.impact[1], single_printed.impact[1], double.ey,
+        ref.ey, tol_single=tol_act)
+    # velocities at the impact time move with it at the tip's acceleration
+    accel = float(np.sum(p**2 * np.abs(np.asarray(double.ape) * c)))
+    tol_v = DOUBLE_RTOL + accel * SEARCH_STEP / v_before
+    tol_v_single = tol_act + accel * tol_t_single * t1 / v_before
+    add("v_before", printed.tip[3], single_printed.tip[3], double.tip_act,
+        ref.impact_velocity, tol_double=tol_v, tol_single=tol_v_single)
+    add("v_after", printed.tip[2], single_printed.tip[2], double.tip_tydtl,
+        ref.tip_tydtl, tol_double=tol_v * 2, tol_single=tol_v_single * 2)
+    add("v_separator", printed.ty2dt, single_printed.ty2dt, double.ty2dt,
+        ref.ty2dt, tol_single=tol_act)
+    k_legacy = int(np.argmax(np.abs(printed.history[:, 1])))
+    k_single = int(np.argmax(np.abs(single_printed.history[:, 1])))
+    k_double = int(np.argmax(np.abs(double.history_ty3)))
+    k_ref = int(np.argmax(np.abs(ref.history_ty3)))
+    add("y3_extreme", printed.history[k_legacy, 1],
+        single_printed.history[k_single, 1], double.history_ty3[k_double],
+        ref.history_ty3[k_ref], tol_single=tol_act)
+    add("t_extreme", printed.history[k_legacy, 0],
+        single_printed.history[k_single, 0], double.history_t[k_double],
+        ref.history_t[k_ref], tol_single=64 * _EPS32)
+    return rows
+
+
+def compare_deck(path: str | os.PathLike) -> Comparison:
+    """Compare all implementations on every data set of the deck at
+    ``path``.  A bad data set ends the comparison with its error; the
+    tables of the data sets before it are kept."""
+    comparison = Comparison()
+    text = core.read_text(path)
+    try:
+        legacy_text = legacy.run(path, "single")
+    except DeckError as error:
+        legacy_text = getattr(error, "listing_before", "")
+        comparison.error = error
+    printed_sets = listing.parse(legacy_text)
+    # zip stops at the last data set the legacy program ran, before the
+    # readers reach a bad one
+    for printed, s_item, d_item in zip(
+            printed_sets, core.iter_deck(text, precision="single"),
+            core.iter_deck(text, precision="double")):
+        single = core.solve(s_item.data_set, "single")
+        double = core.solve(d_item.data_set, "double")
+        ref = reference.run(d_item.data_set)
+        single_printed = listing.parse(single.listing)[0]
+        comparison.tables.append((d_item.index, _rows(
+            printed, single_printed, double, ref)))
+    return comparison
