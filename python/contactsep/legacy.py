@@ -73,7 +73,9 @@ def validated_cards(text: str, precision: str = "single", *,
     Returns the card images (one line each, as in the file) of every data
     set up to the first bad one, and the error for that one (or None).
     """
-    lines = text.splitlines()
+    # a card is a line ended by LF, as for the core's reader (a trailing CR
+    # stays: gfortran drops it, like the core's reader)
+    lines = text.split("\n")
     kept_through = 0
     failure: DeckError | None = None
     try:
