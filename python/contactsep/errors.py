@@ -1,0 +1,56 @@
+"""The error every deck reader and runner raises for a bad deck."""
+
+from __future__ import annotations
+
+
+def location(data_set: int | None = None, card: int | None = None,
+             columns: tuple[int, int] | None = None) -> str:
+    """'data set 2, card 9, columns 16-30' (the parts that are known)."""
+    parts = []
+    if data_set is not None:
+        parts.append(f"data set {data_set}")
+    if card is not None:
+        parts.append(f"card {card}")
+    if columns is not None:
+        first, last = columns
+        parts.append(f"column {first}" if first == last
+                     else f"columns {first}-{last}")
+    return ", ".join(parts) if parts else "deck"
+
+
+class DeckError(ValueError):
+    """A deck that cannot be read or run, and where it went wrong.
+
+    ``data_set`` is 1-based, ``card`` is the 1-based line number in the deck
+    file, ``columns`` is (first, last), 1-based and inclusive; ``text`` is what
+    was found there and ``expected`` what should have been.  Any of them may
+    be None.  ``partial`` holds the results of the data sets before the bad
+    one; ``listing`` what the program printed for the bad one, if anything.
+
+    Without ``message``, the message is built from the parts, e.g.
+    "data set 2, card 9, columns 16-30: found 'ABC', expected a number
+    (F15.9)".
+    """
+
+    def __init__(self, message: str | None = None, *,
+                 data_set: int | None = None, card: int | None = None,
+                 columns: tuple[int, int] | None = None,
+                 text: str | None = None, expected: str | None = None,
+                 partial: list | None = None,
+                 listing: str | None = None) -> None:
+        self.data_set = data_set
+        self.card = card
+        self.columns = tuple(columns) if columns is not None else None
+        self.text = text
+        self.expected = expected
+        self.partial = list(partial) if partial is not None else []
+        self.listing = listing
+        if message is None:
+            problem = []
+            if text is not None:
+                problem.append(f"found {text!r}")
+            if expected is not None:
+                problem.append(f"expected {expected}")
+            message = (location(data_set, card, self.columns) + ": "
+                       + (", ".join(problem) or "bad deck"))
+        super().__init__(message)
