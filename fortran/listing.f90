@@ -1,0 +1,98 @@
+!> The listing text: each WRITE(6,10) of Appendix G as one line.
+!>
+!> Records are formatted by gfortran itself with FORMAT 10 (7F15.9)
+!> through an internal WRITE, so overflow stars, '-0.000000000' and the
+!> last digit come out as the original program prints them.  A record of
+!> k values is 15*k characters, then LF, as gfortran writes it to stdout.
+module contactsep_listing
+  use contactsep_kinds, only: wp
+  use contactsep_status, only: message_length, status_ok, &
+      status_listing_full, status_out_of_memory, status_format_failed, &
+      integer_text
+  implicit none
+  private
+  public :: listing_text, start_listing, write_record
+
+  !> Width of one F15.9 field.
+  integer, parameter :: field_width = 15
+  !> Values per FORMAT 10 record (a longer list would wrap).
+  integer, parameter, public :: record_values = 7
+  !> Bytes the text starts with; it doubles up to the capacity.
+  integer, parameter :: initial_bytes = 4096
+
+  !> Listing text of one data set, at most capacity bytes.
+  type :: listing_text
+    character(len=:), allocatable :: text
+    !> Bytes written so far: text(1:length).
+    integer :: length = 0
+    integer :: capacity = 0
+  end type listing_text
+
+contains
+
+  !> An empty listing that may grow to capacity bytes.
+  pure subroutine start_listing(listing, capacity)
+    type(listing_text), intent(out) :: listing
+    integer, intent(in) :: capacity
+
+    listing%capacity = max(capacity, 0)
+    listing%length = 0
+    listing%text = ''
+  end subroutine start_listing
+
+  !> Append one record of at most 7 values, formatted with (7F15.9).
+  !>
+  !> A record that does not fit is not written at all, so the text always
+  !> ends with a whole line.
+  subroutine write_record(listing, values, status, message)
+    type(listing_text), intent(inout) :: listing
+    real(wp), intent(in) :: values(:)
+    integer, intent(out) :: status
+    character(len=message_length), intent(out) :: message
+    character(len=record_values * field_width) :: record
+    character(len=message_length) :: io_message
+    character(len=:), allocatable :: grown
+    integer :: width, ios, new_size, stat
+
+    status = status_ok
+    message = ''
+    if (size(values) > record_values) then
+      status = status_format_failed
+      message = 'a listing record holds at most 7 values, not ' &
+          // integer_text(size(values))
+      return
+    end if
+    width = size(values) * field_width
+    write (record, '(7F15.9)', iostat=ios, iomsg=io_message) values
+    if (ios /= 0) then
+      status = status_format_failed
+      message = 'a listing record could not be formatted: ' &
+          // trim(io_message)
+      return
+    end if
+    if (listing%length + width + 1 > listing%capacity) then
+      status = status_listing_full
+      message = 'the listing needs more than ' &
+          // integer_text(listing%capacity) // ' bytes (max_listing)'
+      return
+    end if
+    if (listing%length + width + 1 > len(listing%text)) then
+      new_size = max(initial_bytes, 2 * len(listing%text), &
+          listing%length + width + 1)
+      new_size = min(new_size, listing%capacity)
+      allocate (character(len=new_size) :: grown, stat=stat)
+      if (stat /= 0) then
+        status = status_out_of_memory
+        message = 'no memory for a listing of ' // integer_text(new_size) &
+            // ' bytes'
+        return
+      end if
+      grown(1:listing%length) = listing%text(1:listing%length)
+      call move_alloc(grown, listing%text)
+    end if
+    listing%text(listing%length + 1:listing%length + width) = record(1:width)
+    listing%length = listing%length + width + 1
+    listing%text(listing%length:listing%length) = achar(10)
+  end subroutine write_record
+
+end module contactsep_listing
