@@ -76,8 +76,9 @@ What the deck's alpha can carry.  The deck's mode function differs from the
 exact one by delta alpha (sinh - sin); the integral weights the tip, so
 A_j moves by about y_s delta_alpha e^v/(2v), relative
 delta_alpha e^v v^3/12.  With alpha rounded to double (delta ~ 1e-16) that
-is 1e-9 at mode 4, 1e-3 at mode 8 and O(1) at mode 10; with alpha given to
-9 decimals it is ~3e-3 already at mode 4.  The listing and ``"closed-form"``
+is 7e-10 at mode 4, 8e-4 at mode 8 and 0.2 at mode 10; with alpha given to
+9 decimals, as in the thesis decks, it is 4e-5 at mode 3 and 1.4e-3 at
+mode 4.  The listing and ``"closed-form"``
 integrate that function faithfully; ``"exact-mode"`` gives the A_j of the
 exact mode from V and C alone.
 
@@ -272,9 +273,11 @@ def _amplitudes_quadrature(ystat: float, v: np.ndarray, alpha: np.ndarray,
     panels (at least 2), each spanning half a radian of the fastest cos/sin.
     The rule is exact to far below rounding with a tenth of that; the extra
     nodes average the rounding of the integrand (whose integral is smaller
-    than the integral of its modulus by the factor kappa_j ~ (k_jL)^4/15):
-    measured |quadrature/closed-form - 1| <= 0.6 eps kappa_j for modes
-    1-10, i.e. <= 3e-13 for modes 1-6 and <= 4e-12 for modes 7-10.
+    than the integral of its modulus by the factor kappa_j ~ (k_jL)^4/18):
+    measured |quadrature/closed-form - 1| <= eps kappa_j for modes 1-10,
+    i.e. <= 2e-13 for modes 1-6 and <= 4e-12 for modes 7-10.  (numpy's
+    leggauss weights carry relative errors up to 7e-14, which these
+    averages also absorb.)
     """
     if v.size == 0:
         return np.zeros(0)
