@@ -33,7 +33,7 @@ module contactsep_cards
       status_end_of_deck, status_bad_argument, status_card_not_numeric, &
       status_card_not_finite, status_card_too_long, status_card_has_tab, &
       status_deck_truncated, status_no_modes, status_too_many_modes, &
-      integer_text
+      status_card_not_printable, integer_text
   implicit none
   private
   public :: read_cards
@@ -311,8 +311,10 @@ contains
 
   !> Take the line at position as a card image of 80 columns.
   !>
-  !> Rejects lines longer than a card and TAB characters, whose column
-  !> on a card would be a guess.
+  !> Rejects lines longer than a card, TAB characters (whose column on a
+  !> card would be a guess) and any other character a card cannot hold:
+  !> gfortran would end a record at a stray CR, or fail on a NUL, and the
+  !> columns after it would no longer be those of the card.
   subroutine next_card_image(text, position, line, card, where, status, &
       message)
     character(len=*), intent(in) :: text
@@ -322,7 +324,7 @@ contains
     type(card_error), intent(out) :: where
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
-    integer :: first, last, width, tab_column
+    integer :: first, last, width, tab_column, column, code
 
     status = status_ok
     message = ''
@@ -351,6 +353,19 @@ contains
           // ' placed in their columns with spaces)'
       return
     end if
+    do column = 1, width
+      code = iachar(text(first + column - 1:first + column - 1))
+      if (code < 32 .or. code > 126) then
+        where = card_error(line, column, column)
+        status = status_card_not_printable
+        message = 'line ' // integer_text(line) // ', column ' &
+            // integer_text(column) // ': found the character of code ' &
+            // integer_text(code) // '; expected printable ASCII (a card' &
+            // ' holds letters, digits, signs and blanks; a line ends' &
+            // ' with LF or CR LF)'
+        return
+      end if
+    end do
     card = text(first:last)
   end subroutine next_card_image
 

@@ -33,6 +33,9 @@ module contactsep_status
   integer, parameter, public :: status_no_modes = 15
   !> N is larger than the caller's max_modes.
   integer, parameter, public :: status_too_many_modes = 16
+  !> A line holds a character other than printable ASCII (a stray CR,
+  !> a NUL, a form feed, a non-ASCII byte).
+  integer, parameter, public :: status_card_not_printable = 17
 
   !> The tip sum at T = 0 is not above DELY: the search has no start.
   integer, parameter, public :: status_release_not_above = 20
