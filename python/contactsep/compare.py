@@ -120,67 +120,80 @@ class Comparison:
         return out.getvalue()
 
 
-def _float32_amplitude_error(result: Result) -> np.ndarray:
-    """Bound on the absolute float32 error of each A_j (module docstring)."""
-    ds = result.inputs
-    v = np.asarray(ds.v, dtype=float)
-    return 8 * _EPS32 * 1.5 * abs(ds.ystat) * np.exp(v) / v
+@dataclass(frozen=True)
+class _ErrorModel:
+    """What rounding at unit roundoff ``eps`` can do to each quantity of a
+    data set, relative (module docstring): the listing's A_j lose
+    ~ y_s e^{kL}/(kL) * eps absolutely, and everything built from them
+    inherits that; sums and products add a few dozen ulp."""
+
+    amplitude: np.ndarray  # relative error bound of each A_j
+    act: float             # of ACT = sum -P A C, hence EY, TY2DT, y3
+    t_impact: float        # of the impact time (search step included)
+    velocity: float        # of the tip velocities at impact
+
+    @classmethod
+    def of(cls, result: Result, eps: float) -> "_ErrorModel":
+        ds = result.inputs
+        v = np.asarray(ds.v, dtype=float)
+        ape = np.asarray(result.ape, dtype=float)
+        p, c = np.asarray(result.p, dtype=float), np.asarray(ds.c, dtype=float)
+        d_ape = 8 * eps * 1.5 * abs(ds.ystat) * np.exp(v) / v
+        act = abs(float(np.sum(p * ape * c)))
+        rel_act = float(np.sum(p * np.abs(c) * d_ape)) / act + 16 * eps
+        t1 = result.t_impact
+        speed = abs(result.tip_velocity_before)
+        d_t = (SEARCH_STEP + float(np.sum(np.abs(c) * d_ape)) / speed
+               + 64 * eps * t1)
+        accel = float(np.sum(p**2 * np.abs(ape * c)))
+        return cls(amplitude=d_ape / np.abs(ape) + 16 * eps, act=rel_act,
+                   t_impact=d_t / t1,
+                   velocity=rel_act + accel * d_t / speed)
 
 
 def _rows(printed: listing.DataSetListing,
           single_printed: listing.DataSetListing, double: Result,
           ref: reference.ReferenceResult) -> list[Row]:
     rows: list[Row] = []
-    d_ape = _float32_amplitude_error(double)
-    p, c = np.asarray(double.p, float), np.asarray(double.inputs.c, float)
-    # the impulse and what follows from it scale with ACT = sum -P APE C
-    act = float(np.sum(-p * np.asarray(double.ape, float) * c))
-    tol_act = float(np.sum(p * abs(c) * d_ape)) / abs(act) + 16 * _EPS32
+    f64 = _ErrorModel.of(double, float(np.finfo(np.float64).eps))
+    f32 = _ErrorModel.of(double, _EPS32)
 
     def add(name, legacy_value, single_value, double_value, ref_value,
-            tol_double=DOUBLE_RTOL, tol_single=16 * _EPS32):
+            tol_double, tol_single):
         rows.append(Row(name, float(legacy_value), float(single_value),
                         float(double_value), float(ref_value),
-                        float(tol_double), float(tol_single)))
+                        max(DOUBLE_RTOL, float(tol_double)),
+                        float(tol_single)))
 
-    for j in range(double.inputs.n):
+    n = double.inputs.n
+    for j in range(n):
         add(f"p_{j + 1}", printed.modal_table[j, 3],
-            single_printed.modal_table[j, 3], double.p[j], ref.p[j])
-    for j in range(double.inputs.n):
+            single_printed.modal_table[j, 3], double.p[j], ref.p[j],
+            DOUBLE_RTOL, 16 * _EPS32)
+    for j in range(n):
         add(f"A_{j + 1}", printed.modal_table[j, 4],
             single_printed.modal_table[j, 4], double.ape[j], ref.ape[j],
-            tol_single=d_ape[j] / abs(double.ape[j]) + 16 * _EPS32)
-    # the impact time: the search resolution, plus float32 drift of T and
-    # of the tip sum (relative to the tip speed)
-    t1 = double.t_impact
-    v_before = abs(double.tip_velocity_before)
-    tol_t = SEARCH_STEP / t1
-    tol_t_single = (SEARCH_STEP + np.sum(abs(c) * d_ape) / v_before
-                    + 64 * _EPS32 * t1) / t1
-    add("t_impact", printed.impact[0], single_printed.impact[0], t1,
-        ref.t_impact, tol_double=tol_t, tol_single=tol_t_single)
+            f64.amplitude[j], f32.amplitude[j])
+    add("t_impact", printed.impact[0], single_printed.impact[0],
+        double.t_impact, ref.t_impact, f64.t_impact, f32.t_impact)
     add("impulse", printed.impact[1], single_printed.impact[1], double.ey,
-        ref.ey, tol_single=tol_act)
-    # velocities at the impact time move with it at the tip's acceleration
-    accel = float(np.sum(p**2 * np.abs(np.asarray(double.ape) * c)))
-    tol_v = DOUBLE_RTOL + accel * SEARCH_STEP / v_before
-    tol_v_single = tol_act + accel * tol_t_single * t1 / v_before
+        ref.ey, f64.act, f32.act)
     add("v_before", printed.tip[3], single_printed.tip[3], double.tip_act,
-        ref.impact_velocity, tol_double=tol_v, tol_single=tol_v_single)
+        ref.impact_velocity, f64.velocity, f32.velocity)
     add("v_after", printed.tip[2], single_printed.tip[2], double.tip_tydtl,
-        ref.tip_tydtl, tol_double=tol_v * 2, tol_single=tol_v_single * 2)
+        ref.tip_tydtl, 2 * f64.velocity, 2 * f32.velocity)
     add("v_separator", printed.ty2dt, single_printed.ty2dt, double.ty2dt,
-        ref.ty2dt, tol_single=tol_act)
-    k_legacy = int(np.argmax(np.abs(printed.history[:, 1])))
-    k_single = int(np.argmax(np.abs(single_printed.history[:, 1])))
-    k_double = int(np.argmax(np.abs(double.history_ty3)))
-    k_ref = int(np.argmax(np.abs(ref.history_ty3)))
-    add("y3_extreme", printed.history[k_legacy, 1],
-        single_printed.history[k_single, 1], double.history_ty3[k_double],
-        ref.history_ty3[k_ref], tol_single=tol_act)
-    add("t_extreme", printed.history[k_legacy, 0],
-        single_printed.history[k_single, 0], double.history_t[k_double],
-        ref.history_t[k_ref], tol_single=64 * _EPS32)
+        ref.ty2dt, f64.act, f32.act)
+    extreme = [int(np.argmax(np.abs(h))) for h in (
+        printed.history[:, 1], single_printed.history[:, 1],
+        double.history_ty3, ref.history_ty3)]
+    add("y3_extreme", printed.history[extreme[0], 1],
+        single_printed.history[extreme[1], 1],
+        double.history_ty3[extreme[2]], ref.history_ty3[extreme[3]],
+        f64.act, f32.act)
+    add("t_extreme", printed.history[extreme[0], 0],
+        single_printed.history[extreme[1], 0], double.history_t[extreme[2]],
+        ref.history_t[extreme[3]], DOUBLE_RTOL, 64 * _EPS32)
     return rows
 
 

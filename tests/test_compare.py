@@ -1,0 +1,56 @@
+"""`contactsep compare` passes on the thesis decks and generated decks, and
+fails when an implementation is wrong."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+
+import pytest
+
+from conftest import THESIS_DECKS, variant_data_sets, write_deck
+from contactsep import compare, reference
+
+
+@pytest.mark.parametrize("deck", THESIS_DECKS, ids=lambda p: p.stem)
+def test_thesis_decks_within_tolerance(deck):
+    report = compare.compare_deck(deck)
+    assert report.error is None
+    assert report.tables and report.passed, report.text
+
+
+@pytest.mark.parametrize("name", sorted(variant_data_sets()))
+def test_generated_decks_within_tolerance(name, tmp_path):
+    deck = write_deck(tmp_path, name, variant_data_sets()[name])
+    report = compare.compare_deck(deck)
+    assert len(report.tables) == len(variant_data_sets()[name])
+    assert report.passed, report.text
+
+
+def test_a_wrong_implementation_is_caught(monkeypatch):
+    """An impulse 1e-6 off in the reference must fail the comparison."""
+    real_run = reference.run
+
+    def slightly_wrong(data_set, **options):
+        result = real_run(data_set, **options)
+        return dataclasses.replace(result, ey=result.ey * (1 + 1e-6))
+
+    monkeypatch.setattr(reference, "run", slightly_wrong)
+    report = compare.compare_deck(THESIS_DECKS[0])
+    failed = [row.name for _, rows in report.tables for row in rows
+              if not row.passed]
+    assert set(failed) == {"impulse"} and len(failed) == len(report.tables)
+    assert not report.passed
+
+
+def cli(*args):
+    return subprocess.run([sys.executable, "-m", "contactsep", *args],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_cli_exit_status_and_table():
+    done = cli("compare", str(THESIS_DECKS[0]))
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "legacy single" in done.stdout and "numpy dbl" in done.stdout
+    assert done.stdout.rstrip().endswith("0 outside")
