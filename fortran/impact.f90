@@ -76,7 +76,7 @@ contains
   !> The listing loops forever when the tip never comes down to DELY, so
   !> the search fails, keeping the trace so far, when trace has no room
   !> for another line (max_trace is the bound on the search), when
-  !> T + DELT == T, or when the tip sum is not finite.  The last two are
+  !> T + DELT == T, or when TY or DELY is not finite.  The last two are
   !> checked only where the listing would take another step, so they
   !> never stop a search that the listing ends.  No bound in time is
   !> used: with DELT close to the period of the first mode the listing
@@ -127,7 +127,8 @@ contains
           message = 'no impact found within ' &
               // integer_text(size(trace, 1)) // ' trace lines (max_trace):' &
               // ' the tip is still above DELY = ' // real_text(dely) &
-              // ' at T = ' // real_text(t) // ', ' &
+              // ' at T = ' // real_text(t)
+          if (p(1) > 0.0_wp) message = trim(message) // ', ' &
               // real_text(t * p(1) / (2.0_wp * acos(-1.0_wp))) &
               // ' periods of the first mode'
           return
@@ -136,11 +137,12 @@ contains
         trace(n_trace, :) = [t, ty, tydtl]
         ! IF (DELT-0.00000001) 131,131,122
         if (step - smallest_step <= 0.0_wp) return
-        if (.not. ieee_is_finite(ty)) then
+        if (.not. (ieee_is_finite(ty) .and. ieee_is_finite(dely))) then
           status = status_search_not_finite
           message = 'the tip sum TY is ' // real_text(ty) // ' at T = ' &
-              // real_text(t) // ': no impact with the separator can be' &
-              // ' found (check the mode cards and dimensions)'
+              // real_text(t) // ' and the separator is at DELY = ' &
+              // real_text(dely) // ': no impact can be found (check the' &
+              // ' mode cards, dimensions and DELY)'
           return
         end if
         if (.not. (t + step > t)) then

@@ -41,7 +41,7 @@ module contactsep_status
   integer, parameter, public :: status_release_not_above = 20
   !> T + DELT == T: the impact search cannot advance in this precision.
   integer, parameter, public :: status_search_stalled = 21
-  !> The tip sum is NaN or infinite, so no crossing can be found.
+  !> The tip sum or DELY is NaN or infinite: no crossing can be found.
   integer, parameter, public :: status_search_not_finite = 22
   !> No impact within max_trace trace lines (the tip may never reach
   !> DELY), or no room for the trace lines of one.
