@@ -26,6 +26,13 @@
 !> the original program.  When only blank lines remain where a data set
 !> would start, the deck has ended cleanly (status_end_of_deck): trailing
 !> blank lines are ignored.
+!>
+!> Refused, naming the line, columns, text found and what was expected:
+!> a field gfortran cannot read, NaN or Infinity (also an overflow in the
+!> working precision), a line over 80 columns, a TAB or other character
+!> outside printable ASCII, N < 1, N above the caller's room, and a deck
+!> ending inside a data set.  Values gfortran does read (a field cut short
+!> by a comma, say) are taken as the original program takes them.
 module contactsep_cards
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use contactsep_kinds, only: wp
@@ -39,11 +46,11 @@ module contactsep_cards
   public :: read_cards
 
   !> Values on cards 1-6, in card order (E is the 17th, XL2C the 18th).
-  integer, parameter, public :: card_scalar_count = 18
+  integer, parameter :: card_scalar_count = 18
   !> Columns of the modes table: V,C,ALPHA, V2,C2,ALPH2, V3,C3,ALPH3.
-  integer, parameter, public :: mode_column_count = 9
+  integer, parameter :: mode_column_count = 9
   !> Columns of a punched card.
-  integer, parameter, public :: card_width = 80
+  integer, parameter :: card_width = 80
 
   !> Width of an F15.9 / E15.9 field.
   integer, parameter :: field_width = 15
@@ -64,7 +71,7 @@ module contactsep_cards
       'V    ', 'C    ', 'ALPHA', 'V2   ', 'C2   ', 'ALPH2', &
       'V3   ', 'C3   ', 'ALPH3']
 
-  !> Where a failing card is, for the caller's error report.
+  !> Where a failing field is, for the caller's error report.
   type :: card_error
     integer :: card = 0
     integer :: first_column = 0
@@ -102,7 +109,7 @@ contains
 
     character(len=card_width) :: card
     character(len=2) :: blank
-    type(card_error) :: where
+    type(card_error) :: location
     integer :: position, line, k, first, mode, group, total_lines, found
 
     scalars = 0.0_wp
@@ -111,7 +118,7 @@ contains
     next_card = first_card
     status = status_ok
     message = ''
-    where = card_error()
+    location = card_error()
 
     if (first_card < 1) then
       call fail(status_bad_argument, 'first_card must be 1 or more, not ' &
@@ -156,19 +163,19 @@ contains
             // integer_text(k - 1))
         return
       end if
-      call next_card_image(text, position, line, card, where, status, &
+      call next_card_image(text, position, line, card, location, status, &
           message)
       if (status /= status_ok) then
         call report_where()
         return
       end if
       if (k == 5) then
-        call read_card5(card, line, blank, scalars(17), n, where, status, &
-            message)
+        call read_card5(card, line, blank, scalars(first + 1), n, location, &
+            status, message)
       else
         call read_reals(card, line, blank, &
             scalar_names(first + 1:first + reals_on_card(k)), &
-            scalars(first + 1:first + reals_on_card(k)), where, status, &
+            scalars(first + 1:first + reals_on_card(k)), location, status, &
             message)
       end if
       if (status /= status_ok) then
@@ -191,7 +198,7 @@ contains
       return
     end if
     if (n > size(modes, 1)) then
-      where = card_error(first_card + 4, 16, 17)
+      location = card_error(first_card + 4, 16, 17)
       call fail(status_too_many_modes, 'line ' &
           // integer_text(first_card + 4) // ', columns 16-17 (N, I2): N = ' &
           // integer_text(n) // ' is more than the ' &
@@ -202,7 +209,7 @@ contains
 
     do group = 1, 3
       do mode = 1, n
-        call next_card_image(text, position, line, card, where, status, &
+        call next_card_image(text, position, line, card, location, status, &
             message)
         if (status /= status_ok) then
           call report_where()
@@ -210,7 +217,7 @@ contains
         end if
         call read_reals(card, line, blank, &
             mode_names(3 * group - 2:3 * group), &
-            modes(mode, 3 * group - 2:3 * group), where, status, message, &
+            modes(mode, 3 * group - 2:3 * group), location, status, message, &
             mode)
         if (status /= status_ok) then
           call report_where()
@@ -233,9 +240,9 @@ contains
     end subroutine fail
 
     subroutine report_where()
-      error_card = where%card
-      error_first_column = where%first_column
-      error_last_column = where%last_column
+      error_card = location%card
+      error_first_column = location%first_column
+      error_last_column = location%last_column
     end subroutine report_where
 
   end subroutine read_cards
@@ -315,13 +322,13 @@ contains
   !> card would be a guess) and any other character a card cannot hold:
   !> gfortran would end a record at a stray CR, or fail on a NUL, and the
   !> columns after it would no longer be those of the card.
-  subroutine next_card_image(text, position, line, card, where, status, &
+  subroutine next_card_image(text, position, line, card, location, status, &
       message)
     character(len=*), intent(in) :: text
     integer, intent(inout) :: position
     integer, intent(in) :: line
     character(len=card_width), intent(out) :: card
-    type(card_error), intent(out) :: where
+    type(card_error), intent(out) :: location
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
     integer :: first, last, width, tab_column, column, code
@@ -333,7 +340,7 @@ contains
     call skip_line(text, position)
     width = last - first + 1
     if (width > card_width) then
-      where = card_error(line, card_width + 1, width)
+      location = card_error(line, card_width + 1, width)
       status = status_card_too_long
       message = 'line ' // integer_text(line) // ', columns ' &
           // integer_text(card_width + 1) // '-' // integer_text(width) &
@@ -345,7 +352,7 @@ contains
     if (width <= 0) return
     tab_column = index(text(first:last), tab)
     if (tab_column > 0) then
-      where = card_error(line, tab_column, tab_column)
+      location = card_error(line, tab_column, tab_column)
       status = status_card_has_tab
       message = 'line ' // integer_text(line) // ', column ' &
           // integer_text(tab_column) // ': found a TAB character;' &
@@ -356,7 +363,7 @@ contains
     do column = 1, width
       code = iachar(text(first + column - 1:first + column - 1))
       if (code < 32 .or. code > 126) then
-        where = card_error(line, column, column)
+        location = card_error(line, column, column)
         status = status_card_not_printable
         message = 'line ' // integer_text(line) // ', column ' &
             // integer_text(column) // ': found the character of code ' &
@@ -370,7 +377,7 @@ contains
   end subroutine next_card_image
 
   !> Read the leading values of a FORMAT 10 card, checking each field.
-  subroutine read_reals(card, line, blank, names, values, where, status, &
+  subroutine read_reals(card, line, blank, names, values, location, status, &
       message, mode)
     character(len=card_width), intent(in) :: card
     integer, intent(in) :: line
@@ -379,7 +386,7 @@ contains
     !> Listing names of the values, for messages.
     character(len=*), intent(in) :: names(:)
     real(wp), intent(out) :: values(:)
-    type(card_error), intent(out) :: where
+    type(card_error), intent(out) :: location
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
     !> Mode number, present on mode cards (names then get '(mode)').
@@ -390,7 +397,7 @@ contains
 
     status = status_ok
     message = ''
-    where = card_error()
+    location = card_error()
     values = 0.0_wp
     ! FORMAT 10 of the listing, with the blank mode made explicit.
     real_format = '(' // blank // ',7F15.9)'
@@ -417,7 +424,7 @@ contains
         return
       end if
     end do
-    where = card_error(line, 1, size(values) * field_width)
+    location = card_error(line, 1, size(values) * field_width)
     status = status_card_not_numeric
     message = 'line ' // integer_text(line) // ': the card cannot be read' &
         // ' with FORMAT 10 (7F15.9): ' // trim(io_message)
@@ -433,7 +440,7 @@ contains
       c2 = c1 + field_width - 1
       label = trim(names(field))
       if (present(mode)) label = label // '(' // integer_text(mode) // ')'
-      where = card_error(line, c1, c2)
+      location = card_error(line, c1, c2)
       status = code
       message = 'line ' // integer_text(line) // ', columns ' &
           // integer_text(c1) // '-' // integer_text(c2) // ' (' // label &
@@ -443,21 +450,21 @@ contains
   end subroutine read_reals
 
   !> Read card 5, FORMAT 15 (E15.9,I2): Young's modulus E and N.
-  subroutine read_card5(card, line, blank, e, n, where, status, message)
+  subroutine read_card5(card, line, blank, e, n, location, status, message)
     character(len=card_width), intent(in) :: card
     integer, intent(in) :: line
     !> 'BN' or 'BZ': how blanks inside a field read.
     character(len=2), intent(in) :: blank
     real(wp), intent(out) :: e
     integer, intent(out) :: n
-    type(card_error), intent(out) :: where
+    type(card_error), intent(out) :: location
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
     integer :: ios
 
     status = status_ok
     message = ''
-    where = card_error()
+    location = card_error()
     e = 0.0_wp
     n = 0
     ! FORMAT 15 of the listing, with the blank mode made explicit.
@@ -496,7 +503,7 @@ contains
       integer, intent(in) :: c1, c2, code
       character(len=*), intent(in) :: label, expectation
 
-      where = card_error(line, c1, c2)
+      location = card_error(line, c1, c2)
       status = code
       message = 'line ' // integer_text(line) // ', columns ' &
           // integer_text(c1) // '-' // integer_text(c2) // ' (' // label &

@@ -16,7 +16,7 @@ module contactsep_listing
   !> Width of one F15.9 field.
   integer, parameter :: field_width = 15
   !> Values per FORMAT 10 record (a longer list would wrap).
-  integer, parameter, public :: record_values = 7
+  integer, parameter :: record_values = 7
   !> Bytes the text starts with; it doubles up to the capacity.
   integer, parameter :: initial_bytes = 4096
 
