@@ -148,19 +148,19 @@ contains
     total_lines = line - 1 + lines_from(text, position)
     if (only_blank_lines(text, position)) then
       next_card = max(first_card, total_lines + 1)
-      call fail(status_end_of_deck, 'no data set is left: the deck ends' &
-          // ' at line ' // integer_text(total_lines))
+      call fail(status_end_of_deck, 'no data set is left (the deck ends' &
+          // ' at card ' // integer_text(total_lines) // ')')
       return
     end if
 
     first = 0
     do k = 1, 6
       if (position > len(text)) then
-        call fail(status_deck_truncated, 'the deck ends after line ' &
-            // integer_text(total_lines) // ', inside the data set that' &
-            // ' starts at line ' // integer_text(first_card) &
-            // ': a data set has 6 + 3N cards (at least 6), found ' &
-            // integer_text(k - 1))
+        call fail(status_deck_truncated, 'expected 6 + 3N cards (N is on' &
+            // ' card 5 of the data set), found ' // integer_text(k - 1) &
+            // ' (the deck ends at card ' // integer_text(total_lines) &
+            // ', inside the data set that starts at card ' &
+            // integer_text(first_card) // ')')
         return
       end if
       call next_card_image(text, position, line, card, location, status, &
@@ -188,22 +188,20 @@ contains
 
     found = total_lines - first_card + 1
     if (found < 6 + 3 * n) then
-      call fail(status_deck_truncated, 'the deck ends after line ' &
-          // integer_text(total_lines) // ', inside the data set that' &
-          // ' starts at line ' // integer_text(first_card) &
-          // ': expected 6 + 3N = ' // integer_text(6 + 3 * n) &
-          // ' cards (N = ' // integer_text(n) // ' on line ' &
-          // integer_text(first_card + 4) // '), found ' &
-          // integer_text(found))
+      call fail(status_deck_truncated, 'expected 6 + 3N = ' &
+          // integer_text(6 + 3 * n) // ' cards, found ' &
+          // integer_text(found) // ' (N = ' // integer_text(n) &
+          // ' on card ' // integer_text(first_card + 4) &
+          // '; the deck ends at card ' // integer_text(total_lines) // ')')
       return
     end if
     if (n > size(modes, 1)) then
       location = card_error(first_card + 4, 16, 17)
-      call fail(status_too_many_modes, 'line ' &
-          // integer_text(first_card + 4) // ', columns 16-17 (N, I2): N = ' &
-          // integer_text(n) // ' is more than the ' &
+      call fail(status_too_many_modes, 'card ' &
+          // integer_text(first_card + 4) // ', columns 16-17: found N = ' &
+          // integer_text(n) // ', expected at most ' &
           // integer_text(size(modes, 1)) &
-          // ' modes the caller has room for (max_modes)')
+          // ' modes (max_modes, the room the caller gave)')
       return
     end if
 
@@ -342,11 +340,11 @@ contains
     if (width > card_width) then
       location = card_error(line, card_width + 1, width)
       status = status_card_too_long
-      message = 'line ' // integer_text(line) // ', columns ' &
+      message = 'card ' // integer_text(line) // ', columns ' &
           // integer_text(card_width + 1) // '-' // integer_text(width) &
           // ': found ''' // text(first + card_width:min(last, first &
-          + card_width + 39)) // ''' beyond column 80; expected at most' &
-          // ' 80 columns (a card has 80 columns)'
+          + card_width + 39)) // ''', expected nothing past column 80' &
+          // ' (a card has 80 columns)'
       return
     end if
     if (width <= 0) return
@@ -354,10 +352,9 @@ contains
     if (tab_column > 0) then
       location = card_error(line, tab_column, tab_column)
       status = status_card_has_tab
-      message = 'line ' // integer_text(line) // ', column ' &
-          // integer_text(tab_column) // ': found a TAB character;' &
-          // ' expected spaces (a card has no tabs, so fields must be' &
-          // ' placed in their columns with spaces)'
+      message = 'card ' // integer_text(line) // ', column ' &
+          // integer_text(tab_column) // ': found a TAB, expected a blank' &
+          // ' (a TAB has no fixed column on a card)'
       return
     end if
     do column = 1, width
@@ -365,11 +362,10 @@ contains
       if (code < 32 .or. code > 126) then
         location = card_error(line, column, column)
         status = status_card_not_printable
-        message = 'line ' // integer_text(line) // ', column ' &
+        message = 'card ' // integer_text(line) // ', column ' &
             // integer_text(column) // ': found the character of code ' &
-            // integer_text(code) // '; expected printable ASCII (a card' &
-            // ' holds letters, digits, signs and blanks; a line ends' &
-            // ' with LF or CR LF)'
+            // integer_text(code) // ', expected a printable ASCII' &
+            // ' character (a card ends at LF or CR LF)'
         return
       end if
     end do
@@ -406,8 +402,8 @@ contains
       do field = 1, size(values)
         if (.not. ieee_is_finite(values(field))) then
           call field_error(field, status_card_not_finite, &
-              'which is not a finite number in this precision; expected' &
-              // ' a finite number')
+              'expected a finite number', &
+              ' (NaN, Infinity or beyond the range of this precision)')
           return
         end if
       end do
@@ -420,20 +416,21 @@ contains
           real_format, iostat=ios) values(field)
       if (ios /= 0) then
         call field_error(field, status_card_not_numeric, &
-            'expected a number')
+            'expected a number', '')
         return
       end if
     end do
     location = card_error(line, 1, size(values) * field_width)
     status = status_card_not_numeric
-    message = 'line ' // integer_text(line) // ': the card cannot be read' &
-        // ' with FORMAT 10 (7F15.9): ' // trim(io_message)
+    message = 'card ' // integer_text(line) // ': found a card that' &
+        // ' FORMAT 10 (7F15.9) cannot read (' // trim(io_message) &
+        // '), expected numbers in columns 1-15, 16-30, ...'
 
   contains
 
-    subroutine field_error(field, code, expectation)
+    subroutine field_error(field, code, expectation, reason)
       integer, intent(in) :: field, code
-      character(len=*), intent(in) :: expectation
+      character(len=*), intent(in) :: expectation, reason
       integer :: c1, c2
 
       c1 = (field - 1) * field_width + 1
@@ -442,9 +439,10 @@ contains
       if (present(mode)) label = label // '(' // integer_text(mode) // ')'
       location = card_error(line, c1, c2)
       status = code
-      message = 'line ' // integer_text(line) // ', columns ' &
-          // integer_text(c1) // '-' // integer_text(c2) // ' (' // label &
-          // ', F15.9): found ' // quoted(card(c1:c2)) // ', ' // expectation
+      message = 'card ' // integer_text(line) // ', columns ' &
+          // integer_text(c1) // '-' // integer_text(c2) // ': found ' &
+          // quoted(card(c1:c2)) // ', ' // expectation // ' (' // label &
+          // ', F15.9)' // reason
     end subroutine field_error
 
   end subroutine read_reals
@@ -472,42 +470,42 @@ contains
     if (ios /= 0) then
       read (card(1:15), '(' // blank // ',E15.9)', iostat=ios) e
       if (ios /= 0) then
-        call field_error(1, 15, 'E, E15.9', status_card_not_numeric, &
-            'expected a number')
+        call field_error(1, 15, status_card_not_numeric, &
+            'expected a number (E, E15.9)')
         return
       end if
       read (card(16:17), '(' // blank // ',I2)', iostat=ios) n
       if (ios /= 0) then
-        call field_error(16, 17, 'N, I2', status_card_not_numeric, &
-            'expected the number of modes N, an integer')
+        call field_error(16, 17, status_card_not_numeric, &
+            'expected an integer (N, I2)')
         return
       end if
-      call field_error(1, 17, 'E, N', status_card_not_numeric, &
-          'expected FORMAT 15 (E15.9,I2)')
+      call field_error(1, 17, status_card_not_numeric, &
+          'expected E and N (FORMAT 15: E15.9,I2)')
       return
     end if
     if (.not. ieee_is_finite(e)) then
-      call field_error(1, 15, 'E, E15.9', status_card_not_finite, &
-          'which is not a finite number in this precision; expected a' &
-          // ' finite number')
+      call field_error(1, 15, status_card_not_finite, &
+          'expected a finite number (E, E15.9) (NaN, Infinity or beyond' &
+          // ' the range of this precision)')
       return
     end if
     if (n < 1) then
-      call field_error(16, 17, 'N, I2', status_no_modes, &
-          'expected the number of modes N, 1 or more')
+      call field_error(16, 17, status_no_modes, &
+          'expected N >= 1 (I2), the number of modes')
     end if
 
   contains
 
-    subroutine field_error(c1, c2, label, code, expectation)
+    subroutine field_error(c1, c2, code, expectation)
       integer, intent(in) :: c1, c2, code
-      character(len=*), intent(in) :: label, expectation
+      character(len=*), intent(in) :: expectation
 
       location = card_error(line, c1, c2)
       status = code
-      message = 'line ' // integer_text(line) // ', columns ' &
-          // integer_text(c1) // '-' // integer_text(c2) // ' (' // label &
-          // '): found ' // quoted(card(c1:c2)) // ', ' // expectation
+      message = 'card ' // integer_text(line) // ', columns ' &
+          // integer_text(c1) // '-' // integer_text(c2) // ': found ' &
+          // quoted(card(c1:c2)) // ', ' // expectation
     end subroutine field_error
 
   end subroutine read_card5

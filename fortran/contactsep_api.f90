@@ -29,10 +29,10 @@ contains
   !> Read the data set starting at line first_card of the deck text.
   !>
   !> next_card is the line after it.  On an error (status > 1) the
-  !> message names the line, the columns, the text found and what was
-  !> expected; error_card and the columns give the same place (0 when
-  !> not applicable, as for a deck that ends too soon).  The message has
-  !> no 'data set k' prefix.
+  !> message reads 'card 9, columns 16-30: found ..., expected ...', the
+  !> card being the line number in the file; error_card and the columns
+  !> give the same place (0 when not applicable, as for a deck that ends
+  !> too soon).  The message has no 'data set k' prefix.
   subroutine read_data_set(text, first_card, blank_zero, max_modes, &
       scalars, n, modes, next_card, status, message, error_card, &
       error_first_column, error_last_column)
