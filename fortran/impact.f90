@@ -163,9 +163,10 @@ contains
       character(len=*), intent(in) :: relation
 
       status = status_release_not_above
-      message = 'the released tip TY = ' // real_text(ty) // ' at T = 0 is ' &
-          // relation // ' the separator DELY = ' // real_text(dely) &
-          // ': the contact must start above it (YSTAT > DELY)'
+      message = 'the released tip TY = ' // real_text(ty) // ' at T = 0' &
+          // ' (the modal sum for YSTAT) is ' // relation &
+          // ' the separator DELY = ' // real_text(dely) &
+          // ': the impact search must start above it'
     end subroutine release_not_above
 
   end subroutine search_first_impact

@@ -70,16 +70,20 @@ contains
           // trim(io_message)
       return
     end if
-    if (listing%length + width + 1 > listing%capacity) then
+    ! Compared this way round so that no sum can overflow.
+    if (width + 1 > listing%capacity - listing%length) then
       status = status_listing_full
       message = 'the listing needs more than ' &
           // integer_text(listing%capacity) // ' bytes (max_listing)'
       return
     end if
-    if (listing%length + width + 1 > len(listing%text)) then
-      new_size = max(initial_bytes, 2 * len(listing%text), &
-          listing%length + width + 1)
-      new_size = min(new_size, listing%capacity)
+    if (width + 1 > len(listing%text) - listing%length) then
+      if (len(listing%text) > listing%capacity / 2) then
+        new_size = listing%capacity
+      else
+        new_size = min(listing%capacity, max(initial_bytes, &
+            2 * len(listing%text), listing%length + width + 1))
+      end if
       allocate (character(len=new_size) :: grown, stat=stat)
       if (stat /= 0) then
         status = status_out_of_memory
