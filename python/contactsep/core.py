@@ -34,8 +34,10 @@ MODE_NAMES = tuple(name for group in MODE_GROUPS for name in group)
 TAU = 0.060
 #: Most impact-search lines the core may print before it gives up.
 MAX_SEARCH_LINES = 100_000
-#: Widest line the listing writes: 7 fields of F15.9 and a newline.
-_LINE_BYTES = 7 * 15 + 1
+#: Most lower-contact history lines (T = 0, DELT, ... < TAU) the core will
+#: produce: DELT must be at least TAU / 1e6 = 6e-8 s.
+MAX_HISTORY_LINES = 1_000_000
+_FIELD = 15
 _STATUS_END_OF_DECK = 1
 
 
@@ -110,10 +112,21 @@ def iter_deck(text: str, *, precision: str = "single",
 
 
 def history_length(delt: float) -> int:
-    """Upper bound on the lines of the history loop T = 0, DELT, ... < TAU."""
+    """Room for the history loop T = 0, DELT, ... < TAU: its line count
+    plus two for rounding, at most MAX_HISTORY_LINES + 2 (the core reports
+    a longer history as an error)."""
     if not delt > 0:
         return 1
-    return int(math.ceil(TAU / delt)) + 2
+    return int(min(math.ceil(TAU / delt), MAX_HISTORY_LINES)) + 2
+
+
+def listing_capacity(n: int, history: int) -> int:
+    """Bytes the listing of one data set can take: each WRITE's fields of
+    15 columns and a newline, section by section."""
+    line = lambda fields: fields * _FIELD + 1
+    return (line(4) + n * line(5) + MAX_SEARCH_LINES * line(3) + line(1)
+            + line(5) + n * line(2) + line(4) + line(1)
+            + history * line(2) + 2 * n * line(4) + 2 * line(4))
 
 
 def solve(data_set: DataSet, precision: str = "single", *,
@@ -132,11 +145,11 @@ def solve(data_set: DataSet, precision: str = "single", *,
         dtype=dtype)
     n = data_set.n
     max_history = history_length(data_set.delt)
-    max_lines = MAX_SEARCH_LINES + max_history + 5 * n + 10
     (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history, n_history,
      p2, p3, closing, listing, listing_length, status, message) = api.solve(
          scalars=scalars, n=n, modes=modes, max_trace=MAX_SEARCH_LINES,
-         max_history=max_history, max_listing=max_lines * _LINE_BYTES)
+         max_history=max_history,
+         max_listing=listing_capacity(n, max_history))
     text = listing[:listing_length].tobytes().decode("ascii")
     if status != 0:
         where = f"data set {data_set_index}: " if data_set_index else ""
