@@ -40,15 +40,13 @@ module contactsep_cards
       status_end_of_deck, status_bad_argument, status_card_not_numeric, &
       status_card_not_finite, status_card_too_long, status_card_has_tab, &
       status_deck_truncated, status_no_modes, status_too_many_modes, &
-      status_card_not_printable, integer_text
+      status_card_not_printable, status_out_of_range, integer_text
+  use contactsep_validation, only: card_scalar_count => scalar_count, &
+      mode_column_count, scalar_names, mode_names, requirement
   implicit none
   private
   public :: read_cards
 
-  !> Values on cards 1-6, in card order (E is the 17th, XL2C the 18th).
-  integer, parameter :: card_scalar_count = 18
-  !> Columns of the modes table: V,C,ALPHA, V2,C2,ALPH2, V3,C3,ALPH3.
-  integer, parameter :: mode_column_count = 9
   !> Columns of a punched card.
   integer, parameter :: card_width = 80
 
@@ -59,17 +57,6 @@ module contactsep_cards
 
   !> Numbers read from each of cards 1-6 (card 5's N is read apart).
   integer, parameter :: reals_on_card(6) = [5, 4, 4, 3, 1, 1]
-  !> Listing names of the values of cards 1-6, in card order.
-  character(len=5), parameter :: scalar_names(card_scalar_count) = [ &
-      'XL   ', 'B    ', 'H    ', 'RHO  ', 'YSTAT', &
-      'XL2  ', 'B2   ', 'H2   ', 'RHO2 ', &
-      'XL3  ', 'B3   ', 'H3   ', 'RHO3 ', &
-      'DELT ', 'ER   ', 'DELY ', &
-      'E    ', 'XL2C ']
-  !> Listing names of the three values on each mode card.
-  character(len=5), parameter :: mode_names(mode_column_count) = [ &
-      'V    ', 'C    ', 'ALPHA', 'V2   ', 'C2   ', 'ALPH2', &
-      'V3   ', 'C3   ', 'ALPH3']
 
   !> Where a failing field is, for the caller's error report.
   type :: card_error
@@ -387,7 +374,7 @@ contains
     character(len=message_length), intent(out) :: message
     !> Mode number, present on mode cards (names then get '(mode)').
     integer, intent(in), optional :: mode
-    character(len=:), allocatable :: label, real_format
+    character(len=:), allocatable :: label, real_format, expected
     integer :: ios, field, first_column
     character(len=message_length) :: io_message
 
@@ -404,6 +391,12 @@ contains
           call field_error(field, status_card_not_finite, &
               'expected a finite number', &
               ' (NaN, Infinity or beyond the range of this precision)')
+          return
+        end if
+        expected = requirement(names(field), values(field))
+        if (len(expected) > 0) then
+          call field_error(field, status_out_of_range, &
+              'expected ' // expected, '')
           return
         end if
       end do
@@ -488,6 +481,11 @@ contains
       call field_error(1, 15, status_card_not_finite, &
           'expected a finite number (E, E15.9) (NaN, Infinity or beyond' &
           // ' the range of this precision)')
+      return
+    end if
+    if (len(requirement('E', e)) > 0) then
+      call field_error(1, 15, status_out_of_range, 'expected ' &
+          // requirement('E', e) // ' (E, E15.9)')
       return
     end if
     if (n < 1) then

@@ -15,6 +15,9 @@ module contactsep_api
   use contactsep_kinds, only: wp
   use contactsep_cards, only: read_cards
   use contactsep_solver, only: data_set, solution, run_data_set
+  use contactsep_status, only: status_ok, status_out_of_range, &
+      integer_text, real_text
+  use contactsep_validation, only: scalar_names, mode_names, requirement
   implicit none
   private
   public :: read_data_set, solve
@@ -99,7 +102,8 @@ contains
     character(len=512), intent(out) :: message
     type(data_set) :: inputs
     type(solution) :: result
-    integer :: i, count
+    integer :: i, count, column, mode
+    character(len=:), allocatable :: expected
 
     p = 0.0_wp
     ape = 0.0_wp
@@ -117,6 +121,36 @@ contains
     closing = 0.0_wp
     listing = 0_int8
     listing_length = 0
+
+    ! A direct call is held to the ranges a deck is.
+    status = status_ok
+    message = ''
+    do i = 1, size(scalars)
+      expected = requirement(scalar_names(i), scalars(i))
+      if (len(expected) > 0) then
+        status = status_out_of_range
+        message = trim(scalar_names(i)) // ' = ' // real_text(scalars(i)) &
+            // ': expected ' // expected
+        return
+      end if
+    end do
+    if (n < 1) then
+      status = status_out_of_range
+      message = 'N = ' // integer_text(n) // ': expected N >= 1 modes'
+      return
+    end if
+    do column = 1, size(modes, 2)
+      do mode = 1, n
+        expected = requirement(mode_names(column), modes(mode, column))
+        if (len(expected) > 0) then
+          status = status_out_of_range
+          message = trim(mode_names(column)) // '(' // integer_text(mode) &
+              // ') = ' // real_text(modes(mode, column)) &
+              // ': expected ' // expected
+          return
+        end if
+      end do
+    end do
 
     inputs = data_set(xl=scalars(1), b=scalars(2), h=scalars(3), &
         rho=scalars(4), ystat=scalars(5), xl2=scalars(6), b2=scalars(7), &

@@ -36,6 +36,9 @@ module contactsep_status
   !> A line holds a character other than printable ASCII (a stray CR,
   !> a NUL, a form feed, a non-ASCII byte).
   integer, parameter, public :: status_card_not_printable = 17
+  !> A value lies outside the range the listing needs (a length that is
+  !> not positive, ER outside [0, 1], ...; see contactsep_validation).
+  integer, parameter, public :: status_out_of_range = 18
 
   !> The tip sum at T = 0 is not above DELY: the search has no start.
   integer, parameter, public :: status_release_not_above = 20
