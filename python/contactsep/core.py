@@ -18,7 +18,7 @@ from typing import Iterator
 import numpy as np
 
 from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
-from contactsep.errors import DeckError
+from contactsep.errors import DeckError, location
 from contactsep.result import Result
 
 PRECISIONS = ("single", "double")
@@ -39,6 +39,15 @@ MAX_SEARCH_LINES = 100_000
 MAX_HISTORY_LINES = 1_000_000
 _FIELD = 15
 _STATUS_END_OF_DECK = 1
+#: Solver failures and the card field that decides them (status codes of
+#: fortran/status.f90): (card within the data set, columns, name).
+_SOLVER_FIELDS = {
+    20: (4, (31, 45), "DELY"),   # the release point is not above DELY
+    21: (4, (1, 15), "DELT"),    # the search step no longer moves T
+    23: (4, (31, 45), "DELY"),   # no impact within the search bound
+    24: (4, (1, 15), "DELT"),    # the history step no longer moves T
+    25: (4, (1, 15), "DELT"),    # the history needs too many lines
+}
 
 
 def _api(precision: str):
@@ -100,6 +109,7 @@ def iter_deck(text: str, *, precision: str = "single",
             return
         if status != 0:
             raise DeckError(
+                f"data set {index}, {_text(message)}" if card else
                 f"data set {index}: {_text(message)}", data_set=index,
                 card=card or None,
                 columns=(first_col, last_col) if first_col else None)
@@ -111,13 +121,21 @@ def iter_deck(text: str, *, precision: str = "single",
         first_card = next_card
 
 
-def history_length(delt: float) -> int:
-    """Room for the history loop T = 0, DELT, ... < TAU: its line count
-    plus two for rounding, at most MAX_HISTORY_LINES + 2 (the core reports
-    a longer history as an error)."""
-    if not delt > 0:
-        return 1
-    return int(min(math.ceil(TAU / delt), MAX_HISTORY_LINES)) + 2
+def history_length(delt: float, precision: str = "double") -> int:
+    """Room for the history loop T = 0, DELT, ... < TAU.
+
+    T is accumulated in the working precision, and each T + DELT can fall
+    short of the exact sum by half an ulp of T <= TAU, i.e. by less than
+    TAU * eps; so the loop runs at most TAU / (DELT - TAU * eps) times.
+    Never more than twice MAX_HISTORY_LINES: the core refuses a DELT that
+    needs more than MAX_HISTORY_LINES before it uses the room.
+    """
+    eps = float(np.finfo(np.float32 if precision == "single"
+                         else np.float64).eps)
+    step = delt - TAU * eps
+    if not step > 0:
+        return 2 * MAX_HISTORY_LINES
+    return int(min(math.ceil(TAU / step), 2 * MAX_HISTORY_LINES)) + 2
 
 
 def listing_capacity(n: int, history: int) -> int:
@@ -130,11 +148,15 @@ def listing_capacity(n: int, history: int) -> int:
 
 
 def solve(data_set: DataSet, precision: str = "single", *,
-          data_set_index: int | None = None) -> Result:
+          data_set_index: int | None = None,
+          first_card: int | None = None) -> Result:
     """Run one data set through the restored core.
 
     This is the call a designer makes in a loop: no deck file is involved.
-    Inputs are rounded to the build's precision on the way in.
+    Inputs are rounded to the build's precision on the way in.  Values
+    outside their ranges, a release point not above the separator or an
+    impact that never comes raise :class:`DeckError`; ``data_set_index``
+    and ``first_card`` (the data set's place in a deck) locate it.
     """
     api = _api(precision)
     dtype = np.float32 if precision == "single" else np.float64
@@ -144,7 +166,7 @@ def solve(data_set: DataSet, precision: str = "single", *,
         np.column_stack([getattr(data_set, name) for name in MODE_NAMES]),
         dtype=dtype)
     n = data_set.n
-    max_history = history_length(data_set.delt)
+    max_history = history_length(data_set.delt, precision)
     (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history, n_history,
      p2, p3, closing, listing, listing_length, status, message) = api.solve(
          scalars=scalars, n=n, modes=modes, max_trace=MAX_SEARCH_LINES,
@@ -152,8 +174,13 @@ def solve(data_set: DataSet, precision: str = "single", *,
          max_listing=listing_capacity(n, max_history))
     text = listing[:listing_length].tobytes().decode("ascii")
     if status != 0:
-        where = f"data set {data_set_index}: " if data_set_index else ""
-        raise DeckError(f"{where}{_text(message)}", data_set=data_set_index,
+        card = columns = None
+        if first_card is not None and status in _SOLVER_FIELDS:
+            offset, columns, name = _SOLVER_FIELDS[status]
+            card = first_card + offset - 1
+        where = location(data_set_index, card, columns)
+        raise DeckError(f"{where}: {_text(message)}",
+                        data_set=data_set_index, card=card, columns=columns,
                         listing=text)
     return Result(
         inputs=data_set, precision=precision,
@@ -182,7 +209,8 @@ def replay_text(text: str, precision: str = "single", *,
     try:
         for item in iter_deck(text, precision=precision, blank=blank):
             results.append(solve(item.data_set, precision,
-                                 data_set_index=item.index))
+                                 data_set_index=item.index,
+                                 first_card=item.first_card))
     except DeckError as error:
         error.partial = results
         raise

@@ -87,7 +87,8 @@ def validated_cards(text: str, precision: str = "single", *,
                     f"16-17: N = {item.data_set.n}, but the original program "
                     f"holds at most {max_modes} modes (DIMENSION (4))",
                     data_set=item.index, card=first_card, columns=(16, 17))
-            core.solve(item.data_set, precision, data_set_index=item.index)
+            core.solve(item.data_set, precision, data_set_index=item.index,
+                       first_card=item.first_card)
             kept_through = item.last_card
     except DeckError as error:
         failure = error
