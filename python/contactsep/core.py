@@ -178,8 +178,9 @@ def solve(data_set: DataSet, precision: str = "single", *,
         if first_card is not None and status in _SOLVER_FIELDS:
             offset, columns, name = _SOLVER_FIELDS[status]
             card = first_card + offset - 1
-        where = location(data_set_index, card, columns)
-        raise DeckError(f"{where}: {_text(message)}",
+        where = location(data_set_index, card, columns) + ": " \
+            if data_set_index is not None else ""
+        raise DeckError(f"{where}{_text(message)}",
                         data_set=data_set_index, card=card, columns=columns,
                         listing=text)
     return Result(

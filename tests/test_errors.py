@@ -1,0 +1,181 @@
+"""Bad decks get clear errors: one case per kind of failure, through the API
+and the command line (replay, legacy, compare), and nothing already
+computed is lost."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from contactsep import cards, core, legacy, listing, thesis
+from contactsep.errors import DeckError
+
+GOOD = cards.format_deck([thesis.thesis_data_set(0.25)]).split("\n")[:-1]
+CARDS = len(GOOD)      # 18: one data set of N = 4
+
+
+def put(card: int, column: int, text: str, lines=GOOD) -> list[str]:
+    """The deck with `text` typed over card `card` from column `column`."""
+    lines = list(lines)
+    image = lines[card - 1].ljust(column - 1 + len(text))
+    lines[card - 1] = (image[:column - 1] + text
+                       + image[column - 1 + len(text):]).rstrip()
+    return lines
+
+
+# name: (deck lines, message fragment, card, columns) -- card and columns
+# as DeckError reports them (None where the error has no one place).
+CASES = {
+    "non_numeric": (put(2, 16, "      ABC.00000"),
+                    "found 'ABC.00000', expected a number (B2", 2, (16, 30)),
+    "truncated": (GOOD[:11], "expected 6 + 3N = 18 cards, found 11", None,
+                  None),
+    "empty": ([], "no data set", None, None),
+    "only_blank_lines": (["", "   ", ""], "no data set", None, None),
+    "n_zero": (put(5, 16, " 0"), "expected N >= 1", 5, (16, 17)),
+    "n_negative": (put(5, 16, "-3"), "expected N >= 1", 5, (16, 17)),
+    "zero_length": (put(1, 1, "    0.000000000"),
+                    "expected a positive length, in (XL,", 1, (1, 15)),
+    "negative_width": (put(3, 16, "   -2.000000000"),
+                       "expected a positive width, in (B3,", 3, (16, 30)),
+    "zero_thickness": (put(2, 31, "    0.000000000"),
+                       "expected a positive thickness, in (H2,", 2, (31, 45)),
+    "negative_density": (put(1, 46, " -172.800000000"),
+                         "expected a positive weight density", 1, (46, 60)),
+    "zero_modulus": (put(5, 1, "0.000000000E+00"),
+                     "expected a positive modulus, psi (E,", 5, (1, 15)),
+    "zero_time_step": (put(4, 1, "    0.000000000"),
+                       "expected a positive time step", 4, (1, 15)),
+    "negative_time_step": (put(4, 1, "   -0.000500000"),
+                           "expected a positive time step", 4, (1, 15)),
+    "tiny_time_step": (put(4, 1, "    0.000000010"),
+                       "at least 6.0E-8 s", 4, (1, 15)),
+    "restitution_above_one": (put(4, 16, "    1.500000000"),
+                              "restitution in [0, 1] (ER,", 4, (16, 30)),
+    "restitution_negative": (put(4, 16, "   -0.100000000"),
+                             "restitution in [0, 1] (ER,", 4, (16, 30)),
+    "zero_eigenvalue": (put(12, 1, "    0.000000000"),
+                        "positive eigenvalue k_jL (V2(2)", 12, (1, 15)),
+    "nan": (put(1, 61, "            NaN"), "found 'NaN', expected a finite",
+            1, (61, 75)),
+    "infinity": (put(6, 1, "       Infinity"),
+                 "found 'Infinity', expected a finite", 6, (1, 15)),
+    "overflow": (put(5, 1, "       1.0E+400"),
+                 "found '1.0E+400', expected a finite", 5, (1, 15)),
+    "release_below_separator": (put(4, 31, "    0.600000000"),
+                                "below the separator DELY", 4, (31, 45)),
+    "release_at_separator": (
+        put(1, 61, "    0.000000000"), "exactly at the separator DELY", 4,
+        (31, 45)),
+    "no_impact": (put(4, 31, "   -0.900000000"), "no impact found", 4,
+                  (31, 45)),
+    "line_too_long": (put(3, 76, "1234567890"),
+                      "expected nothing past column 80", 3, (81, 85)),
+    "tab": (put(3, 5, "\t"), "found a TAB", 3, (5, 5)),
+}
+
+
+def write(tmp_path, lines, name="deck.dat"):
+    path = tmp_path / name
+    path.write_bytes(("\n".join(lines) + ("\n" if lines else "")).encode())
+    return path
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize("precision", core.PRECISIONS)
+def test_replay_reports(name, precision, tmp_path):
+    lines, fragment, card, columns = CASES[name]
+    with pytest.raises(DeckError) as info:
+        core.replay(write(tmp_path, lines), precision)
+    error = info.value
+    assert isinstance(error, ValueError)
+    assert fragment in str(error)
+    assert error.card == card and error.columns == columns
+    if name not in ("empty", "only_blank_lines"):
+        assert error.data_set == 1
+        assert str(error).startswith("data set 1")
+    assert error.partial == []
+
+
+def cli(*args):
+    return subprocess.run([sys.executable, "-m", "contactsep", *args],
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize("command", ["replay", "legacy", "compare"])
+def test_cli_reports(name, command, tmp_path):
+    lines, fragment, _, _ = CASES[name]
+    done = cli(command, str(write(tmp_path, lines)))
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert done.stderr.startswith("contactsep: error: ")
+    assert fragment in done.stderr
+    assert "Traceback" not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
+
+
+def test_missing_file():
+    done = cli("replay", "no/such/deck.dat")
+    assert done.returncode == 2
+    assert done.stderr.startswith("contactsep: error: No such file")
+
+
+def test_legacy_refuses_n_above_four_but_replay_runs_it(tmp_path):
+    from conftest import with_modes, write_deck
+
+    deck = write_deck(tmp_path, "n5", [with_modes(thesis.thesis_data_set(0.5),
+                                                  5)])
+    with pytest.raises(DeckError, match="holds at most 4 modes"):
+        legacy.run(deck)
+    assert core.replay(deck)[0].inputs.n == 5
+
+
+@pytest.mark.parametrize("name", ["non_numeric", "release_below_separator",
+                                  "truncated"])
+def test_nothing_already_computed_is_lost(name, tmp_path):
+    """Data set 2 is bad: data set 1's listing is still printed (CLI) or
+    returned (API) before the error."""
+    lines, fragment, card, _ = CASES[name]
+    deck = write(tmp_path, GOOD + lines)
+    first = core.replay(write(tmp_path, GOOD, "good.dat"))[0]
+    with pytest.raises(DeckError) as info:
+        core.replay(deck)
+    assert info.value.data_set == 2
+    if card is not None:
+        assert info.value.card == CARDS + card
+    assert [r.listing for r in info.value.partial] == [first.listing]
+    for command in ("replay", "legacy"):
+        done = cli(command, str(deck))
+        assert done.returncode == 2
+        assert done.stdout == first.listing
+        assert done.stderr.startswith("contactsep: error: data set 2")
+    done = cli("compare", str(deck))
+    assert done.returncode == 2
+    assert "data set 1" in done.stdout and "data set 2" not in done.stdout
+
+
+def test_legacy_is_only_fed_data_sets_that_passed(tmp_path):
+    cards_fed, failure = legacy.validated_cards(
+        "\n".join(GOOD + CASES["no_impact"][0]) + "\n")
+    assert cards_fed == "\n".join(GOOD) + "\n"
+    assert failure is not None and failure.data_set == 2
+    assert listing.parse(legacy.run_cards(cards_fed))[0].n == 4
+
+
+def test_direct_call_is_validated():
+    ds = thesis.thesis_data_set(0.25)
+    with pytest.raises(DeckError, match=r"^H2 = -0\.25.*positive thickness"):
+        core.solve(ds.replace(h2=-0.25))
+    with pytest.raises(DeckError, match=r"ER = 2.*restitution in \[0, 1\]"):
+        core.solve(ds.replace(er=2.0), "double")
+    with pytest.raises(DeckError, match=r"V3\(3\) = 0.*positive eigenvalue"):
+        core.solve(ds.replace(v3=[1.875, 4.694, 0.0, 10.99]))
+
+
+def test_valid_deck_unchanged_by_validation(tmp_path):
+    """The thesis deck still replays to what the original program prints."""
+    deck = write(tmp_path, GOOD)
+    assert "".join(r.listing for r in core.replay(deck)) == \
+        legacy.run_cards("\n".join(GOOD) + "\n")
