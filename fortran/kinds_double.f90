@@ -1,4 +1,4 @@
-!> Working precision of the double build: the -fdefault-real-8 build of the listing.
+!> Working precision of the double build (the legacy -fdefault-real-8).
 !> The restored core is one source compiled once per kind; each build
 !> supplies its own module contactsep_kinds (see meson.build).
 module contactsep_kinds
