@@ -78,7 +78,7 @@ def _legacy(args: argparse.Namespace) -> int:
     try:
         listing = legacy.run(args.deck, args.precision)
     except DeckError as error:
-        sys.stdout.write(getattr(error, "listing_before", ""))
+        sys.stdout.write(error.listing_before)
         raise
     sys.stdout.write(listing)
     return EXIT_OK

@@ -206,7 +206,7 @@ def compare_deck(path: str | os.PathLike) -> Comparison:
     try:
         legacy_text = legacy.run(path, "single")
     except DeckError as error:
-        legacy_text = getattr(error, "listing_before", "")
+        legacy_text = error.listing_before
         comparison.error = error
     printed_sets = listing.parse(legacy_text)
     # zip stops at the last data set the legacy program ran, before the

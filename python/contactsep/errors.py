@@ -25,7 +25,9 @@ class DeckError(ValueError):
     file, ``columns`` is (first, last), 1-based and inclusive; ``text`` is what
     was found there and ``expected`` what should have been.  Any of them may
     be None.  ``partial`` holds the results of the data sets before the bad
-    one; ``listing`` what the program printed for the bad one, if anything.
+    one; ``listing_before`` the text the original program printed for them
+    (``contactsep legacy``); ``listing`` what the restored core wrote for
+    the bad one before it failed, if anything.
 
     Without ``message``, the message is built from the parts, e.g.
     "data set 2, card 9, columns 16-30: found 'ABC', expected a number
@@ -37,7 +39,8 @@ class DeckError(ValueError):
                  columns: tuple[int, int] | None = None,
                  text: str | None = None, expected: str | None = None,
                  partial: list | None = None,
-                 listing: str | None = None) -> None:
+                 listing: str | None = None,
+                 listing_before: str = "") -> None:
         self.data_set = data_set
         self.card = card
         self.columns = tuple(columns) if columns is not None else None
@@ -45,6 +48,7 @@ class DeckError(ValueError):
         self.expected = expected
         self.partial = list(partial) if partial is not None else []
         self.listing = listing
+        self.listing_before = listing_before
         if message is None:
             problem = []
             if text is not None:
