@@ -28,6 +28,22 @@ def test_generated_decks_within_tolerance(name, tmp_path):
     assert report.passed, report.text
 
 
+def test_more_modes_than_the_original_holds(tmp_path):
+    """N = 6: the original program cannot run it (DIMENSION 4), the other
+    three implementations are still compared."""
+    from conftest import with_modes
+    from contactsep import thesis
+
+    deck = write_deck(tmp_path, "n6", [with_modes(thesis.thesis_data_set(0.5),
+                                                  6)])
+    report = compare.compare_deck(deck)
+    rows = report.tables[0][1]
+    assert report.passed and report.error is None
+    assert [r.name for r in rows].count("A_6") == 1
+    assert all(r.legacy_single is None for r in rows)
+    assert "n/a" in report.text
+
+
 def test_a_wrong_implementation_is_caught(monkeypatch):
     """An impulse 1e-6 off in the reference must fail the comparison."""
     real_run = reference.run
