@@ -69,17 +69,23 @@ contains
 
   !> Read the data set whose first card is line first_card of the deck.
   !>
+  !> text may be the whole deck (first_line = 1) or a part of it whose
+  !> first line is line first_line of the deck file: card numbers in
+  !> messages are always those of the file.
+  !>
   !> scalars receives cards 1-6 in card order (card_scalar_count values,
   !> N excluded); modes(i, :) receives mode i's three cards.  next_card is
   !> the line after the data set.  Status 1 means no data set is left;
   !> on an error (status > 1) error_card and the columns point at the
   !> offending field (0 when not applicable) and the message names the
   !> card, the columns, the text found and what was expected.
-  subroutine read_cards(text, first_card, blank_zero, scalars, n, modes, &
-      next_card, status, message, error_card, error_first_column, &
+  subroutine read_cards(text, first_line, first_card, blank_zero, scalars, &
+      n, modes, next_card, status, message, error_card, error_first_column, &
       error_last_column)
     !> The whole deck.
     character(len=*), intent(in) :: text
+    !> Line of the deck file that text starts with.
+    integer, intent(in) :: first_line
     !> 1-based line where this data set starts.
     integer, intent(in) :: first_card
     !> 0: blanks in a field are ignored (BN); 1: blanks are zeros (BZ).
@@ -107,8 +113,9 @@ contains
     message = ''
     location = card_error()
 
-    if (first_card < 1) then
-      call fail(status_bad_argument, 'first_card must be 1 or more, not ' &
+    if (first_line < 1 .or. first_card < first_line) then
+      call fail(status_bad_argument, 'need 1 <= first_line <= first_card,' &
+          // ' not ' // integer_text(first_line) // ' and ' &
           // integer_text(first_card))
       return
     end if
@@ -127,7 +134,7 @@ contains
 
     ! Walk to the first card of the data set.
     position = 1
-    line = 1
+    line = first_line
     do while (line < first_card .and. position <= len(text))
       call skip_line(text, position)
       line = line + 1

@@ -22,10 +22,9 @@ module contactsep_api
   private
   public :: read_data_set, solve
 
-  !> Length of the status messages.
-  integer, parameter, public :: message_length = 512
-  !> Number of values in scalars.
-  integer, parameter, public :: scalar_count = 18
+  ! The bounds below are literals because f2py must read them from the
+  ! declarations: 512 is message_length (status.f90), 18 scalar_count and
+  ! 9 mode_column_count (validation.f90).
 
 contains
 
@@ -36,11 +35,13 @@ contains
   !> card being the line number in the file; error_card and the columns
   !> give the same place (0 when not applicable, as for a deck that ends
   !> too soon).  The message has no 'data set k' prefix.
-  subroutine read_data_set(text, first_card, blank_zero, max_modes, &
-      scalars, n, modes, next_card, status, message, error_card, &
+  subroutine read_data_set(text, first_line, first_card, blank_zero, &
+      max_modes, scalars, n, modes, next_card, status, message, error_card, &
       error_first_column, error_last_column)
-    !> The whole deck file.
+    !> The deck file, or the part of it that starts at line first_line.
     character(len=*), intent(in) :: text
+    !> Line of the deck file that text starts with (1 for the whole deck).
+    integer, intent(in) :: first_line
     !> 1-based line where this data set starts.
     integer, intent(in) :: first_card
     !> 0: blanks in a field are ignored (BN); 1: they are zeros (BZ).
@@ -56,8 +57,8 @@ contains
     integer, intent(out) :: error_card, error_first_column
     integer, intent(out) :: error_last_column
 
-    call read_cards(text, first_card, blank_zero, scalars, n, modes, &
-        next_card, status, message, error_card, error_first_column, &
+    call read_cards(text, first_line, first_card, blank_zero, scalars, n, &
+        modes, next_card, status, message, error_card, error_first_column, &
         error_last_column)
   end subroutine read_data_set
 

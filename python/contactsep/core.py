@@ -77,10 +77,25 @@ class DeckSet:
 
 
 def read_text(path: str | os.PathLike) -> str:
-    """The deck file as text (card images are ASCII; anything else is kept
-    so the reader can point at it)."""
+    """The deck file as text, one character per byte (card images are
+    ASCII; any other byte is kept so the reader can point at it)."""
     with open(path, "rb") as handle:
         return handle.read().decode("latin-1")
+
+
+#: The most modes card 5's I2 field can give, and so the most cards a data
+#: set can have.
+MAX_MODES = 99
+_MAX_CARDS = 6 + 3 * MAX_MODES
+_STATUS_TRUNCATED = 14
+
+
+def _card_lines(text: str) -> list[str]:
+    """The deck's lines (cards), as the core counts them: ended by LF."""
+    lines = text.split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    return lines
 
 
 def iter_deck(text: str, *, precision: str = "single",
@@ -90,23 +105,50 @@ def iter_deck(text: str, *, precision: str = "single",
     Values are read in the working precision of ``precision``, exactly as the
     original program reads them.  Raises :class:`DeckError` at the first bad
     card; data sets before it have already been yielded.
+
+    The core is handed one data set's worth of cards at a time (at most
+    6 + 3 * 99), so reading is linear in the size of the deck, as bytes,
+    so that any byte reaches the core's check for printable ASCII.  f2py
+    passes text as a C string, which would end at a NUL byte: the core is
+    given only the lines before the first NUL, and the NUL is reported here
+    when reading reaches it.
     """
     if blank not in BLANK_MODES:
         raise ValueError(f"blank must be one of {BLANK_MODES}, not {blank!r}")
     api = _api(precision)
-    max_modes = max(1, text.count("\n") // 3 + 1)
-    first_card, index = 1, 0
+    lines = _card_lines(text)
+    usable = len(lines)
+    nul = text.find("\x00")
+    if nul >= 0:
+        usable = text.count("\n", 0, nul)
+        nul_card = usable + 1
+        nul_column = nul - (text.rfind("\n", 0, nul) + 1) + 1
+    # next_content[i]: first line at or after i that is not blank
+    next_content = [usable] * (usable + 1)
+    for i in range(usable - 1, -1, -1):
+        next_content[i] = i if lines[i].strip() else next_content[i + 1]
+
+    first, index = 0, 0          # first: 0-based line of the data set
     while True:
         index += 1
-        (scalars, n, modes, next_card, status, message, card, first_col,
-         last_col) = api.read_data_set(
-             text=text, first_card=first_card,
-             blank_zero=int(blank == "zero"), max_modes=max_modes)
-        if status == _STATUS_END_OF_DECK:
+        if next_content[min(first, usable)] >= usable:
+            if nul >= 0:
+                raise _nul_error(index, nul_card, nul_column)
             if index == 1:
                 raise DeckError("the deck holds no data set "
                                 "(expected 6 + 3N cards)", data_set=None)
             return
+        # blank lines are cards of zeros, so a window that starts with
+        # them still reaches the next card with something on it
+        stop = min(usable, max(first + _MAX_CARDS, next_content[first] + 1))
+        window = "".join(line + "\n" for line in lines[first:stop])
+        (scalars, n, modes, next_card, status, message, card, first_col,
+         last_col) = api.read_data_set(
+             text=window.encode("latin-1"), first_line=first + 1,
+             first_card=first + 1, blank_zero=int(blank == "zero"),
+             max_modes=MAX_MODES)
+        if status == _STATUS_TRUNCATED and nul >= 0:
+            raise _nul_error(index, nul_card, nul_column)
         if status != 0:
             raise DeckError(
                 f"data set {index}, {_text(message)}" if card else
@@ -116,9 +158,16 @@ def iter_deck(text: str, *, precision: str = "single",
         values = dict(zip(SCALAR_NAMES, (float(x) for x in scalars)))
         for column, name in enumerate(MODE_NAMES):
             values[name] = np.array(modes[:n, column], dtype=np.float64)
-        yield DeckSet(index, first_card, next_card - 1,
+        yield DeckSet(index, first + 1, next_card - 1,
                       DataSet(n=int(n), **values))
-        first_card = next_card
+        first = next_card - 1
+
+
+def _nul_error(index: int, card: int, column: int) -> DeckError:
+    return DeckError(
+        f"data set {index}, card {card}, column {column}: found the "
+        f"character of code 0 (NUL), expected a printable ASCII character",
+        data_set=index, card=card, columns=(column, column))
 
 
 def history_length(delt: float, precision: str = "double") -> int:
