@@ -131,6 +131,10 @@ contains
           if (p(1) > 0.0_wp) message = trim(message) // ', ' &
               // real_text(t * p(1) / (2.0_wp * acos(-1.0_wp))) &
               // ' periods of the first mode'
+          ! Either cause is the deck's: say both.
+          message = trim(message) // ' (either the tip never reaches' &
+              // ' DELY, or DELT is too small to get there in that many' &
+              // ' steps)'
           return
         end if
         n_trace = n_trace + 1
@@ -141,8 +145,9 @@ contains
           status = status_search_not_finite
           message = 'the tip sum TY is ' // real_text(ty) // ' at T = ' &
               // real_text(t) // ' and the separator is at DELY = ' &
-              // real_text(dely) // ': no impact can be found (check the' &
-              // ' mode cards, dimensions and DELY)'
+              // real_text(dely) // ': no impact can be found (the modal' &
+              // ' sums overflow: too many modes, or k_jL too large, for' &
+              // ' this precision)'
           return
         end if
         if (.not. (t + step > t)) then

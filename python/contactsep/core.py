@@ -44,7 +44,8 @@ _STATUS_END_OF_DECK = 1
 _SOLVER_FIELDS = {
     20: (4, (31, 45), "DELY"),   # the release point is not above DELY
     21: (4, (1, 15), "DELT"),    # the search step no longer moves T
-    23: (4, (31, 45), "DELY"),   # no impact within the search bound
+    22: (5, (16, 17), "N"),      # the modal sums overflow
+    23: (4, (1, 45), "DELT, DELY"),  # no impact within the search bound
     24: (4, (1, 15), "DELT"),    # the history step no longer moves T
     25: (4, (1, 15), "DELT"),    # the history needs too many lines
 }
@@ -252,15 +253,22 @@ def solve(data_set: DataSet, precision: str = "single", *,
         listing=text)
 
 
+def iter_replay(text: str, precision: str = "single", *,
+                blank: str = "null") -> Iterator[Result]:
+    """Run the data sets of deck ``text`` one after another (a generator,
+    so a long deck need not be held in memory); see :func:`replay`."""
+    for item in iter_deck(text, precision=precision, blank=blank):
+        yield solve(item.data_set, precision, data_set_index=item.index,
+                    first_card=item.first_card)
+
+
 def replay_text(text: str, precision: str = "single", *,
                 blank: str = "null") -> list[Result]:
     """Run every data set of deck ``text``; see :func:`replay`."""
     results: list[Result] = []
     try:
-        for item in iter_deck(text, precision=precision, blank=blank):
-            results.append(solve(item.data_set, precision,
-                                 data_set_index=item.index,
-                                 first_card=item.first_card))
+        for result in iter_replay(text, precision, blank=blank):
+            results.append(result)
     except DeckError as error:
         error.partial = results
         raise
