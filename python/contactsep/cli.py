@@ -11,7 +11,10 @@ status 2; listings of the data sets before a bad one are printed first.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+from pathlib import Path
 from typing import Sequence
 
 from contactsep import core
@@ -72,31 +75,44 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class CommandError(Exception):
+    """A request the command refuses (not a problem with the deck)."""
+
+
 def _legacy(args: argparse.Namespace) -> int:
     from contactsep import legacy
 
+    sys.stdout.flush()
     try:
-        listing = legacy.run(args.deck, args.precision)
-    except DeckError as error:
-        sys.stdout.write(error.listing_before)
-        raise
-    sys.stdout.write(listing)
+        legacy.run(args.deck, args.precision, stream=sys.stdout.buffer)
+    finally:
+        sys.stdout.buffer.flush()
     return EXIT_OK
 
 
 def _replay(args: argparse.Namespace) -> int:
-    out = open(args.output, "w", encoding="ascii", newline="") \
-        if args.output else sys.stdout
-    try:
+    text = core.read_text(args.deck)
+    if args.output is None:
+        for result in core.iter_replay(text, args.precision,
+                                       blank=args.blank):
+            sys.stdout.write(result.listing)
+        return EXIT_OK
+    target = Path(args.output)
+    if target.exists() and target.samefile(args.deck):
+        raise CommandError(f"will not write the listing over the deck "
+                           f"{args.deck}")
+    # Write beside the target and rename, so an existing file is replaced
+    # only by a finished (or, on a bad data set, partial) listing.
+    with tempfile.NamedTemporaryFile(
+            "w", encoding="ascii", newline="", dir=target.parent or ".",
+            prefix=f".{target.name}.", delete=False) as out:
         try:
-            results = core.replay(args.deck, args.precision, blank=args.blank)
-        except DeckError as error:
-            out.write("".join(r.listing for r in error.partial))
-            raise
-        out.write("".join(r.listing for r in results))
-    finally:
-        if out is not sys.stdout:
+            for result in core.iter_replay(text, args.precision,
+                                           blank=args.blank):
+                out.write(result.listing)
+        finally:
             out.close()
+            os.replace(out.name, target)
     return EXIT_OK
 
 
@@ -120,7 +136,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = handler(args)
         sys.stdout.flush()
         return status
-    except (DeckError, LegacyError, OSError) as error:
+    except (DeckError, LegacyError, CommandError, OSError) as error:
         sys.stdout.flush()
         if isinstance(error, OSError) and error.filename:
             message = f"{error.strerror}: {error.filename}"

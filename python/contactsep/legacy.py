@@ -17,14 +17,17 @@ import os
 import subprocess
 from importlib import resources
 from pathlib import Path
+from typing import BinaryIO
 
 from contactsep import core
 from contactsep.errors import DeckError
 
 #: The listing's DIMENSION (4): the most modes the original program holds.
 LEGACY_MAX_MODES = 4
-#: Seconds the program may run on one deck before it is stopped.
-TIME_LIMIT = 120.0
+#: Seconds the program may take per data set before it is stopped (a
+#: valid data set takes well under a second; the limit only guards
+#: against a hang).
+TIME_LIMIT_PER_DATA_SET = 60.0
 
 
 class LegacyError(RuntimeError):
@@ -42,41 +45,47 @@ def executable(precision: str = "single") -> Path:
 
 def run_cards(cards: str, precision: str = "single", *,
               program: str | os.PathLike | None = None,
-              time_limit: float = TIME_LIMIT) -> str:
+              time_limit: float = TIME_LIMIT_PER_DATA_SET,
+              stream: BinaryIO | None = None) -> str:
     """Feed card images to the program and return what it prints.
 
     No validation: the caller vouches for the cards.  ``program`` overrides
     the installed executable (tests use a build with larger DIMENSIONs).
+    With ``stream`` (a binary file), the listing goes straight there as the
+    program writes it, and "" is returned.
     """
     command = [os.fspath(program or executable(precision))]
     try:
         completed = subprocess.run(
-            command, input=cards.encode("latin-1"), capture_output=True,
-            timeout=time_limit, check=False)
+            command, input=cards.encode("latin-1"),
+            stdout=stream if stream is not None else subprocess.PIPE,
+            stderr=subprocess.PIPE, timeout=time_limit, check=False)
     except subprocess.TimeoutExpired as error:
         raise LegacyError(
             f"the original program did not finish within {time_limit:g} s"
         ) from error
     if completed.returncode != 0:
-        detail = completed.stderr.decode("latin-1", "replace").strip()
+        detail = completed.stderr.decode("latin-1", "replace").splitlines()
         raise LegacyError(
             f"the original program failed (exit status "
-            f"{completed.returncode}): {detail.splitlines()[:2]}")
-    return completed.stdout.decode("latin-1")
+            f"{completed.returncode}): {' '.join(detail[:2])}")
+    return "" if stream is not None else completed.stdout.decode("latin-1")
 
 
 def validated_cards(text: str, precision: str = "single", *,
                     max_modes: int | None = LEGACY_MAX_MODES,
-                    blank: str = "null") -> tuple[str, DeckError | None]:
+                    blank: str = "null"
+                    ) -> tuple[str, int, DeckError | None]:
     """The cards of the leading data sets that pass validation.
 
     Returns the card images (one line each, as in the file) of every data
-    set up to the first bad one, and the error for that one (or None).
+    set up to the first bad one, how many data sets they hold, and the
+    error for the bad one (or None).
     """
     # a card is a line ended by LF, as for the core's reader (a trailing CR
     # stays: gfortran drops it, like the core's reader)
     lines = text.split("\n")
-    kept_through = 0
+    kept_through = passed = 0
     failure: DeckError | None = None
     try:
         for item in core.iter_deck(text, precision=precision, blank=blank):
@@ -89,24 +98,29 @@ def validated_cards(text: str, precision: str = "single", *,
                     data_set=item.index, card=first_card, columns=(16, 17))
             core.solve(item.data_set, precision, data_set_index=item.index,
                        first_card=item.first_card)
-            kept_through = item.last_card
+            kept_through, passed = item.last_card, item.index
     except DeckError as error:
         failure = error
     cards = "".join(line + "\n" for line in lines[:kept_through])
-    return cards, failure
+    return cards, passed, failure
 
 
 def run(path: str | os.PathLike, precision: str = "single", *,
         max_modes: int | None = LEGACY_MAX_MODES,
-        program: str | os.PathLike | None = None) -> str:
+        program: str | os.PathLike | None = None,
+        stream: BinaryIO | None = None) -> str:
     """The listing the original program prints for the deck at ``path``.
 
-    Raises :class:`DeckError` for the first bad data set, with the listing of
-    the data sets before it in ``error.listing_before``.
+    With ``stream``, the listing is written there as it is printed and ""
+    is returned.  Raises :class:`DeckError` for the first bad data set,
+    with the listing of the data sets before it in
+    ``error.listing_before`` (or already written to ``stream``).
     """
-    cards, failure = validated_cards(core.read_text(path), precision,
-                                     max_modes=max_modes)
-    listing = run_cards(cards, precision, program=program) if cards else ""
+    cards, passed, failure = validated_cards(
+        core.read_text(path), precision, max_modes=max_modes)
+    listing = run_cards(cards, precision, program=program, stream=stream,
+                        time_limit=TIME_LIMIT_PER_DATA_SET * passed) \
+        if cards else ""
     if failure is not None:
         failure.listing_before = listing
         raise failure
