@@ -44,6 +44,43 @@ def test_more_modes_than_the_original_holds(tmp_path):
     assert "n/a" in report.text
 
 
+@pytest.mark.parametrize("name,changes", [
+    # the listing finds its impact 4 periods in: the reference must look
+    # that far too (it used to give up and raise)
+    ("late_impact", dict(h2=0.125, xl2c=3.6, delt=0.0002,
+                         dely=-0.498869481)),
+    # history times drift in float32 over 6000 additions of DELT
+    ("fine_step", dict(h2=0.125, xl2c=3.6, delt=0.00001)),
+    # a short contact: P2, P3 too wide for F15.9 print as asterisks
+    ("asterisks", dict(xl=2.0, xl3=2.0)),
+])
+def test_awkward_valid_decks_compare(name, changes, tmp_path):
+    from contactsep import thesis
+
+    deck = write_deck(tmp_path, name,
+                      [thesis.thesis_data_set(0.25).replace(**changes)])
+    report = compare.compare_deck(deck)
+    assert report.error is None and not report.notes
+    assert report.passed, report.text
+
+
+def test_many_modes_fail_rather_than_pass_vacuously(tmp_path):
+    """N = 20: the listing's D1-D8 amplitudes lose every digit past mode
+    ~10 even in double; compare must say so, not widen its tolerance."""
+    from conftest import with_modes
+    from contactsep import thesis
+
+    deck = write_deck(tmp_path, "n20", [with_modes(thesis.thesis_data_set(
+        0.25), 20)])
+    report = compare.compare_deck(deck)
+    failed = {r.name for _, rows in report.tables for r in rows
+              if not r.passed}
+    assert not report.passed and "A_20" in failed and "A_1" not in failed
+    assert all(r.tol_double <= compare.MAX_DOUBLE_RTOL + 1e-7
+               for _, rows in report.tables for r in rows
+               if r.name.startswith("A_"))
+
+
 def test_a_wrong_implementation_is_caught(monkeypatch):
     """An impulse 1e-6 off in the reference must fail the comparison."""
     real_run = reference.run

@@ -70,16 +70,25 @@ CASES = {
         put(1, 61, "    0.000000000"), "exactly at the separator DELY", 4,
         (31, 45)),
     "no_impact": (put(4, 31, "   -0.900000000"), "no impact found", 4,
-                  (31, 45)),
+                  (1, 45)),
     "line_too_long": (put(3, 76, "1234567890"),
                       "expected nothing past column 80", 3, (81, 85)),
     "tab": (put(3, 5, "\t"), "found a TAB", 3, (5, 5)),
+    "non_ascii_byte": (put(2, 20, "\u00e9"), "found the character of code 233",
+                       2, (20, 20)),
+    "nul_byte": (put(2, 21, "\x00"), "found the character of code 0", 2,
+                 (21, 21)),
+    "nul_after_the_last_card": (GOOD + ["   \x00"],
+                                "found the character of code 0", 19,
+                                (4, 4)),
 }
 
 
 def write(tmp_path, lines, name="deck.dat"):
+    """The deck file, one byte per character (latin-1)."""
     path = tmp_path / name
-    path.write_bytes(("\n".join(lines) + ("\n" if lines else "")).encode())
+    path.write_bytes(("\n".join(lines) + ("\n" if lines else ""))
+                     .encode("latin-1"))
     return path
 
 
@@ -94,9 +103,12 @@ def test_replay_reports(name, precision, tmp_path):
     assert fragment in str(error)
     assert error.card == card and error.columns == columns
     if name not in ("empty", "only_blank_lines"):
-        assert error.data_set == 1
-        assert str(error).startswith("data set 1")
-    assert error.partial == []
+        assert error.data_set == (2 if name == "nul_after_the_last_card"
+                                  else 1)
+        assert str(error).startswith(f"data set {error.data_set}")
+        assert len(error.partial) == error.data_set - 1
+    else:
+        assert error.partial == []
 
 
 def cli(*args):
@@ -116,10 +128,31 @@ def test_cli_reports(name, command, tmp_path):
     assert len(done.stderr.strip().splitlines()) == 1
 
 
-def test_missing_file():
-    done = cli("replay", "no/such/deck.dat")
+@pytest.mark.parametrize("command", ["replay", "legacy", "compare"])
+def test_missing_file(command):
+    done = cli(command, "no/such/deck.dat")
     assert done.returncode == 2
     assert done.stderr.startswith("contactsep: error: No such file")
+
+
+def test_output_over_the_deck_is_refused(tmp_path):
+    deck = write(tmp_path, GOOD)
+    before = deck.read_bytes()
+    done = cli("replay", str(deck), "-o", str(deck))
+    assert done.returncode == 2 and "over the deck" in done.stderr
+    assert deck.read_bytes() == before
+
+
+def test_output_file_keeps_what_was_computed(tmp_path):
+    """A bad second data set: -o FILE still gets the first's listing."""
+    deck = write(tmp_path, GOOD + CASES["non_numeric"][0])
+    target = tmp_path / "listing.txt"
+    done = cli("replay", str(deck), "-o", str(target))
+    assert done.returncode == 2
+    assert target.read_text() == core.replay(write(tmp_path, GOOD,
+                                                   "good.dat"))[0].listing
+    assert [p.name for p in tmp_path.iterdir()
+            if p.name.startswith(".")] == []
 
 
 def test_legacy_refuses_n_above_four_but_replay_runs_it(tmp_path):
@@ -157,9 +190,9 @@ def test_nothing_already_computed_is_lost(name, tmp_path):
 
 
 def test_legacy_is_only_fed_data_sets_that_passed(tmp_path):
-    cards_fed, failure = legacy.validated_cards(
+    cards_fed, passed, failure = legacy.validated_cards(
         "\n".join(GOOD + CASES["no_impact"][0]) + "\n")
-    assert cards_fed == "\n".join(GOOD) + "\n"
+    assert cards_fed == "\n".join(GOOD) + "\n" and passed == 1
     assert failure is not None and failure.data_set == 2
     assert listing.parse(legacy.run_cards(cards_fed))[0].n == 4
 
