@@ -86,7 +86,17 @@ def _outcome(run):
 def test_replay_gives_results_or_deck_error(deck, precision):
     outcome = _outcome(lambda: core.replay_text(deck, precision))
     if isinstance(outcome, DeckError):
-        assert str(outcome)
+        # the error locates itself consistently, inside the deck
+        lines = deck.split("\n")
+        if outcome.data_set is not None:
+            assert str(outcome).startswith(f"data set {outcome.data_set}")
+            assert len(outcome.partial) == outcome.data_set - 1
+        if outcome.card is not None:
+            assert 1 <= outcome.card <= len(lines)
+            assert f"card {outcome.card}" in str(outcome)
+        if outcome.columns is not None:
+            first, last = outcome.columns
+            assert 1 <= first <= last
         assert all(r.listing for r in outcome.partial)
     else:
         assert outcome and all(r.listing for r in outcome)
