@@ -40,14 +40,14 @@ MAX_HISTORY_LINES = 1_000_000
 _FIELD = 15
 _STATUS_END_OF_DECK = 1
 #: Solver failures and the card field that decides them (status codes of
-#: fortran/status.f90): (card within the data set, columns, name).
+#: fortran/status.f90): (card within the data set, columns).
 _SOLVER_FIELDS = {
-    20: (4, (31, 45), "DELY"),   # the release point is not above DELY
-    21: (4, (1, 15), "DELT"),    # the search step no longer moves T
-    22: (5, (16, 17), "N"),      # the modal sums overflow
-    23: (4, (1, 45), "DELT, DELY"),  # no impact within the search bound
-    24: (4, (1, 15), "DELT"),    # the history step no longer moves T
-    25: (4, (1, 15), "DELT"),    # the history needs too many lines
+    20: (4, (31, 45)),   # DELY: the release point is not above it
+    21: (4, (1, 15)),    # DELT: the search step no longer moves T
+    22: (5, (16, 17)),   # N: the modal sums overflow
+    23: (4, (1, 45)),    # DELT or DELY: no impact within the search bound
+    24: (4, (1, 15)),    # DELT: the history step no longer moves T
+    25: (4, (1, 15)),    # DELT: the history needs too many lines
 }
 
 
@@ -226,7 +226,7 @@ def solve(data_set: DataSet, precision: str = "single", *,
     if status != 0:
         card = columns = None
         if first_card is not None and status in _SOLVER_FIELDS:
-            offset, columns, name = _SOLVER_FIELDS[status]
+            offset, columns = _SOLVER_FIELDS[status]
             card = first_card + offset - 1
         where = location(data_set_index, card, columns) + ": " \
             if data_set_index is not None else ""
