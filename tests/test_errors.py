@@ -212,3 +212,19 @@ def test_valid_deck_unchanged_by_validation(tmp_path):
     deck = write(tmp_path, GOOD)
     assert "".join(r.listing for r in core.replay(deck)) == \
         legacy.run_cards("\n".join(GOOD) + "\n")
+
+
+@pytest.mark.parametrize("command", ["replay", "legacy"])
+def test_reader_going_away_is_not_an_error(command):
+    """`contactsep replay DECK | head`: stop quietly, as Unix tools do."""
+    from conftest import THESIS_DECKS
+
+    deck = [p for p in THESIS_DECKS if p.stem == "thesis_all"][0]
+    process = subprocess.Popen(
+        [sys.executable, "-m", "contactsep", command, str(deck)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    process.stdout.readline()
+    process.stdout.close()
+    stderr = process.stderr.read()
+    assert process.wait(timeout=60) in (0, 141)   # 0 if all fit the pipe
+    assert stderr == b""

@@ -22,6 +22,9 @@ from contactsep.errors import DeckError
 from contactsep.legacy import LegacyError
 
 EXIT_OK, EXIT_TOLERANCE, EXIT_ERROR = 0, 1, 2
+#: Exit status when whoever reads the listing stops reading (| head): the
+#: shell's status for a process ended by SIGPIPE.
+EXIT_BROKEN_PIPE = 128 + 13
 
 
 def _precision(parser: argparse.ArgumentParser) -> None:
@@ -136,6 +139,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = handler(args)
         sys.stdout.flush()
         return status
+    except BrokenPipeError:
+        # Python's recipe: point stdout at devnull so the interpreter's
+        # final flush does not fail again, and stop quietly.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     except (DeckError, LegacyError, CommandError, OSError) as error:
         sys.stdout.flush()
         if isinstance(error, OSError) and error.filename:

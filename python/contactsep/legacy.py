@@ -14,6 +14,7 @@ limit.  Its output is returned unchanged.
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 from importlib import resources
 from pathlib import Path
@@ -64,6 +65,8 @@ def run_cards(cards: str, precision: str = "single", *,
         raise LegacyError(
             f"the original program did not finish within {time_limit:g} s"
         ) from error
+    if stream is not None and completed.returncode == -signal.SIGPIPE:
+        raise BrokenPipeError("the reader of the listing went away")
     if completed.returncode != 0:
         detail = completed.stderr.decode("latin-1", "replace").splitlines()
         raise LegacyError(
