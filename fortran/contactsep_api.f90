@@ -65,7 +65,9 @@ contains
   !> Run one data set as the listing does.
   !>
   !> trace, history and listing are filled up to n_trace, n_history and
-  !> listing_length (ASCII bytes, each line ending in LF).  On an error
+  !> listing_length (ASCII bytes, each line ending in LF); beyond that
+  !> they are left as they were, so that room for a long search costs
+  !> nothing until it is used.  On an error
   !> they hold what came before it, the listing ending with its last
   !> whole line.
   subroutine solve(scalars, n, modes, max_trace, max_history, max_listing, &
@@ -108,19 +110,16 @@ contains
 
     p = 0.0_wp
     ape = 0.0_wp
-    trace = 0.0_wp
     n_trace = 0
     impact = 0.0_wp
     a1 = 0.0_wp
     b1 = 0.0_wp
     tip = 0.0_wp
     ty2dt = 0.0_wp
-    history = 0.0_wp
     n_history = 0
     p2 = 0.0_wp
     p3 = 0.0_wp
     closing = 0.0_wp
-    listing = 0_int8
     listing_length = 0
 
     ! A direct call is held to the ranges a deck is.

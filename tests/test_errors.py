@@ -227,3 +227,15 @@ def test_reader_going_away_is_not_an_error(command, tmp_path):
     stderr = process.stderr.read()
     assert process.wait(timeout=60) == 141
     assert stderr == b""
+
+
+def test_python_and_fortran_agree_on_the_history_limit():
+    """core.MAX_HISTORY_LINES is the Fortran validation's limit: a DELT
+    just above TAU / limit is accepted, just below is refused."""
+    ds = thesis.thesis_data_set(0.25)
+    smallest = core.TAU / core.MAX_HISTORY_LINES
+    result = core.solve(ds.replace(delt=smallest * 1.001), "double")
+    assert len(result.history_t) == pytest.approx(core.MAX_HISTORY_LINES,
+                                                  rel=2e-3)
+    with pytest.raises(DeckError, match="at least 6.0E-8 s"):
+        core.solve(ds.replace(delt=smallest * 0.999), "double")

@@ -32,8 +32,15 @@ MODE_NAMES = tuple(name for group in MODE_GROUPS for name in group)
 
 #: The listing's fixed end of the lower-contact history (TAU = 0.060 s).
 TAU = 0.060
-#: Most impact-search lines the core may print before it gives up.
-MAX_SEARCH_LINES = 100_000
+#: Most impact-search lines the core may print before it gives up: as many
+#: as the history may have, so any DELT the history allows can also reach
+#: an impact up to 0.06 s away.
+MAX_SEARCH_LINES = 1_000_000
+#: Room for search lines on a first try: f2py zero-fills every output
+#: array, so room costs time even unused (12 ms per call for a million
+#: lines); a search that needs more is run again with MAX_SEARCH_LINES.
+_FIRST_SEARCH_LINES = 10_000
+_STATUS_SEARCH_FULL = 23
 #: Most lower-contact history lines (T = 0, DELT, ... < TAU) the core will
 #: produce: DELT must be at least TAU / 1e6 = 6e-8 s.
 MAX_HISTORY_LINES = 1_000_000
@@ -188,11 +195,11 @@ def history_length(delt: float, precision: str = "double") -> int:
     return int(min(math.ceil(TAU / step), 2 * MAX_HISTORY_LINES)) + 2
 
 
-def listing_capacity(n: int, history: int) -> int:
-    """Bytes the listing of one data set can take: each WRITE's fields of
-    15 columns and a newline, section by section."""
+def listing_capacity(n: int, history: int, search: int) -> int:
+    """Bytes the listing of one data set can take with ``search`` search
+    lines: each WRITE's fields of 15 columns and a newline, by section."""
     line = lambda fields: fields * _FIELD + 1
-    return (line(4) + n * line(5) + MAX_SEARCH_LINES * line(3) + line(1)
+    return (line(4) + n * line(5) + search * line(3) + line(1)
             + line(5) + n * line(2) + line(4) + line(1)
             + history * line(2) + 2 * n * line(4) + 2 * line(4))
 
@@ -217,11 +224,15 @@ def solve(data_set: DataSet, precision: str = "single", *,
         dtype=dtype)
     n = data_set.n
     max_history = history_length(data_set.delt, precision)
-    (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history, n_history,
-     p2, p3, closing, listing, listing_length, status, message) = api.solve(
-         scalars=scalars, n=n, modes=modes, max_trace=MAX_SEARCH_LINES,
-         max_history=max_history,
-         max_listing=listing_capacity(n, max_history))
+    for search in (_FIRST_SEARCH_LINES, MAX_SEARCH_LINES):
+        (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history,
+         n_history, p2, p3, closing, listing, listing_length, status,
+         message) = api.solve(
+             scalars=scalars, n=n, modes=modes, max_trace=search,
+             max_history=max_history,
+             max_listing=listing_capacity(n, max_history, search))
+        if status != _STATUS_SEARCH_FULL:
+            break
     text = listing[:listing_length].tobytes().decode("ascii")
     if status != 0:
         card = columns = None
