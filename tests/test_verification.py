@@ -28,7 +28,7 @@ def amplitude_error(ds, eps) -> np.ndarray:
     return 12 * eps * abs(ds.ystat) * np.exp(v) / v
 
 
-def data_sets(tmp_path):
+def data_sets():
     sets = []
     for deck in THESIS_DECKS:
         sets += [item.data_set for item in core.iter_deck(
@@ -39,8 +39,8 @@ def data_sets(tmp_path):
     return sets
 
 
-def test_restored_double_equals_reference(tmp_path):
-    for ds in data_sets(tmp_path):
+def test_restored_double_equals_reference():
+    for ds in data_sets():
         ours, ref = core.solve(ds, "double"), reference.run(ds)
         label = f"N={ds.n} h2={ds.h2} e={ds.e:g} dely={ds.dely}"
         for name in ("p", "p2", "p3"):
@@ -108,7 +108,7 @@ def test_what_float32_loses_per_mode(deck):
     assert extreme == pytest.approx(impulse, rel=1e-3, abs=1e-6)
 
 
-def test_thesis_options_change_what_they_say(tmp_path):
+def test_thesis_options_change_what_they_say():
     """The thesis's eq. (20) impact velocity and the equivalent separator
     mass are named options of the reference; each moves the impulse the
     way its formula says."""
