@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from contactsep import beams, cards, thesis
+from contactsep import cards, thesis
 from contactsep.dataset import DataSet
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -22,14 +22,7 @@ def deck_id(path: Path) -> str:
 
 def with_modes(data_set: DataSet, n: int) -> DataSet:
     """The data set with N modes, constants from the project's beam code."""
-    kl_c, kl_cc = beams.eigenvalues("cantilever", n), \
-        beams.eigenvalues("clamped-clamped", n)
-    return data_set.replace(
-        n=n,
-        v=kl_c, c=beams.tip_values(n), alpha=beams.alphas("cantilever", n),
-        v2=kl_cc, c2=beams.midspan_values(n),
-        alph2=beams.alphas("clamped-clamped", n),
-        v3=kl_c, c3=beams.tip_values(n), alph3=beams.alphas("cantilever", n))
+    return data_set.replace(**thesis.mode_constants(n))
 
 
 def variant_data_sets() -> dict[str, list[DataSet]]:

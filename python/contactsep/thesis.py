@@ -70,9 +70,6 @@ def thesis_data_set(separator_thickness: float, *,
                 f"no Table III equivalent length for a separator "
                 f"{separator_thickness!r} in thick; the thesis used "
                 f"{sorted(EQUIVALENT_LENGTHS)}") from None
-    kl_free = beams.eigenvalues("cantilever", modes)
-    alpha_free = beams.alphas("cantilever", modes)
-    tip = beams.tip_values(modes)
     return DataSet(
         xl=CONTACT_LENGTH, b=CONTACT_WIDTH, h=CONTACT_THICKNESS,
         rho=WEIGHT_DENSITY, ystat=static_deflection,
@@ -81,14 +78,24 @@ def thesis_data_set(separator_thickness: float, *,
         xl3=CONTACT_LENGTH, b3=CONTACT_WIDTH, h3=CONTACT_THICKNESS,
         rho3=WEIGHT_DENSITY,
         delt=TIME_STEP, er=restitution, dely=SEPARATOR_POSITION,
-        e=YOUNGS_MODULUS, n=modes,
-        xl2c=equivalent_length,
-        v=kl_free, c=tip, alpha=alpha_free,
-        v2=beams.eigenvalues("clamped-clamped", modes),
-        c2=beams.midspan_values(modes),
-        alph2=beams.alphas("clamped-clamped", modes),
-        v3=kl_free, c3=tip, alph3=alpha_free,
+        e=YOUNGS_MODULUS, xl2c=equivalent_length,
+        **mode_constants(modes),
     )
+
+
+def mode_constants(n: int) -> dict:
+    """N and the mode cards of the thesis's members, computed by
+    :mod:`contactsep.beams`: cantilever contacts (k_jL, X_j(L), alpha_j)
+    and a clamped-clamped separator (k_jL, X_j(L/2), alpha_j)."""
+    kl_free = beams.eigenvalues("cantilever", n)
+    alpha_free = beams.alphas("cantilever", n)
+    tip = beams.tip_values(n)
+    return dict(
+        n=n, v=kl_free, c=tip, alpha=alpha_free,
+        v2=beams.eigenvalues("clamped-clamped", n),
+        c2=beams.midspan_values(n),
+        alph2=beams.alphas("clamped-clamped", n),
+        v3=kl_free, c3=tip, alph3=alpha_free)
 
 
 def deck_name(separator_thickness: float) -> str:
