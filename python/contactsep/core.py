@@ -17,12 +17,13 @@ from typing import Iterator
 
 import numpy as np
 
+from contactsep import cards
 from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
 from contactsep.errors import DeckError, location
 from contactsep.result import Result
 
 PRECISIONS = ("single", "double")
-BLANK_MODES = ("null", "zero")
+BLANK_MODES = cards.BLANK_MODES
 
 #: Scalar inputs in the order of the core's ``scalars`` array (card order).
 SCALAR_NAMES = tuple(
