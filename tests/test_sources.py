@@ -11,7 +11,7 @@ import pytest
 from conftest import ROOT
 
 FORTRAN = ROOT / "fortran"
-CORE = sorted(FORTRAN.glob("*.f90"))
+CORE = sorted((FORTRAN / "restored").glob("*.f90"))
 LEGACY = FORTRAN / "legacy" / "appg.f"
 
 

@@ -7,11 +7,22 @@ pure-Python parts (cards, beam functions, the NumPy reference) import
 without them.
 """
 
+import importlib
+
 from contactsep.core import replay, solve
 from contactsep.dataset import DataSet, cards_per_set
-from contactsep.errors import DeckError
+from contactsep.errors import DeckError, InputError
 from contactsep.result import Result
 
-__all__ = ["DataSet", "DeckError", "Result", "cards_per_set", "replay",
-           "solve"]
+#: The general model's names, imported on first use (``contactsep.model``).
+_MODEL_NAMES = ("Design", "thesis_design", "evaluate")
+
+__all__ = ["DataSet", "DeckError", "InputError", "Result", "cards_per_set",
+           "replay", "solve", *_MODEL_NAMES]
+
+
+def __getattr__(name: str):
+    if name in _MODEL_NAMES:
+        return getattr(importlib.import_module("contactsep.model"), name)
+    raise AttributeError(f"module 'contactsep' has no attribute {name!r}")
 __version__ = "0.1.0"

@@ -11,6 +11,7 @@ status 2; listings of the data sets before a bad one are printed first.
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import tempfile
@@ -18,7 +19,7 @@ from pathlib import Path
 from typing import Sequence
 
 from contactsep import core
-from contactsep.errors import DeckError
+from contactsep.errors import DeckError, InputError
 from contactsep.legacy import LegacyError
 
 EXIT_OK, EXIT_TOLERANCE, EXIT_ERROR = 0, 1, 2
@@ -75,10 +76,17 @@ def build_parser() -> argparse.ArgumentParser:
                     "and the NumPy reference, with relative differences and "
                     "tolerances. Exit status 1 if any is out of tolerance.")
     compare.add_argument("deck")
+    for layer in _LAYERS:
+        importlib.import_module(f"contactsep.{layer}.cli").register(commands)
     return parser
 
 
-class CommandError(Exception):
+#: Layers beside the restoration; each module ``contactsep.<layer>.cli``
+#: registers its own subcommands.
+_LAYERS = ("model", "studies", "chatter")
+
+
+class CommandError(InputError):
     """A request the command refuses (not a problem with the deck)."""
 
 
@@ -133,8 +141,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactsep`` command; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    handler = {"legacy": _legacy, "replay": _replay,
-               "compare": _compare}[args.command]
+    handler = getattr(args, "handler", None) or {
+        "legacy": _legacy, "replay": _replay,
+        "compare": _compare}[args.command]
     try:
         status = handler(args)
         sys.stdout.flush()
@@ -145,7 +154,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
-    except (DeckError, LegacyError, CommandError, OSError) as error:
+    except (DeckError, LegacyError, InputError, OSError) as error:
         sys.stdout.flush()
         if isinstance(error, OSError) and error.filename:
             message = f"{error.strerror}: {error.filename}"

@@ -1,4 +1,8 @@
-"""The error every deck reader and runner raises for a bad deck."""
+"""The package's errors: a bad deck, and any other input it refuses.
+
+Every message is one printable line; the command prints it as
+``contactsep: error: <message>`` and exits with status 2.
+"""
 
 from __future__ import annotations
 
@@ -58,3 +62,10 @@ class DeckError(ValueError):
             message = (location(data_set, card, self.columns) + ": "
                        + (", ".join(problem) or "bad deck"))
         super().__init__(message)
+
+
+class InputError(ValueError):
+    """Input the package refuses (a design, a study or sweep option, a
+    simulation setting); the message is one printable line naming the
+    field, what was found and what is expected.  Each layer raises it or
+    a subclass of its own."""

@@ -1,0 +1,2 @@
+"""Repeated impacts and circuit discontinuity: Appendix E, three-beam
+nonsmooth dynamics (Moreau-Jean) and Hertz contact."""
