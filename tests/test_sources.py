@@ -11,7 +11,8 @@ import pytest
 from conftest import ROOT
 
 FORTRAN = ROOT / "fortran"
-CORE = sorted((FORTRAN / "restored").glob("*.f90"))
+CORE = sorted([*(FORTRAN / "restored").glob("*.f90"),
+               *(FORTRAN / "common").glob("*.f90")])
 LEGACY = FORTRAN / "legacy" / "appg.f"
 
 
