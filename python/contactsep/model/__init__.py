@@ -1,2 +1,14 @@
 """The thesis's general model, eq. (23): any contact points, any orthodox
-end conditions, any number of modes, evaluated in batches."""
+end conditions, any number of modes, evaluated in batches.
+
+>>> import contactsep
+>>> r = contactsep.evaluate(contactsep.thesis_design(d=0.25, x3=0.78 * 19.0))
+"""
+
+from contactsep.model import modes, status
+from contactsep.model.design import Design, DesignError, pack
+from contactsep.model.evaluate import Evaluation, evaluate
+from contactsep.model.thesis import thesis_design
+
+__all__ = ["Design", "DesignError", "Evaluation", "evaluate", "modes",
+           "pack", "status", "thesis_design"]

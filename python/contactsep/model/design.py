@@ -1,0 +1,284 @@
+"""A contact design in the words a designer uses, and its packed form.
+
+Units are the thesis's: inch, pound (force), second; weight densities in
+lb/in^3 (the Appendix G decks use lb/ft^3), Young's moduli in psi,
+g = 386.4 in/s^2.  Member 1 is the upper contact, 2 the separator, 3 the
+lower contact.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactsep.errors import InputError
+from contactsep.model import modes
+
+#: Option values (the first is the default), in the order of their codes.
+IMPACT_VELOCITIES = ("exact", "listing")
+LOWER_RESPONSES = ("as-printed", "impulse")
+LC_READINGS = ("listing", "frequencies", "mass")
+RELEASES = ("tip", "contact")
+
+#: Columns of the packed real array (CONTRACT with the compiled kernel).
+REAL_COLUMNS = ("L1", "b1", "h1", "gamma1", "E1", "x1",
+                "L2", "b2", "h2", "gamma2", "E2", "x2", "Lc",
+                "L3", "b3", "h3", "gamma3", "E3", "x3",
+                "ys", "e", "tau", "gap")
+#: Columns of the packed integer array.
+INT_COLUMNS = ("end1", "end2", "end3", "n1", "n2", "n3")
+
+_POSITIVE = ("L1", "b1", "h1", "gamma1", "E1", "L2", "b2", "h2", "gamma2",
+             "E2", "L3", "b3", "h3", "gamma3", "E3", "tau")
+_OPTIONAL = ("x1", "x2", "x3", "Lc")
+_ENDS = ("end1", "end2", "end3")
+_OPTIONS = {"impact_velocity": IMPACT_VELOCITIES,
+            "lower_response": LOWER_RESPONSES,
+            "lc_reading": LC_READINGS, "release": RELEASES}
+
+
+class DesignError(InputError):
+    """A design the model cannot take; the message names the field."""
+
+
+@dataclass(frozen=True)
+class Design:
+    """One design, or a columnar batch of designs, of the contact system.
+
+    Any numeric field, the end conditions and ``n_modes`` may hold arrays;
+    they broadcast like NumPy and the Design is then a batch.  Defaults are
+    the thesis experiment with the 0.25 in separator (Chapters V and VI).
+    A scalar design is checked at once (:class:`DesignError`); in a batch a
+    value out of range gives that design status 2 at evaluation instead.
+    """
+
+    #: Upper contact length (in).
+    L1: object = 19.0
+    #: Upper contact width (in).
+    b1: object = 2.0
+    #: Upper contact thickness (in).
+    h1: object = 0.125
+    #: Upper contact weight density (lb/in^3).
+    gamma1: object = 0.100
+    #: Upper contact Young's modulus (psi).
+    E1: object = 10.0e6
+    #: Upper contact end conditions (x = 0 first).
+    end1: object = "clamped-free"
+    #: Contact point on the upper contact (in from x = 0); None: its tip, L1.
+    x1: object = None
+    #: Separator length (in).
+    L2: object = 2.5
+    #: Separator width (in).
+    b2: object = 0.5
+    #: Separator thickness d (in).
+    h2: object = 0.25
+    #: Separator weight density (lb/in^3).
+    gamma2: object = 0.100
+    #: Separator Young's modulus (psi).
+    E2: object = 10.0e6
+    #: Separator end conditions.
+    end2: object = "clamped-clamped"
+    #: Contact point on the separator (in); None: mid-span, L2/2.
+    x2: object = None
+    #: Separator equivalent length L_c (in, Table III); None: not used.
+    Lc: object = None
+    #: Lower contact length (in).
+    L3: object = 19.0
+    #: Lower contact width (in).
+    b3: object = 2.0
+    #: Lower contact thickness (in).
+    h3: object = 0.125
+    #: Lower contact weight density (lb/in^3).
+    gamma3: object = 0.100
+    #: Lower contact Young's modulus (psi).
+    E3: object = 10.0e6
+    #: Lower contact end conditions.
+    end3: object = "clamped-free"
+    #: Contact point on the lower contact (in); None: its tip, L3.
+    x3: object = None
+    #: Static deflection of the upper contact before release (in).
+    ys: object = 0.5
+    #: Coefficient of restitution, 0 <= e <= 1.
+    e: object = 0.375
+    #: Modes per member: an int (shared) or a tuple (n1, n2, n3).
+    n_modes: object = 4
+    #: Time window of the lower-contact response, from the impact (s).
+    tau: object = 0.060
+    #: Position of the separator surface seen by the upper contact (in).
+    gap: object = 0.0
+    #: "exact": |dy1/dt(x1, t1)|; "listing": Appendix G's ACT (no sin).
+    impact_velocity: str = "exact"
+    #: "as-printed": eq. 13/23 with v0/L3; "impulse": psi/M3 (eq. 19).
+    lower_response: str = "as-printed"
+    #: Reading of Lc: "listing" hybrid, "frequencies" only, or "mass" too.
+    lc_reading: str = "listing"
+    #: "tip": load at the upper contact's tip (cantilever); "contact": at x1.
+    release: str = "tip"
+
+    def __post_init__(self) -> None:
+        for name, allowed in _OPTIONS.items():
+            if getattr(self, name) not in allowed:
+                raise DesignError(
+                    f"{name}: found {getattr(self, name)!r}, expected one "
+                    f"of {', '.join(allowed)}")
+        for name in _ENDS:
+            value = np.asarray(getattr(self, name))
+            if value.dtype.kind not in "UO" or not np.all(
+                    np.isin(value, modes.END_CONDITIONS)):
+                raise DesignError(
+                    f"{name}: found {getattr(self, name)!r}, expected "
+                    f"one of {', '.join(modes.END_CONDITIONS)}")
+        for name in REAL_COLUMNS:
+            value = getattr(self, name)
+            if value is None and name in _OPTIONAL:
+                continue
+            try:
+                np.asarray(value, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise DesignError(f"{name}: found {value!r}, expected a "
+                                  f"number or an array of numbers") from None
+        n = self._n_array()
+        try:
+            self.shape
+        except ValueError as error:
+            raise DesignError(f"fields do not broadcast together: "
+                              f"{error}") from None
+        if not np.all(n >= 1):
+            raise DesignError(f"n_modes: found {self.n_modes!r}, expected "
+                              f"an integer >= 1 (or three of them)")
+        if self.shape == ():
+            problems = self.problems()
+            if problems:
+                raise DesignError(problems[0])
+
+    def _n_array(self) -> np.ndarray:
+        n = self.n_modes
+        if isinstance(n, tuple):
+            if len(n) != 3:
+                raise DesignError(f"n_modes: found {n!r}, expected an "
+                                  f"integer or a tuple (n1, n2, n3)")
+            n = np.stack(np.broadcast_arrays(*n), axis=-1)
+        array = np.asarray(n)
+        if array.dtype.kind not in "iu" and not (
+                array.dtype.kind == "f" and np.all(array == np.round(array))):
+            raise DesignError(f"n_modes: found {self.n_modes!r}, expected "
+                              f"an integer >= 1 (or three of them)")
+        return array.astype(np.int64)
+
+    @property
+    def shape(self) -> tuple:
+        """The batch shape (``()`` for one design)."""
+        parts = [np.asarray(getattr(self, f)) for f in REAL_COLUMNS
+                 if getattr(self, f) is not None]
+        parts += [np.asarray(getattr(self, f)) for f in _ENDS]
+        n = self._n_array()
+        parts.append(n[..., 0] if isinstance(self.n_modes, tuple) else n)
+        return np.broadcast_shapes(*(p.shape for p in parts))
+
+    @property
+    def size(self) -> int:
+        """Number of designs in the batch."""
+        return int(np.prod(self.shape, dtype=np.int64))
+
+    def replace(self, **changes) -> "Design":
+        """A copy with some fields changed."""
+        return dataclasses.replace(self, **changes)
+
+    def problems(self) -> list[str]:
+        """One message per kind of out-of-range value (empty: all good)."""
+        packed = pack(self)
+        bad = invalid_rows(packed.real, packed.ints)
+        if not np.any(bad):
+            return []
+        messages = []
+        real = packed.real
+        for k, name in enumerate(REAL_COLUMNS):
+            column = real[:, k]
+            if name in _POSITIVE:
+                wrong = ~(np.isfinite(column) & (column > 0.0))
+                expect = "a finite number > 0"
+            elif name in ("x1", "x2", "x3"):
+                length = real[:, REAL_COLUMNS.index("L" + name[1])]
+                wrong = ~(np.isfinite(column) & (column > 0.0)
+                          & (column <= length))
+                expect = f"0 < {name} <= L{name[1]}"
+            elif name == "Lc":
+                wrong = ~(np.isfinite(column) & (column >= 0.0))
+                expect = "a length > 0 (or None)"
+            elif name == "e":
+                wrong = ~(np.isfinite(column) & (column >= 0.0)
+                          & (column <= 1.0))
+                expect = "0 <= e <= 1"
+            else:
+                wrong = ~np.isfinite(column)
+                expect = "a finite number"
+            if np.any(wrong):
+                found = column[np.argmax(wrong)]
+                messages.append(f"{name}: found {found!r}, expected {expect}")
+        return messages or ["invalid design"]
+
+
+@dataclass(frozen=True)
+class Packed:
+    """A batch flattened for a backend (the compiled kernel's layout).
+
+    ``real`` (M, 23) float64 and ``ints`` (M, 6) int32, both Fortran
+    ordered, columns :data:`REAL_COLUMNS` and :data:`INT_COLUMNS`;
+    ``options`` (4,) int32 codes of impact_velocity, lower_response,
+    lc_reading and release; ``shape`` the batch shape.
+    """
+
+    real: np.ndarray
+    ints: np.ndarray
+    options: np.ndarray
+    shape: tuple
+
+    @property
+    def size(self) -> int:
+        """Number of designs M."""
+        return self.real.shape[0]
+
+
+def pack(design: Design) -> Packed:
+    """Broadcast and flatten a design for a backend; x defaults resolved."""
+    shape = design.shape
+    columns = {}
+    for name in REAL_COLUMNS:
+        value = getattr(design, name)
+        if value is None:
+            value = {"x1": design.L1, "x3": design.L3, "Lc": 0.0,
+                     "x2": np.asarray(design.L2, dtype=np.float64) / 2.0
+                     }[name]
+        columns[name] = np.broadcast_to(
+            np.asarray(value, dtype=np.float64), shape).ravel()
+    real = np.asfortranarray(np.stack([columns[n] for n in REAL_COLUMNS],
+                                      axis=1))
+    ends = [np.broadcast_to(np.vectorize(modes.end_code, otypes=[np.int32])(
+        np.asarray(getattr(design, name))), shape).ravel() for name in _ENDS]
+    n = design._n_array()
+    if isinstance(design.n_modes, tuple):
+        counts = [np.broadcast_to(n[..., k], shape).ravel() for k in range(3)]
+    else:
+        counts = [np.broadcast_to(n, shape).ravel()] * 3
+    ints = np.asfortranarray(np.stack(ends + counts, axis=1).astype(np.int32))
+    options = np.array([_OPTIONS[name].index(getattr(design, name))
+                        for name in _OPTIONS], dtype=np.int32)
+    return Packed(real=real, ints=ints, options=options, shape=shape)
+
+
+def invalid_rows(real: np.ndarray, ints: np.ndarray) -> np.ndarray:
+    """Boolean (M,): designs with a value out of range (status 2)."""
+    col = {name: real[:, k] for k, name in enumerate(REAL_COLUMNS)}
+    with np.errstate(invalid="ignore"):
+        ok = np.all(np.isfinite(real), axis=1)
+        for name in _POSITIVE:
+            ok &= col[name] > 0.0
+        for m in "123":
+            ok &= (col["x" + m] > 0.0) & (col["x" + m] <= col["L" + m])
+        ok &= col["Lc"] >= 0.0
+        ok &= (col["e"] >= 0.0) & (col["e"] <= 1.0)
+        ok &= np.all((ints[:, :3] >= 1) & (ints[:, :3] <= 4), axis=1)
+        ok &= np.all(ints[:, 3:] >= 1, axis=1)
+    return ~ok

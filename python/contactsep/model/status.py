@@ -1,0 +1,23 @@
+"""Per-design status codes of the general model (one home; the Fortran
+kernel's fortran/model/model_status.f90 mirrors them, pinned by a test)."""
+
+#: The design was evaluated.
+OK = 0
+#: y1(x1, t) does not reach the gap within one period of the upper
+#: member's first mode (or starts at or below it).
+NO_IMPACT = 1
+#: A value out of range (a size, density or modulus <= 0 or not finite,
+#: a contact point outside (0, L] or at a support of the loaded member,
+#: e outside [0, 1], N < 1, tau <= 0, an unknown end condition).
+INVALID_INPUT = 2
+#: A result overflowed.
+NOT_FINITE = 3
+
+#: Code -> one-line meaning.
+MESSAGES = {
+    OK: "ok",
+    NO_IMPACT: "no impact: y1(x1, t) never reaches the gap within one "
+               "period of the upper contact's first mode",
+    INVALID_INPUT: "invalid input: a value out of range",
+    NOT_FINITE: "a result is not finite (overflow)",
+}

@@ -1,0 +1,352 @@
+"""The general model (eq. 23) in NumPy, vectorised over designs.
+
+Written from the thesis's equations (Chapter III, Chapter IV eqs. 21-24,
+Appendices A-D); the compiled kernel (fortran/model/) is held against it.
+Arrays are (M,) per design and (M, n) per design and mode; modes past a
+member's N are masked out (X = 0) and reported as NaN.  No Python loop
+runs per design: loops run over modes' end conditions, over refinement
+iterations and over search levels, each on the whole batch.
+
+Conventions (docs/model.md): displacements of the upper contact are
+positive away from the separator, so it is released at +y_s and strikes
+at y1(x1, t1) = gap; the lower contact's y3 is positive away from the
+separator; V, psi and v0 are magnitudes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contactsep.model import modes, status
+from contactsep.model.design import REAL_COLUMNS, Packed, invalid_rows
+
+#: Acceleration of gravity (in/s^2): weight to mass (Appendix B).
+GRAVITY = 386.4
+#: Grid points per shortest period in the extreme search (Nyquist x 4).
+SAMPLES_PER_PERIOD = 8
+#: Most grid points per search level; more modes are handled by levels.
+MAX_LEVEL_POINTS = 1024
+#: Most search levels (each narrows the window, adds faster modes).
+MAX_LEVELS = 12
+#: Newton/bisection iterations that polish a root or an extremum.
+POLISH_ITERATIONS = 60
+
+
+def member_constants(length, width, thickness, gamma, modulus):
+    """Mass M = gamma A L / g and flexural constant a = sqrt(E I g/(A gamma))
+    of a uniform beam (III-(1); Appendix B: g/(gamma A L) = 1/M)."""
+    area = width * thickness
+    inertia = width * thickness**3 / 12.0
+    mass = gamma * area * length / GRAVITY
+    a = np.sqrt(modulus * inertia * GRAVITY / (area * gamma))
+    return mass, a
+
+
+def mode_table(end_codes, xi, counts, n_max):
+    """k_jL and X_j(xi) (M, n_max) per design's end condition; modes past
+    the design's count masked (kL NaN, X 0)."""
+    m = len(end_codes)
+    kl = np.full((m, n_max), np.nan)
+    values = np.zeros((m, n_max))
+    for code, end in enumerate(modes.END_CONDITIONS, 1):
+        rows = np.flatnonzero(end_codes == code)
+        if rows.size == 0:
+            continue
+        table = modes.eigenvalues(end, n_max)
+        kl[rows] = table
+        xs = np.clip(xi[rows], 0.0, 1.0)
+        unique, inverse = np.unique(xs, return_inverse=True)
+        values[rows] = modes.mode_shapes(end, n_max, unique).T[inverse]
+    live = np.arange(n_max)[None, :] < counts[:, None]
+    return np.where(live, kl, np.nan), np.where(live, values, 0.0)
+
+
+def frequencies(kl, a, length):
+    """p_j = (k_jL)^2 a / L^2 (k = sqrt(p/a), III-(1))."""
+    return kl**2 * (a / length**2)[:, None]
+
+
+def release_amplitudes(ys, x_load_values, kl, flexibility):
+    """A_j of the static shape under a point load with y(load) = y_s
+    (Appendix A, eq. 7, exact modal coefficients of the untruncated shape):
+    A_j = y_s X_j(a) / ((k_jL)^4 G(a)); tip-loaded cantilever: 3 y_s X_j(L)
+    /(k_jL)^4."""
+    with np.errstate(invalid="ignore"):
+        amp = ys[:, None] * x_load_values / (kl**4 * flexibility[:, None])
+    return np.where(np.isnan(kl), 0.0, amp)
+
+
+def _sum(c, p, t, func):
+    """sum_j c_j func(p_j t) over live modes (p NaN -> term 0)."""
+    with np.errstate(invalid="ignore"):
+        terms = c * func(np.nan_to_num(p) * t[:, None])
+    return terms.sum(axis=1)
+
+
+def upper_displacement(a_coef, p, t):
+    """y1(x1, t) = sum A_j X_j(x1) cos p_j t (III-(3)); a_coef = A_j X_j."""
+    return _sum(a_coef, p, t, np.cos)
+
+
+def upper_velocity(a_coef, p, t):
+    """dy1/dt(x1, t) = -sum p_j A_j X_j(x1) sin p_j t (III-(4))."""
+    return -_sum(a_coef * np.nan_to_num(p), p, t, np.sin)
+
+
+def first_impact(a_coef, p, gap, horizon):
+    """First t > 0 with y1(x1, t) = gap, and a NO_IMPACT mask.
+
+    Safe steps: with B = sum |A_j X_j| p_j^2 >= |y1''|, the lower bound
+    f + f' s - B s^2/2 of f = y1 - gap has no root before its first
+    positive one, so stepping to it never passes the first crossing; near
+    a simple root the steps converge quadratically.  A last Newton step
+    from the left polishes t1.
+    """
+    pn = np.nan_to_num(p)
+    bound = np.sum(np.abs(a_coef) * pn**2, axis=1)
+    t = np.zeros(len(gap))
+    f = upper_displacement(a_coef, p, t) - gap
+    missed = ~(f > 0.0) | ~(bound > 0.0)
+    active = ~missed
+    for _ in range(100000):
+        if not np.any(active):
+            break
+        rows = np.flatnonzero(active)
+        fr = upper_displacement(a_coef[rows], p[rows], t[rows]) - gap[rows]
+        dr = upper_velocity(a_coef[rows], p[rows], t[rows])
+        b = bound[rows]
+        root = np.sqrt(dr * dr + 2.0 * b * np.maximum(fr, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(dr >= 0.0, (dr + root) / b,
+                            2.0 * np.maximum(fr, 0.0) / (root - dr))
+        done = (fr <= 0.0) | (step <= 1e-13 * np.maximum(t[rows], 1e-3))
+        t[rows] = np.where(done, t[rows], t[rows] + step)
+        late = t[rows] > horizon[rows]
+        missed[rows[late]] = True
+        active[rows[done | late]] = False
+    fr = upper_displacement(a_coef, p, t) - gap
+    dr = upper_velocity(a_coef, p, t)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        newton = np.where(dr < 0.0, -fr / dr, 0.0)
+    t = np.where(missed, np.nan, t + newton)
+    return t, missed
+
+
+def impact_velocity(a_coef, p, t1, listing=False):
+    """V = |dy1/dt(x1, t1)|; listing: |sum p_j A_j X_j(x1)| (ACT, no sin)."""
+    if listing:
+        return np.abs(np.sum(a_coef * np.nan_to_num(p), axis=1))
+    return np.abs(upper_velocity(a_coef, p, np.nan_to_num(t1)))
+
+
+def impulse(e, v, s1, m1, s2, m2, s3, m3):
+    """psi = (1+e) V / sum_j [X1j^2/M1 + X2j^2/M2 + X3j^2/M3] (eqs. 20, 23);
+    s_i = sum_j X_ij(x_i)^2."""
+    return (1.0 + e) * v / (s1 / m1 + s2 / m2 + s3 / m3)
+
+
+def separator_velocity(psi, s2, m2):
+    """v0 = (psi/M2) sum_j X2j(x2)^2 (eq. 12 at the contact point)."""
+    return psi * s2 / m2
+
+
+def lower_coefficients(gain, x3_values, p3):
+    """c_j of y3(x3, t) = sum c_j sin p3j t, c_j = gain X3j(x3)^2 / p3j:
+    gain v0/L3 as printed (eqs. 13, 23) or psi/M3 (the impulse form)."""
+    with np.errstate(invalid="ignore"):
+        c = gain[:, None] * x3_values**2 / p3
+    return np.where(np.isnan(p3), 0.0, c)
+
+
+def mass_ratio(m2, s2, m3, s3):
+    """R = (M2 / sum X2j(x2)^2) / (M3 / sum X3j(x3)^2) (eq. 24)."""
+    return (m2 / s2) / (m3 / s3)
+
+
+def lower_displacement(c, p, t):
+    """y3(x3, t) = sum_j c_j sin p3j t, t (M,) or (M, k)."""
+    t = np.asarray(t, dtype=np.float64)
+    pn = np.nan_to_num(p)
+    if t.ndim == 1:
+        return np.sum(c * np.sin(pn * t[:, None]), axis=1)
+    return np.einsum("mj,mjk->mk", c, np.sin(pn[:, :, None] * t[:, None, :]))
+
+
+def _polish_extremum(c, p, lo, hi, sign):
+    """Critical point of sign*y3 in [lo, hi] (Newton with bisection
+    safeguard on y3'); returns t and whether an interior root was found."""
+    cp = c * np.nan_to_num(p)
+    cpp = cp * np.nan_to_num(p)
+    deriv = lambda t: sign * np.sum(cp * np.cos(np.nan_to_num(p) * t[:, None]),
+                                    axis=1)
+    curv = lambda t: -sign * np.sum(cpp * np.sin(np.nan_to_num(p)
+                                                 * t[:, None]), axis=1)
+    d_lo, d_hi = deriv(lo), deriv(hi)
+    interior = (d_lo > 0.0) & (d_hi < 0.0)
+    a, b = lo.copy(), hi.copy()
+    t = 0.5 * (a + b)
+    for _ in range(POLISH_ITERATIONS):
+        d = deriv(t)
+        a = np.where(d > 0.0, t, a)
+        b = np.where(d > 0.0, b, t)
+        dd = curv(t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton = t - d / dd
+        inside = (newton > a) & (newton < b) & np.isfinite(newton)
+        t = np.where(inside, newton, 0.5 * (a + b))
+    return t, interior
+
+
+def extremes(c, p, tau):
+    """(y3_max, t_max, y3_min, t_min, at_window_end) over 0 <= t <= tau.
+
+    Level search: each level samples the current window at up to
+    MAX_LEVEL_POINTS points with the modes it resolves (8 samples per
+    period), polishes the best sample, and bounds the unresolved modes by
+    R = sum |c_j|; the true extremum lies where the resolved sum is within
+    2R of its best, which becomes the next, narrower window.  When every
+    mode is resolved the polished point is the extremum.
+    """
+    results = []
+    for sign in (1.0, -1.0):
+        results.append(_extreme(c, p, tau, sign))
+    (t_max, y_max, end_max), (t_min, y_min, _) = results
+    return y_max, t_max, -y_min, t_min, end_max
+
+
+def _extreme(c, p, tau, sign):
+    m = c.shape[0]
+    pn = np.nan_to_num(p)
+    lo, hi = np.zeros(m), tau.copy()
+    best_t = np.zeros(m)
+    active = np.ones(m, dtype=bool)
+    for _ in range(MAX_LEVELS):
+        rows = np.flatnonzero(active)
+        if rows.size == 0:
+            break
+        width = hi[rows] - lo[rows]
+        p_max = np.max(pn[rows], axis=1)
+        wanted = np.ceil(width * SAMPLES_PER_PERIOD * p_max / (2.0 * np.pi))
+        count = int(min(MAX_LEVEL_POINTS, max(2, np.max(wanted) + 1)))
+        u = np.linspace(0.0, 1.0, count)
+        grid = lo[rows, None] + width[:, None] * u[None, :]
+        h = width / (count - 1)
+        resolved = pn[rows] <= np.pi / (SAMPLES_PER_PERIOD / 2.0 * h[:, None]
+                                         + 1e-300)
+        cr = np.where(resolved, c[rows], 0.0)
+        values = sign * np.einsum("mj,mjk->mk", cr,
+                                  np.sin(pn[rows, :, None] * grid[:, None, :]))
+        k = np.argmax(values, axis=1)
+        left = grid[np.arange(rows.size), np.maximum(k - 1, 0)]
+        right = grid[np.arange(rows.size), np.minimum(k + 1, count - 1)]
+        t_star, interior = _polish_extremum(cr, p[rows], left, right, sign)
+        t_grid = grid[np.arange(rows.size), k]
+        s_star = sign * lower_displacement(cr, p[rows], t_star)
+        s_grid = values[np.arange(rows.size), k]
+        use = interior & (s_star >= s_grid)
+        t_best = np.where(use, t_star, t_grid)
+        s_best = np.where(use, s_star, s_grid)
+        rest = np.sum(np.abs(np.where(resolved, 0.0, c[rows])), axis=1)
+        best_t[rows] = t_best
+        finished = rest == 0.0
+        # next window: samples within 2R (+ the grid's own error) of best
+        grid_error = np.sum(np.abs(cr) * pn[rows]**2, axis=1) * h * h / 8.0
+        near = values >= (s_best - 2.0 * rest - grid_error)[:, None]
+        first = np.argmax(near, axis=1)
+        last = count - 1 - np.argmax(near[:, ::-1], axis=1)
+        new_lo = grid[np.arange(rows.size), np.maximum(first - 1, 0)]
+        new_hi = grid[np.arange(rows.size), np.minimum(last + 1, count - 1)]
+        lo[rows] = np.where(finished, lo[rows], new_lo)
+        hi[rows] = np.where(finished, hi[rows], new_hi)
+        active[rows[finished]] = False
+    t = best_t
+    y = sign * lower_displacement(c, p, t)
+    for end_t in (np.zeros(m), tau):
+        y_end = sign * lower_displacement(c, p, end_t)
+        better = y_end > y
+        t = np.where(better, end_t, t)
+        y = np.where(better, y_end, y)
+    at_end = t == tau
+    return t, y, at_end
+
+
+def evaluate_packed(packed: Packed) -> dict:
+    """Evaluate a packed batch; returns the contract's dict of arrays."""
+    real, ints = packed.real, packed.ints
+    col = {name: real[:, k] for k, name in enumerate(REAL_COLUMNS)}
+    m = packed.size
+    counts = [ints[:, 3 + i].astype(np.int64) for i in range(3)]
+    n_max = int(max((c.max() for c in counts), default=1)) if m else 1
+    code = np.full(m, status.OK, dtype=np.int32)
+    bad = invalid_rows(real, ints)
+    code[bad] = status.INVALID_INPUT
+    safe = {k: np.where(bad, 1.0, v) for k, v in col.items()}
+    ends = [np.where(bad, 1, ints[:, i]) for i in range(3)]
+    counts = [np.where(bad, 1, c) for c in counts]
+    impact_option, lower_option, lc_option, release_option = (
+        int(v) for v in packed.options)
+
+    masses, consts, xi = [], [], []
+    for i in "123":
+        mass, a = member_constants(safe["L" + i], safe["b" + i],
+                                   safe["h" + i], safe["gamma" + i],
+                                   safe["E" + i])
+        masses.append(mass)
+        consts.append(a)
+        xi.append(safe["x" + i] / safe["L" + i])
+    kl1, x1v = mode_table(ends[0], xi[0], counts[0], n_max)
+    kl2, x2v = mode_table(ends[1], xi[1], counts[1], n_max)
+    kl3, x3v = mode_table(ends[2], xi[2], counts[2], n_max)
+    p1 = frequencies(kl1, consts[0], safe["L1"])
+    p3 = frequencies(kl3, consts[2], safe["L3"])
+    lc = safe["Lc"]
+    has_lc = lc > 0.0
+    l2_freq = np.where(has_lc & (lc_option in (1, 2)), lc, safe["L2"])
+    p2 = frequencies(kl2, consts[1], l2_freq)
+    m1, m2, m3 = masses
+    m2_psi = np.where(has_lc & (lc_option == 2), m2 * lc / safe["L2"], m2)
+    m2_v0 = np.where(has_lc & (lc_option in (0, 2)), m2 * lc / safe["L2"],
+                     m2)
+
+    tip_release = (release_option == 0) & (ends[0] == 1)
+    xi_load = np.where(tip_release, 1.0, xi[0])
+    flex = np.zeros(m)
+    load_values = np.zeros((m, n_max))
+    for c, end in enumerate(modes.END_CONDITIONS, 1):
+        rows = ends[0] == c
+        flex[rows] = modes.static_flexibility(end, xi_load[rows])
+    _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
+    zero_flex = ~(flex > 0.0)
+    code[zero_flex & (code == status.OK)] = status.INVALID_INPUT
+    flex = np.where(zero_flex, 1.0, flex)
+    amplitudes = release_amplitudes(safe["ys"], load_values, kl1, flex)
+    a_coef = amplitudes * x1v
+    horizon = 2.0 * np.pi / p1[:, 0]
+    t1, missed = first_impact(a_coef, p1, safe["gap"], horizon)
+    code[missed & (code == status.OK)] = status.NO_IMPACT
+    v = impact_velocity(a_coef, p1, t1, listing=impact_option == 1)
+    s1, s2, s3 = (np.sum(x**2, axis=1) for x in (x1v, x2v, x3v))
+    psi = impulse(safe["e"], v, s1, m1, s2, m2_psi, s3, m3)
+    v0 = separator_velocity(psi, s2, m2_v0)
+    gain = psi / m3 if lower_option == 1 else v0 / safe["L3"]
+    c3 = lower_coefficients(gain, x3v, p3)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = mass_ratio(m2_v0, s2, m3, s3)
+    y_max, t_max, y_min, t_min, at_end = extremes(c3, p3, safe["tau"])
+
+    out = dict(t1=t1, v_impact=v, psi=psi, v0=v0, R=r, y3_max=y_max,
+               t_max=t_max, y3_min=y_min, t_min=t_min, M1=m1, M2=m2_psi,
+               M3=m3)
+    finite = np.ones(m, dtype=bool)
+    for value in out.values():
+        finite &= np.isfinite(value) | (code != status.OK)
+    code[~finite] = status.NOT_FINITE
+    failed = code != status.OK
+    for key in out:
+        out[key] = np.where(failed, np.nan, out[key])
+    out["at_window_end"] = np.where(failed, False, at_end)
+    out["status"] = code
+    for key, value in (("p1", p1), ("p2", p2), ("p3", p3), ("c3", c3)):
+        out[key] = np.where(failed[:, None], np.nan, value)
+    out["c3"] = np.where(np.isnan(out["p3"]), np.nan, out["c3"])
+    return out
