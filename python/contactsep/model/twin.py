@@ -227,15 +227,19 @@ def _extreme(c, p, tau, sign):
         width = hi[rows] - lo[rows]
         p_max = np.max(pn[rows], axis=1)
         wanted = np.ceil(width * SAMPLES_PER_PERIOD * p_max / (2.0 * np.pi))
-        count = int(min(MAX_LEVEL_POINTS, max(2, np.max(wanted) + 1)))
-        u = np.linspace(0.0, 1.0, count)
-        grid = lo[rows, None] + width[:, None] * u[None, :]
+        count = np.minimum(MAX_LEVEL_POINTS,
+                           np.maximum(2, wanted + 1)).astype(np.int64)
+        k_all = np.arange(int(count.max()))
+        live = k_all[None, :] < count[:, None]
+        u = np.minimum(k_all[None, :], (count - 1)[:, None]) / (
+            count - 1)[:, None]
+        grid = lo[rows, None] + width[:, None] * u
         h = width / (count - 1)
-        resolved = pn[rows] <= np.pi / (SAMPLES_PER_PERIOD / 2.0 * h[:, None]
-                                         + 1e-300)
+        resolved = pn[rows] * (4.0 * h[:, None]) <= np.pi
         cr = np.where(resolved, c[rows], 0.0)
         values = sign * np.einsum("mj,mjk->mk", cr,
                                   np.sin(pn[rows, :, None] * grid[:, None, :]))
+        values = np.where(live, values, -np.inf)
         k = np.argmax(values, axis=1)
         left = grid[np.arange(rows.size), np.maximum(k - 1, 0)]
         right = grid[np.arange(rows.size), np.minimum(k + 1, count - 1)]
@@ -248,12 +252,12 @@ def _extreme(c, p, tau, sign):
         s_best = np.where(use, s_star, s_grid)
         rest = np.sum(np.abs(np.where(resolved, 0.0, c[rows])), axis=1)
         best_t[rows] = t_best
-        finished = rest == 0.0
+        finished = (rest == 0.0) | ~(width > 0.0)
         # next window: samples within 2R (+ the grid's own error) of best
         grid_error = np.sum(np.abs(cr) * pn[rows]**2, axis=1) * h * h / 8.0
         near = values >= (s_best - 2.0 * rest - grid_error)[:, None]
         first = np.argmax(near, axis=1)
-        last = count - 1 - np.argmax(near[:, ::-1], axis=1)
+        last = near.shape[1] - 1 - np.argmax(near[:, ::-1], axis=1)
         new_lo = grid[np.arange(rows.size), np.maximum(first - 1, 0)]
         new_hi = grid[np.arange(rows.size), np.minimum(last + 1, count - 1)]
         lo[rows] = np.where(finished, lo[rows], new_lo)

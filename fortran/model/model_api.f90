@@ -1,0 +1,87 @@
+!> f2py entry of the general model: one call evaluates a whole batch.
+module model_api
+  use contactsep_kinds, only: wp
+  use model_batch, only: design_result, mode_tables, &
+      evaluate_design
+  use model_beam_modes, only: eigenvalue, sigma_parts, mode_value
+  implicit none
+  private
+  public :: evaluate_batch, mode_values
+
+contains
+
+  !> Evaluate m designs (rows of real_in, ints_in; options shared).
+  subroutine evaluate_batch(m, n_max, real_in, ints_in, options, t1, &
+      v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
+      status, m1, m2, m3, p1, p2, p3, c3)
+    !> Number of designs, and the largest mode count of any member.
+    integer, intent(in) :: m, n_max
+    !> Design rows (see model_batch) and integer rows.
+    real(wp), intent(in) :: real_in(m, 23)
+    integer, intent(in) :: ints_in(m, 6)
+    !> Option codes (impact_velocity, lower_response, lc_reading, release).
+    integer, intent(in) :: options(4)
+    real(wp), intent(out) :: t1(m), v_impact(m), psi(m), v0(m), r(m)
+    real(wp), intent(out) :: y3_max(m), t_max(m), y3_min(m), t_min(m)
+    real(wp), intent(out) :: m1(m), m2(m), m3(m)
+    !> 1 where the maximum sits at the end of the window.
+    integer, intent(out) :: at_end(m)
+    !> Per-design status code (model_status).
+    integer, intent(out) :: status(m)
+    !> Frequencies and lower-contact coefficients, NaN past a member's N.
+    real(wp), intent(out) :: p1(m, n_max), p2(m, n_max), p3(m, n_max)
+    real(wp), intent(out) :: c3(m, n_max)
+    real(wp) :: kl(n_max, 4), sigma(n_max, 4), g(n_max, 4)
+    real(wp) :: row_p1(n_max), row_p2(n_max), row_p3(n_max)
+    real(wp) :: row_c3(n_max)
+    integer :: ints(6)
+    type(design_result) :: res
+    integer :: i
+
+    call mode_tables(n_max, kl, sigma, g)
+    do i = 1, m
+      ints = ints_in(i, :)
+      ! a mode count past the output room is refused, not written past
+      if (any(ints(4:6) > n_max)) ints(4:6) = 0
+      call evaluate_design(real_in(i, :), ints, options, kl, sigma, g, &
+          res, row_p1, row_p2, row_p3, row_c3)
+      t1(i) = res%t1
+      v_impact(i) = res%v_impact
+      psi(i) = res%psi
+      v0(i) = res%v0
+      r(i) = res%r
+      y3_max(i) = res%y3_max
+      t_max(i) = res%t_max
+      y3_min(i) = res%y3_min
+      t_min(i) = res%t_min
+      m1(i) = res%m1
+      m2(i) = res%m2
+      m3(i) = res%m3
+      at_end(i) = merge(1, 0, res%at_end)
+      status(i) = res%status
+      p1(i, :) = row_p1
+      p2(i, :) = row_p2
+      p3(i, :) = row_p3
+      c3(i, :) = row_c3
+    end do
+  end subroutine evaluate_batch
+
+  !> X_j(xi) of end condition `end` for j = 1..n at points xi (for tests).
+  subroutine mode_values(end, n, k, xi, kl, values)
+    integer, intent(in) :: end, n, k
+    real(wp), intent(in) :: xi(k)
+    !> k_jL and X_j(xi(i)).
+    real(wp), intent(out) :: kl(n), values(n, k)
+    real(wp) :: sigma, g
+    integer :: i, j
+
+    do j = 1, n
+      kl(j) = eigenvalue(end, j)
+      call sigma_parts(end, kl(j), sigma, g)
+      do i = 1, k
+        values(j, i) = mode_value(end, kl(j), sigma, g, xi(i))
+      end do
+    end do
+  end subroutine mode_values
+
+end module model_api

@@ -1,0 +1,195 @@
+!> The general model (eq. 23) on a batch of designs, one status each.
+!>
+!> Columns of a design row (CONTRACT with contactsep.model.design.pack):
+!> L1 b1 h1 gamma1 E1 x1 | L2 b2 h2 gamma2 E2 x2 Lc | L3 b3 h3 gamma3 E3 x3
+!> | ys e tau gap; integer row: end1 end2 end3 n1 n2 n3; options:
+!> impact_velocity (0 exact, 1 listing), lower_response (0 as printed,
+!> 1 impulse), lc_reading (0 listing, 1 frequencies, 2 mass), release
+!> (0 tip, 1 contact).
+module model_batch
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, &
+      ieee_is_finite
+  use contactsep_kinds, only: wp
+  use model_status, only: status_ok, status_no_impact, &
+      status_invalid_input, status_not_finite
+  use model_beam_modes, only: eigenvalue, sigma_parts, mode_value, &
+      static_flexibility, clamped_free
+  use model_members, only: member_constants, frequency
+  use model_impact, only: release_amplitudes, first_impact, impact_velocity
+  use model_responses, only: impulse, separator_velocity, &
+      lower_coefficients, mass_ratio
+  use model_extremes, only: extremes
+  implicit none
+  private
+  public :: mode_tables, evaluate_design, design_is_valid
+
+  !> Number of real columns of a design row.
+  integer, parameter, public :: n_real = 23
+  real(wp), parameter :: pi = 3.14159265358979323846264338327950288_wp
+
+  !> Per-design results (one row of the batch outputs).
+  type, public :: design_result
+    real(wp) :: t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min
+    real(wp) :: m1, m2, m3
+    logical :: at_end = .false.
+    integer :: status = status_ok
+  end type design_result
+
+contains
+
+  !> k_jL, sigma_j and g_j of the four end conditions, j = 1..n_max.
+  pure subroutine mode_tables(n_max, kl, sigma, g)
+    integer, intent(in) :: n_max
+    real(wp), intent(out) :: kl(n_max, 4), sigma(n_max, 4), g(n_max, 4)
+    integer :: end, j
+
+    do end = 1, 4
+      do j = 1, n_max
+        kl(j, end) = eigenvalue(end, j)
+        call sigma_parts(end, kl(j, end), sigma(j, end), g(j, end))
+      end do
+    end do
+  end subroutine mode_tables
+
+  !> True when every value of a design is in range.
+  pure function design_is_valid(row, ints) result(ok)
+    real(wp), intent(in) :: row(n_real)
+    integer, intent(in) :: ints(6)
+    logical :: ok
+    integer, parameter :: positive(16) = [1, 2, 3, 4, 5, 7, 8, 9, 10, &
+        11, 14, 15, 16, 17, 18, 22]
+
+    ok = all(ieee_is_finite(row)) .and. all(row(positive) > 0.0_wp)
+    ok = ok .and. row(6) > 0.0_wp .and. row(6) <= row(1)
+    ok = ok .and. row(12) > 0.0_wp .and. row(12) <= row(7)
+    ok = ok .and. row(19) > 0.0_wp .and. row(19) <= row(14)
+    ok = ok .and. row(13) >= 0.0_wp
+    ok = ok .and. row(21) >= 0.0_wp .and. row(21) <= 1.0_wp
+    ok = ok .and. all(ints(1:3) >= 1 .and. ints(1:3) <= 4) &
+        .and. all(ints(4:6) >= 1)
+  end function design_is_valid
+
+  !> Evaluate one design; p1, p2, p3, c3 get its live modes (rest NaN).
+  pure subroutine evaluate_design(row, ints, options, kl, sigma, g, &
+      res, p1, p2, p3, c3)
+    real(wp), intent(in) :: row(n_real)
+    integer, intent(in) :: ints(6), options(4)
+    real(wp), intent(in) :: kl(:, :), sigma(:, :), g(:, :)
+    type(design_result), intent(out) :: res
+    real(wp), intent(out) :: p1(:), p2(:), p3(:), c3(:)
+    real(wp) :: a1, a2, a3, m2_psi, m2_v0, xi1, xi2, xi3, xi_load, flex
+    real(wp) :: l2_freq, horizon, s1, s2, s3, gain, nan
+    real(wp) :: x1v(size(p1)), x2v(size(p1)), x3v(size(p1))
+    real(wp) :: load(size(p1)), amp(size(p1))
+    logical :: missed, has_lc
+    integer :: n1, n2, n3, e1, e2, e3, j
+
+    nan = ieee_value(0.0_wp, ieee_quiet_nan)
+    p1 = nan
+    p2 = nan
+    p3 = nan
+    c3 = nan
+    res%t1 = nan; res%v_impact = nan; res%psi = nan; res%v0 = nan
+    res%r = nan; res%y3_max = nan; res%t_max = nan; res%y3_min = nan
+    res%t_min = nan; res%m1 = nan; res%m2 = nan; res%m3 = nan
+    res%at_end = .false.
+    if (.not. design_is_valid(row, ints)) then
+      res%status = status_invalid_input
+      return
+    end if
+    e1 = ints(1); e2 = ints(2); e3 = ints(3)
+    n1 = ints(4); n2 = ints(5); n3 = ints(6)
+    call member_constants(row(1), row(2), row(3), row(4), row(5), &
+        res%m1, a1)
+    call member_constants(row(7), row(8), row(9), row(10), row(11), &
+        res%m2, a2)
+    call member_constants(row(14), row(15), row(16), row(17), row(18), &
+        res%m3, a3)
+    xi1 = row(6) / row(1)
+    xi2 = row(12) / row(7)
+    xi3 = row(19) / row(14)
+    do j = 1, n1
+      x1v(j) = mode_value(e1, kl(j, e1), sigma(j, e1), g(j, e1), xi1)
+    end do
+    do j = 1, n2
+      x2v(j) = mode_value(e2, kl(j, e2), sigma(j, e2), g(j, e2), xi2)
+    end do
+    do j = 1, n3
+      x3v(j) = mode_value(e3, kl(j, e3), sigma(j, e3), g(j, e3), xi3)
+    end do
+    p1(1:n1) = frequency(kl(1:n1, e1), a1, row(1))
+    p3(1:n3) = frequency(kl(1:n3, e3), a3, row(14))
+    has_lc = row(13) > 0.0_wp
+    l2_freq = row(7)
+    if (has_lc .and. options(3) /= 0) l2_freq = row(13)
+    p2(1:n2) = frequency(kl(1:n2, e2), a2, l2_freq)
+    m2_psi = res%m2
+    m2_v0 = res%m2
+    if (has_lc .and. options(3) == 2) m2_psi = res%m2 * row(13) / row(7)
+    if (has_lc .and. options(3) /= 1) m2_v0 = res%m2 * row(13) / row(7)
+
+    xi_load = xi1
+    if (options(4) == 0 .and. e1 == clamped_free) xi_load = 1.0_wp
+    flex = static_flexibility(e1, xi_load)
+    if (.not. (flex > 0.0_wp)) then
+      res%status = status_invalid_input
+      call clear(res, p1, p2, p3, c3, nan)
+      return
+    end if
+    do j = 1, n1
+      load(j) = mode_value(e1, kl(j, e1), sigma(j, e1), g(j, e1), xi_load)
+    end do
+    call release_amplitudes(row(20), load(1:n1), kl(1:n1, e1), flex, &
+        amp(1:n1))
+    amp(1:n1) = amp(1:n1) * x1v(1:n1)
+    horizon = 2.0_wp * pi / p1(1)
+    call first_impact(amp(1:n1), p1(1:n1), row(23), horizon, res%t1, &
+        missed)
+    if (missed) then
+      res%status = status_no_impact
+      call clear(res, p1, p2, p3, c3, nan)
+      return
+    end if
+    res%v_impact = impact_velocity(amp(1:n1), p1(1:n1), res%t1, &
+        options(1) == 1)
+    s1 = sum(x1v(1:n1)**2)
+    s2 = sum(x2v(1:n2)**2)
+    s3 = sum(x3v(1:n3)**2)
+    res%psi = impulse(row(21), res%v_impact, s1, res%m1, s2, m2_psi, s3, &
+        res%m3)
+    res%v0 = separator_velocity(res%psi, s2, m2_v0)
+    if (options(2) == 1) then
+      gain = res%psi / res%m3
+    else
+      gain = res%v0 / row(14)
+    end if
+    call lower_coefficients(gain, x3v(1:n3), p3(1:n3), c3(1:n3))
+    res%r = mass_ratio(m2_v0, s2, res%m3, s3)
+    res%m2 = m2_psi
+    call extremes(c3(1:n3), p3(1:n3), row(22), res%y3_max, res%t_max, &
+        res%y3_min, res%t_min, res%at_end)
+    if (.not. all(ieee_is_finite([res%t1, res%v_impact, res%psi, res%v0, &
+        res%r, res%y3_max, res%t_max, res%y3_min, res%t_min, res%m1, &
+        res%m2, res%m3]))) then
+      res%status = status_not_finite
+      call clear(res, p1, p2, p3, c3, nan)
+    end if
+  end subroutine evaluate_design
+
+  !> NaN results for a design that failed (its status is kept).
+  pure subroutine clear(res, p1, p2, p3, c3, nan)
+    type(design_result), intent(inout) :: res
+    real(wp), intent(inout) :: p1(:), p2(:), p3(:), c3(:)
+    real(wp), intent(in) :: nan
+
+    res%t1 = nan; res%v_impact = nan; res%psi = nan; res%v0 = nan
+    res%r = nan; res%y3_max = nan; res%t_max = nan; res%y3_min = nan
+    res%t_min = nan; res%m1 = nan; res%m2 = nan; res%m3 = nan
+    res%at_end = .false.
+    p1 = nan
+    p2 = nan
+    p3 = nan
+    c3 = nan
+  end subroutine clear
+
+end module model_batch

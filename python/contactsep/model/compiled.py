@@ -1,0 +1,29 @@
+"""The compiled general model (fortran/model/, f2py module ``_model``):
+one call evaluates a whole packed batch."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contactsep import _model
+from contactsep.model.design import Packed
+
+_KERNEL = _model.model_api
+
+
+def evaluate_packed(packed: Packed) -> dict:
+    """Evaluate a packed batch; returns the contract's dict of arrays."""
+    n_max = int(packed.ints[:, 3:].max()) if packed.size else 1
+    (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
+     status, m1, m2, m3, p1, p2, p3, c3) = _KERNEL.evaluate_batch(
+        max(n_max, 1), packed.real, packed.ints, packed.options)
+    return dict(t1=t1, v_impact=v_impact, psi=psi, v0=v0, R=r,
+                y3_max=y3_max, t_max=t_max, y3_min=y3_min, t_min=t_min,
+                at_window_end=at_end.astype(bool), status=status,
+                M1=m1, M2=m2, M3=m3, p1=p1, p2=p2, p3=p3, c3=c3)
+
+
+def mode_values(end_code: int, n: int, xi) -> tuple[np.ndarray, np.ndarray]:
+    """k_jL (n,) and X_j(xi) (n, len(xi)) from the Fortran beam modes."""
+    xi = np.atleast_1d(np.asarray(xi, dtype=np.float64))
+    return _KERNEL.mode_values(end_code, n, xi)
