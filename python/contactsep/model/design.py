@@ -216,7 +216,8 @@ class Design:
                 expect = "a finite number"
             if np.any(wrong):
                 found = column[np.argmax(wrong)]
-                messages.append(f"{name}: found {found!r}, expected {expect}")
+                messages.append(f"{name}: found {float(found)!r}, "
+                                f"expected {expect}")
         return messages or ["invalid design"]
 
 

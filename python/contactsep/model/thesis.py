@@ -9,6 +9,8 @@ def thesis_design(d=0.25, **overrides) -> Design:
     """The experiment: 19 x 2 x 0.125 in aluminium contacts, a 2.5 x 0.5 x d
     in separator, E = 10.0e6 psi, 0.100 lb/in^3, y_s = 0.5 in, e = 0.375,
     N = 4, contact at the tips and mid-span, tau = 0.060 s, no L_c unless
-    given.  ``d`` may be an array (a batch); any field may be overridden.
+    given.  ``d`` may be an array (a batch); any field may be overridden
+    (``h2``, if given, takes the place of ``d``).
     """
-    return Design(h2=d, **overrides)
+    overrides.setdefault("h2", d)
+    return Design(**overrides)
