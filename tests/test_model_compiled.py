@@ -62,7 +62,9 @@ def compare(design):
         x, y = getattr(a, key), getattr(b, key)
         assert np.array_equal(np.isnan(x), np.isnan(y)), key
         live = ~np.isnan(x)
-        assert np.all(np.abs(x[live] - y[live]) <= 1e-12 * np.abs(x[live]))
+        # frequencies are direct; c3 carries the impact velocity's error
+        rtol = 1e-10 if key == "c3" else 1e-12
+        assert np.all(np.abs(x[live] - y[live]) <= rtol * np.abs(x[live]))
     return a, b
 
 
