@@ -174,3 +174,47 @@ def test_design_batches_broadcast():
     ev = evaluate(d, backend=BACKEND)
     assert ev.y3_max.shape == (2, 2) and ev.p3.shape == (2, 2, 4)
     assert ev.y3([0.0, 0.01]).shape == (2, 2, 2)
+
+
+def test_deck_data_sets_convert_both_ways():
+    from contactsep import thesis
+    from contactsep.model import data_set_from_design, design_from_data_set
+
+    ds = thesis.thesis_data_set(0.35)
+    design = design_from_data_set(ds)
+    assert design.gamma2 == ds.rho2 / 1728 and design.Lc == ds.xl2c
+    back = data_set_from_design(design)
+    assert back == ds
+    # the converted design runs the listing's numbers (see the special
+    # case above) and refuses what a deck cannot say
+    with pytest.raises(DesignError, match="x3: a deck's contacts"):
+        data_set_from_design(design.replace(x3=15.0))
+    with pytest.raises(DesignError, match="E1, E2, E3"):
+        data_set_from_design(design.replace(E2=3e7))
+
+
+def test_convergence_in_n():
+    """The point impact's effective mass is zero (sum X_j(L)^2 = 4N), so
+    psi falls like 1/N; v0 and y3_max converge, their changes halving as
+    N doubles (O(1/N), docs/model.md)."""
+    n = np.array([50, 100, 200, 400])
+    ev = evaluate(thesis_design(n_modes=n), backend="compiled")
+    deviation = np.abs(ev.psi[1:] / ev.psi[:-1] - 0.5)
+    assert np.all(deviation < 2e-3) and np.all(np.diff(deviation) < 0)
+    for values in (ev.v0, ev.y3_max):
+        steps = np.abs(np.diff(values))
+        assert np.all(steps[1:] / steps[:-1] < 0.6)
+        assert steps[-1] / values[-1] < 2e-3
+
+
+def test_model_command_prints_labelled_results(capsys):
+    from contactsep.cli import main
+
+    assert main(["model", "--x3", str(0.78 * 19), "--n-modes", "20",
+                 "--json"]) == 0
+    import json
+    data = json.loads(capsys.readouterr().out)
+    ev = evaluate(thesis_design(x3=0.78 * 19, n_modes=20))
+    assert data["y3_max"] == float(ev.y3_max)
+    assert main(["model", "--e", "3"]) == 2
+    assert "e: found 3.0, expected 0 <= e <= 1" in capsys.readouterr().err

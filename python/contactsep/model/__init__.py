@@ -6,9 +6,11 @@ end conditions, any number of modes, evaluated in batches.
 """
 
 from contactsep.model import modes, status
+from contactsep.model.deck import data_set_from_design, design_from_data_set
 from contactsep.model.design import Design, DesignError, pack
 from contactsep.model.evaluate import Evaluation, evaluate
 from contactsep.model.thesis import thesis_design
 
-__all__ = ["Design", "DesignError", "Evaluation", "evaluate", "modes",
-           "pack", "status", "thesis_design"]
+__all__ = ["Design", "DesignError", "Evaluation", "data_set_from_design",
+           "design_from_data_set", "evaluate", "modes", "pack", "status",
+           "thesis_design"]
