@@ -7,7 +7,7 @@
 !> extremum lies where the resolved sum is within 2R (plus the grid's own
 !> error) of its best, which is the next, narrower window.  When every
 !> mode is resolved the polished point is the extremum.  The grid is
-!> evaluated with rotation recurrences (no trigonometric call per sample).
+!> evaluated with Chebyshev recurrences (no trigonometric call per sample).
 module model_extremes
   use contactsep_kinds, only: wp
   use model_responses, only: lower_displacement
@@ -32,27 +32,28 @@ contains
     real(wp), intent(in) :: tau
     real(wp), intent(out) :: y_max, t_max, y_min, t_min
     logical, intent(out) :: at_end
-    real(wp) :: first_values(max_level_points)
+    real(wp) :: first_values(max_level_points), y_tau
     logical :: unused
     integer :: count
 
     call sample(c, p, 0.0_wp, tau, first_values, count)
-    call extreme(c, p, tau, 1.0_wp, first_values(1:count), t_max, y_max, &
-        at_end)
-    call extreme(c, p, tau, -1.0_wp, first_values(1:count), t_min, &
+    y_tau = lower_displacement(c, p, tau)
+    call extreme(c, p, tau, 1.0_wp, first_values(1:count), y_tau, t_max, &
+        y_max, at_end)
+    call extreme(c, p, tau, -1.0_wp, first_values(1:count), y_tau, t_min, &
         y_min, unused)
     y_min = -y_min
   end subroutine extremes
 
   !> Number of samples of a window of the given width, and y3 of the
-  !> modes they resolve at those samples (rotation recurrences).
+  !> modes they resolve at those samples (Chebyshev recurrences).
   pure subroutine sample(c, p, lo, hi, values, count)
     real(wp), intent(in) :: c(:), p(:), lo, hi
     real(wp), intent(out) :: values(:)
     integer, intent(out) :: count
-    real(wp) :: cr(size(c)), s(size(c)), co(size(c)), next_s(size(c))
-    real(wp) :: rot_c(size(c)), rot_s(size(c)), width, wanted, h
-    integer :: kk
+    real(wp) :: cr(size(c)), s(size(c)), previous(size(c)), two_c(size(c))
+    real(wp) :: next_s, acc, width, wanted, h
+    integer :: kk, j
 
     width = hi - lo
     wanted = ceiling(width * samples_per_period * maxval(p) &
@@ -61,23 +62,31 @@ contains
         wanted + 1.0_wp)))
     h = width / (count - 1)
     cr = merge(c, 0.0_wp, p * (4.0_wp * h) <= pi)
+    ! Chebyshev recurrence sin(x + h) = 2 cos(h) sin(x) - sin(x - h):
+    ! one multiply-add per mode and sample; its rounding grows like
+    ! k eps / sin(p h), below 1e-11 here, and only picks the candidate
+    ! (the extremum itself is polished with sin and cos).
     s = sin(p * lo)
-    co = cos(p * lo)
-    rot_c = cos(p * h)
-    rot_s = sin(p * h)
+    previous = sin(p * (lo - h))
+    two_c = 2.0_wp * cos(p * h)
     do kk = 1, count
-      values(kk) = sum(cr * s)
-      next_s = s * rot_c + co * rot_s
-      co = co * rot_c - s * rot_s
-      s = next_s
+      acc = 0.0_wp
+      do j = 1, size(c)
+        acc = acc + cr(j) * s(j)
+        next_s = two_c(j) * s(j) - previous(j)
+        previous(j) = s(j)
+        s(j) = next_s
+      end do
+      values(kk) = acc
     end do
   end subroutine sample
 
   !> Maximum of sgn*y3 over [0, tau] and its time; first_values are the
   !> first level's samples of y3 (shared by the maximum and minimum).
-  pure subroutine extreme(c, p, tau, sgn, first_values, t_out, y_out, &
-      at_end)
-    real(wp), intent(in) :: c(:), p(:), tau, sgn, first_values(:)
+  pure subroutine extreme(c, p, tau, sgn, first_values, y_tau, t_out, &
+      y_out, at_end)
+    !> y_tau: y3 at t = tau.
+    real(wp), intent(in) :: c(:), p(:), tau, sgn, first_values(:), y_tau
     real(wp), intent(out) :: t_out, y_out
     logical, intent(out) :: at_end
     real(wp) :: values(max_level_points), cr(size(c))
@@ -105,8 +114,8 @@ contains
       k = maxloc(values(1:count), 1)
       left = grid_point(lo, width, max(k - 1, 1), count)
       right = grid_point(lo, width, min(k + 1, count), count)
-      call polish(cr, p, left, right, sgn, t_star, interior)
       t_grid = grid_point(lo, width, k, count)
+      call polish(cr, p, left, right, t_grid, sgn, t_star, interior)
       s_star = sgn * lower_displacement(cr, p, t_star)
       s_grid = values(k)
       if (interior .and. s_star >= s_grid) then
@@ -136,12 +145,13 @@ contains
     end do
     t_out = best_t
     y_out = sgn * lower_displacement(c, p, t_out)
-    y_end = sgn * lower_displacement(c, p, 0.0_wp)
+    ! y3(0) = 0: every term is c_j sin 0
+    y_end = 0.0_wp
     if (y_end > y_out) then
       t_out = 0.0_wp
       y_out = y_end
     end if
-    y_end = sgn * lower_displacement(c, p, tau)
+    y_end = sgn * y_tau
     if (y_end > y_out) then
       t_out = tau
       y_out = y_end
@@ -158,10 +168,11 @@ contains
     t = lo + width * (real(k - 1, wp) / real(count - 1, wp))
   end function grid_point
 
-  !> Critical point of sgn*y3 in [lo, hi]: Newton on y3' safeguarded by
-  !> bisection; interior when y3' changes sign from + to - there.
-  pure subroutine polish(c, p, lo, hi, sgn, t, interior)
-    real(wp), intent(in) :: c(:), p(:), lo, hi, sgn
+  !> Critical point of sgn*y3 in [lo, hi] from start (the best sample):
+  !> Newton on y3' safeguarded by bisection; interior when y3' changes
+  !> sign from + to - there.
+  pure subroutine polish(c, p, lo, hi, start, sgn, t, interior)
+    real(wp), intent(in) :: c(:), p(:), lo, hi, start, sgn
     real(wp), intent(out) :: t
     logical, intent(out) :: interior
     real(wp) :: a, b, d, dd, newton, t_new
@@ -170,7 +181,7 @@ contains
     interior = slope(lo) > 0.0_wp .and. slope(hi) < 0.0_wp
     a = lo
     b = hi
-    t = 0.5_wp * (a + b)
+    t = start
     do iteration = 1, polish_iterations
       d = 0.0_wp
       dd = 0.0_wp
@@ -186,7 +197,7 @@ contains
         b = t
       end if
       newton = t - d / dd
-      if (newton > a .and. newton < b .and. abs(newton) <= huge(1.0_wp)) &
+      if (newton >= a .and. newton <= b .and. abs(newton) <= huge(1.0_wp)) &
           then
         t_new = newton
       else

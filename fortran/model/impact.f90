@@ -56,8 +56,8 @@ contains
       return
     end if
     do iteration = 1, 100000
-      f = upper_displacement(coef, p, t) - gap
-      d = upper_velocity(coef, p, t)
+      call upper_state(coef, p, t, f, d)
+      f = f - gap
       root = sqrt(d * d + 2.0_wp * bound * max(f, 0.0_wp))
       if (d >= 0.0_wp) then
         step = (d + root) / bound
@@ -72,11 +72,25 @@ contains
         return
       end if
     end do
-    f = upper_displacement(coef, p, t) - gap
-    d = upper_velocity(coef, p, t)
+    call upper_state(coef, p, t, f, d)
+    f = f - gap
     if (d < 0.0_wp) t = t - f / d
     t1 = t
   end subroutine first_impact
+
+  !> y1(x1, t) and dy1/dt(x1, t) together (one sincos per mode).
+  pure subroutine upper_state(coef, p, t, y, v)
+    real(wp), intent(in) :: coef(:), p(:), t
+    real(wp), intent(out) :: y, v
+    integer :: j
+
+    y = 0.0_wp
+    v = 0.0_wp
+    do j = 1, size(coef)
+      y = y + coef(j) * cos(p(j) * t)
+      v = v - coef(j) * p(j) * sin(p(j) * t)
+    end do
+  end subroutine upper_state
 
   !> V = |dy1/dt(x1, t1)|; listing: |sum p_j A_j X_j(x1)| (ACT, no sin).
   pure function impact_velocity(coef, p, t1, listing) result(v)

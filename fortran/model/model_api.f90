@@ -1,7 +1,7 @@
 !> f2py entry of the general model: one call evaluates a whole batch.
 module model_api
   use contactsep_kinds, only: wp
-  use model_batch, only: design_result, mode_tables, &
+  use model_batch, only: design_result, batch_memory, mode_tables, &
       evaluate_design
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value
   implicit none
@@ -10,15 +10,15 @@ module model_api
 
 contains
 
-  !> Evaluate m designs (rows of real_in, ints_in; options shared).
+  !> Evaluate m designs (columns of real_in, ints_in; options shared).
   subroutine evaluate_batch(m, n_max, real_in, ints_in, options, t1, &
       v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
       status, m1, m2, m3, p1, p2, p3, c3)
     !> Number of designs, and the largest mode count of any member.
     integer, intent(in) :: m, n_max
-    !> Design rows (see model_batch) and integer rows.
-    real(wp), intent(in) :: real_in(m, 23)
-    integer, intent(in) :: ints_in(m, 6)
+    !> Designs, one per column (see model_batch), and integer columns.
+    real(wp), intent(in) :: real_in(23, m)
+    integer, intent(in) :: ints_in(6, m)
     !> Option codes (impact_velocity, lower_response, lc_reading, release).
     integer, intent(in) :: options(4)
     real(wp), intent(out) :: t1(m), v_impact(m), psi(m), v0(m), r(m)
@@ -29,22 +29,21 @@ contains
     !> Per-design status code (model_status).
     integer, intent(out) :: status(m)
     !> Frequencies and lower-contact coefficients, NaN past a member's N.
-    real(wp), intent(out) :: p1(m, n_max), p2(m, n_max), p3(m, n_max)
-    real(wp), intent(out) :: c3(m, n_max)
+    real(wp), intent(out) :: p1(n_max, m), p2(n_max, m), p3(n_max, m)
+    real(wp), intent(out) :: c3(n_max, m)
     real(wp) :: kl(n_max, 4), sigma(n_max, 4), g(n_max, 4)
-    real(wp) :: row_p1(n_max), row_p2(n_max), row_p3(n_max)
-    real(wp) :: row_c3(n_max)
     integer :: ints(6)
     type(design_result) :: res
+    type(batch_memory) :: memory
     integer :: i
 
     call mode_tables(n_max, kl, sigma, g)
     do i = 1, m
-      ints = ints_in(i, :)
+      ints = ints_in(:, i)
       ! a mode count past the output room is refused, not written past
       if (any(ints(4:6) > n_max)) ints(4:6) = 0
-      call evaluate_design(real_in(i, :), ints, options, kl, sigma, g, &
-          res, row_p1, row_p2, row_p3, row_c3)
+      call evaluate_design(real_in(:, i), ints, options, kl, sigma, g, &
+          memory, res, p1(:, i), p2(:, i), p3(:, i), c3(:, i))
       t1(i) = res%t1
       v_impact(i) = res%v_impact
       psi(i) = res%psi
@@ -59,10 +58,6 @@ contains
       m3(i) = res%m3
       at_end(i) = merge(1, 0, res%at_end)
       status(i) = res%status
-      p1(i, :) = row_p1
-      p2(i, :) = row_p2
-      p3(i, :) = row_p3
-      c3(i, :) = row_c3
     end do
   end subroutine evaluate_batch
 

@@ -35,6 +35,23 @@ module model_batch
     integer :: status = status_ok
   end type design_result
 
+  !> What the previous design of a batch computed that the next may share:
+  !> the mode values at each contact point and the upper contact's impact.
+  !> A sweep often varies one member; reusing the others' work changes
+  !> no bit of a result (the same inputs give the same values).
+  type, public :: batch_memory
+    !> (end, n) and xi of the last mode values at points 1..4 (x1, x2, x3
+    !> and the load point), and the values.
+    integer :: point_key(2, 4) = 0
+    real(wp) :: point_xi(4) = -1.0_wp
+    real(wp), allocatable :: point_values(:, :)
+    !> Inputs that fix the upper contact's impact, and its t1 and V.
+    real(wp) :: upper_key(8) = -1.0_wp
+    integer :: upper_ints(4) = -1
+    real(wp) :: t1 = 0.0_wp, v_impact = 0.0_wp
+    logical :: missed = .true.
+  end type batch_memory
+
 contains
 
   !> k_jL, sigma_j and g_j of the four end conditions, j = 1..n_max.
@@ -71,10 +88,12 @@ contains
 
   !> Evaluate one design; p1, p2, p3, c3 get its live modes (rest NaN).
   pure subroutine evaluate_design(row, ints, options, kl, sigma, g, &
-      res, p1, p2, p3, c3)
+      memory, res, p1, p2, p3, c3)
     real(wp), intent(in) :: row(n_real)
     integer, intent(in) :: ints(6), options(4)
     real(wp), intent(in) :: kl(:, :), sigma(:, :), g(:, :)
+    !> Work shared with the batch's previous design (see batch_memory).
+    type(batch_memory), intent(inout) :: memory
     type(design_result), intent(out) :: res
     real(wp), intent(out) :: p1(:), p2(:), p3(:), c3(:)
     real(wp) :: a1, a2, a3, m2_psi, m2_v0, xi1, xi2, xi3, xi_load, flex
@@ -82,7 +101,7 @@ contains
     real(wp) :: x1v(size(p1)), x2v(size(p1)), x3v(size(p1))
     real(wp) :: load(size(p1)), amp(size(p1))
     logical :: missed, has_lc
-    integer :: n1, n2, n3, e1, e2, e3, j
+    integer :: n1, n2, n3, e1, e2, e3
 
     nan = ieee_value(0.0_wp, ieee_quiet_nan)
     p1 = nan
@@ -108,15 +127,9 @@ contains
     xi1 = row(6) / row(1)
     xi2 = row(12) / row(7)
     xi3 = row(19) / row(14)
-    do j = 1, n1
-      x1v(j) = mode_value(e1, kl(j, e1), sigma(j, e1), g(j, e1), xi1)
-    end do
-    do j = 1, n2
-      x2v(j) = mode_value(e2, kl(j, e2), sigma(j, e2), g(j, e2), xi2)
-    end do
-    do j = 1, n3
-      x3v(j) = mode_value(e3, kl(j, e3), sigma(j, e3), g(j, e3), xi3)
-    end do
+    call point_values(memory, 1, e1, n1, xi1, kl, sigma, g, x1v)
+    call point_values(memory, 2, e2, n2, xi2, kl, sigma, g, x2v)
+    call point_values(memory, 3, e3, n3, xi3, kl, sigma, g, x3v)
     p1(1:n1) = frequency(kl(1:n1, e1), a1, row(1))
     p3(1:n3) = frequency(kl(1:n3, e3), a3, row(14))
     has_lc = row(13) > 0.0_wp
@@ -136,22 +149,28 @@ contains
       call clear(res, p1, p2, p3, c3, nan)
       return
     end if
-    do j = 1, n1
-      load(j) = mode_value(e1, kl(j, e1), sigma(j, e1), g(j, e1), xi_load)
-    end do
-    call release_amplitudes(row(20), load(1:n1), kl(1:n1, e1), flex, &
-        amp(1:n1))
-    amp(1:n1) = amp(1:n1) * x1v(1:n1)
-    horizon = 2.0_wp * pi / p1(1)
-    call first_impact(amp(1:n1), p1(1:n1), row(23), horizon, res%t1, &
-        missed)
+    if (any(memory%upper_key /= [row(1:6), row(20), row(23)]) .or. &
+        any(memory%upper_ints /= [e1, n1, options(1), options(4)])) then
+      call point_values(memory, 4, e1, n1, xi_load, kl, sigma, g, load)
+      call release_amplitudes(row(20), load(1:n1), kl(1:n1, e1), flex, &
+          amp(1:n1))
+      amp(1:n1) = amp(1:n1) * x1v(1:n1)
+      horizon = 2.0_wp * pi / p1(1)
+      call first_impact(amp(1:n1), p1(1:n1), row(23), horizon, &
+          memory%t1, memory%missed)
+      if (.not. memory%missed) memory%v_impact = impact_velocity( &
+          amp(1:n1), p1(1:n1), memory%t1, options(1) == 1)
+      memory%upper_key = [row(1:6), row(20), row(23)]
+      memory%upper_ints = [e1, n1, options(1), options(4)]
+    end if
+    missed = memory%missed
     if (missed) then
       res%status = status_no_impact
       call clear(res, p1, p2, p3, c3, nan)
       return
     end if
-    res%v_impact = impact_velocity(amp(1:n1), p1(1:n1), res%t1, &
-        options(1) == 1)
+    res%t1 = memory%t1
+    res%v_impact = memory%v_impact
     s1 = sum(x1v(1:n1)**2)
     s2 = sum(x2v(1:n2)**2)
     s3 = sum(x3v(1:n3)**2)
@@ -175,6 +194,30 @@ contains
       call clear(res, p1, p2, p3, c3, nan)
     end if
   end subroutine evaluate_design
+
+  !> X_j(xi), j = 1..n, of end condition `end`: point `which` of the
+  !> memory, recomputed only when (end, n, xi) changed.
+  pure subroutine point_values(memory, which, end, n, xi, kl, sigma, g, &
+      values)
+    type(batch_memory), intent(inout) :: memory
+    integer, intent(in) :: which, end, n
+    real(wp), intent(in) :: xi, kl(:, :), sigma(:, :), g(:, :)
+    real(wp), intent(out) :: values(:)
+    integer :: j
+
+    if (.not. allocated(memory%point_values)) &
+        allocate(memory%point_values(size(kl, 1), 4))
+    if (any(memory%point_key(:, which) /= [end, n]) .or. &
+        memory%point_xi(which) /= xi) then
+      do j = 1, n
+        memory%point_values(j, which) = mode_value(end, kl(j, end), &
+            sigma(j, end), g(j, end), xi)
+      end do
+      memory%point_key(:, which) = [end, n]
+      memory%point_xi(which) = xi
+    end if
+    values(1:n) = memory%point_values(1:n, which)
+  end subroutine point_values
 
   !> NaN results for a design that failed (its status is kept).
   pure subroutine clear(res, p1, p2, p3, c3, nan)

@@ -225,8 +225,9 @@ class Design:
 class Packed:
     """A batch flattened for a backend (the compiled kernel's layout).
 
-    ``real`` (M, 23) float64 and ``ints`` (M, 6) int32, both Fortran
-    ordered, columns :data:`REAL_COLUMNS` and :data:`INT_COLUMNS`;
+    ``real`` (M, 23) float64 and ``ints`` (M, 6) int32, both C ordered
+    (one design's values contiguous), columns :data:`REAL_COLUMNS` and
+    :data:`INT_COLUMNS`;
     ``options`` (4,) int32 codes of impact_velocity, lower_response,
     lc_reading and release; ``shape`` the batch shape.
     """
@@ -254,8 +255,8 @@ def pack(design: Design) -> Packed:
                      }[name]
         columns[name] = np.broadcast_to(
             np.asarray(value, dtype=np.float64), shape).ravel()
-    real = np.asfortranarray(np.stack([columns[n] for n in REAL_COLUMNS],
-                                      axis=1))
+    real = np.ascontiguousarray(np.stack([columns[n] for n in REAL_COLUMNS],
+                                         axis=1))
     ends = [np.broadcast_to(np.vectorize(modes.end_code, otypes=[np.int32])(
         np.asarray(getattr(design, name))), shape).ravel() for name in _ENDS]
     n = design._n_array()
@@ -263,7 +264,8 @@ def pack(design: Design) -> Packed:
         counts = [np.broadcast_to(n[..., k], shape).ravel() for k in range(3)]
     else:
         counts = [np.broadcast_to(n, shape).ravel()] * 3
-    ints = np.asfortranarray(np.stack(ends + counts, axis=1).astype(np.int32))
+    ints = np.ascontiguousarray(
+        np.stack(ends + counts, axis=1).astype(np.int32))
     options = np.array([_OPTIONS[name].index(getattr(design, name))
                         for name in _OPTIONS], dtype=np.int32)
     return Packed(real=real, ints=ints, options=options, shape=shape)

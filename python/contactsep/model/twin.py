@@ -172,9 +172,10 @@ def lower_displacement(c, p, t):
     return np.einsum("mj,mjk->mk", c, np.sin(pn[:, :, None] * t[:, None, :]))
 
 
-def _polish_extremum(c, p, lo, hi, sign):
-    """Critical point of sign*y3 in [lo, hi] (Newton with bisection
-    safeguard on y3'); returns t and whether an interior root was found."""
+def _polish_extremum(c, p, lo, hi, start, sign):
+    """Critical point of sign*y3 in [lo, hi] from ``start`` (Newton with a
+    bisection safeguard on y3'); returns t and whether y3' changes sign
+    from + to - in [lo, hi]."""
     cp = c * np.nan_to_num(p)
     cpp = cp * np.nan_to_num(p)
     deriv = lambda t: sign * np.sum(cp * np.cos(np.nan_to_num(p) * t[:, None]),
@@ -184,7 +185,7 @@ def _polish_extremum(c, p, lo, hi, sign):
     d_lo, d_hi = deriv(lo), deriv(hi)
     interior = (d_lo > 0.0) & (d_hi < 0.0)
     a, b = lo.copy(), hi.copy()
-    t = 0.5 * (a + b)
+    t = start.copy()
     for _ in range(POLISH_ITERATIONS):
         d = deriv(t)
         a = np.where(d > 0.0, t, a)
@@ -192,7 +193,7 @@ def _polish_extremum(c, p, lo, hi, sign):
         dd = curv(t)
         with np.errstate(divide="ignore", invalid="ignore"):
             newton = t - d / dd
-        inside = (newton > a) & (newton < b) & np.isfinite(newton)
+        inside = (newton >= a) & (newton <= b) & np.isfinite(newton)
         t = np.where(inside, newton, 0.5 * (a + b))
     return t, interior
 
@@ -243,8 +244,9 @@ def _extreme(c, p, tau, sign):
         k = np.argmax(values, axis=1)
         left = grid[np.arange(rows.size), np.maximum(k - 1, 0)]
         right = grid[np.arange(rows.size), np.minimum(k + 1, count - 1)]
-        t_star, interior = _polish_extremum(cr, p[rows], left, right, sign)
         t_grid = grid[np.arange(rows.size), k]
+        t_star, interior = _polish_extremum(cr, p[rows], left, right, t_grid,
+                                            sign)
         s_star = sign * lower_displacement(cr, p[rows], t_star)
         s_grid = values[np.arange(rows.size), k]
         use = interior & (s_star >= s_grid)
