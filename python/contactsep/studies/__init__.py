@@ -1,2 +1,20 @@
 """The thesis's design studies (Figures 5-8, 21, 23; Tables I-III),
-sweeps and tolerance studies."""
+sweeps and tolerance studies, on the general model (contactsep.model).
+
+>>> from contactsep import studies
+>>> s = studies.fig5(n_modes=8)        # columnar NumPy data
+>>> s["y3_max_in"], s.to_pandas()      # (pandas optional)
+"""
+
+from contactsep.studies.figures import (convergence, fig5, fig6, fig7, fig8,
+                                        fig23)
+from contactsep.studies.study import Study
+from contactsep.studies.tables import table1, table2, table3
+
+#: The thesis's studies by name, in the order `study all` writes them.
+STUDIES = {"fig5": fig5, "fig6": fig6, "fig7": fig7, "fig8": fig8,
+           "fig23": fig23, "convergence": convergence, "table1": table1,
+           "table2": table2, "table3": table3}
+
+__all__ = ["STUDIES", "Study", "convergence", "fig5", "fig6", "fig7", "fig8",
+           "fig23", "table1", "table2", "table3"]

@@ -1,0 +1,253 @@
+"""Parameter sweeps and tolerance studies of the general model, in chunks.
+
+A sweep is the thesis design with some fields varied over lists or ranges
+(several form a grid) and/or sampled from distributions (a tolerance
+study); design i of the sweep is grid point i // K, sample i % K.  Chunks
+of designs are evaluated by the compiled batch, in this process, in a
+process pool on the local cores, or on a Dask cluster, and streamed in
+order to the output: memory is bounded by a few chunks whatever the size.
+
+Samples are reproducible and independent of the chunking: sample k of a
+field is drawn from block k // SAMPLE_BLOCK of a generator seeded with
+(seed, field index, block), so local and Dask runs give identical bits.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactsep.errors import InputError
+from contactsep.model import evaluate, thesis_design
+from contactsep.model.design import REAL_COLUMNS
+
+#: Samples drawn per generator block (fixes the stream, not the chunking).
+SAMPLE_BLOCK = 65536
+#: Default designs per chunk.
+CHUNK_SIZE = 100_000
+#: Output columns beside the varied fields.
+RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
+_UNITS = {"L": "in", "b": "in", "h": "in", "x": "in", "Lc": "in",
+          "gamma": "lb_in3", "E": "psi", "ys": "in", "e": "", "tau": "s",
+          "gap": "in"}
+_SWEEPABLE = tuple(n for n in REAL_COLUMNS)
+
+
+class SweepError(InputError):
+    """A sweep specification the command refuses."""
+
+
+def column_name(field_name: str) -> str:
+    """'h2' -> 'h2_in', 'e' -> 'e', 'gamma2' -> 'gamma2_lb_in3'."""
+    stem = field_name.rstrip("123") if field_name not in ("e", "Lc") \
+        else field_name
+    unit = _UNITS.get(stem, "")
+    return f"{field_name}_{unit}" if unit else field_name
+
+
+def _check_name(name: str) -> str:
+    if name not in _SWEEPABLE:
+        raise SweepError(f"{name}: not a numeric Design field (one of "
+                         f"{', '.join(_SWEEPABLE)})")
+    return name
+
+
+def parse_vary(text: str) -> tuple[str, np.ndarray]:
+    """'h2=0.1:1.0:19' (START:STOP:COUNT) or 'h2=0.1,0.25,0.5'."""
+    name, _, spec = text.partition("=")
+    name = _check_name(name.strip())
+    try:
+        if ":" in spec:
+            start, stop, count = spec.split(":")
+            count = int(count)
+            if count < 1:
+                raise ValueError
+            values = np.linspace(float(start), float(stop), count)
+        else:
+            values = np.array([float(v) for v in spec.split(",")])
+    except ValueError:
+        raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
+                         f"NAME=V1,V2,...") from None
+    if values.size == 0:
+        raise SweepError(f"--vary {text}: no values")
+    return name, values
+
+
+_SAMPLE = re.compile(r"^\s*(normal|uniform)\(\s*([^,]+),\s*([^)]+)\)\s*$")
+
+
+def parse_sample(text: str) -> tuple[str, str, float, float]:
+    """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)'."""
+    name, _, spec = text.partition("=")
+    name = _check_name(name.strip())
+    match = _SAMPLE.match(spec)
+    try:
+        kind, a, b = match.group(1), float(match.group(2)), \
+            float(match.group(3))
+    except (AttributeError, ValueError):
+        raise SweepError(f"--sample {text}: expected NAME=normal(MEAN,SD) or "
+                         f"NAME=uniform(LO,HI)") from None
+    if not (math.isfinite(a) and math.isfinite(b)) or (
+            kind == "normal" and b < 0) or (kind == "uniform" and b < a):
+        raise SweepError(f"--sample {text}: the parameters are out of range")
+    return name, kind, a, b
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """What a sweep evaluates (picklable: it travels to workers)."""
+
+    #: Design fields fixed for every design (thesis_design overrides).
+    base: dict = field(default_factory=dict)
+    #: (name, values) of each varied field, in grid order (last fastest).
+    vary: tuple = ()
+    #: (name, kind, a, b) of each sampled field.
+    sample: tuple = ()
+    #: Samples per grid point (1 without --sample).
+    samples: int = 1
+    seed: int = 0
+    backend: str = "compiled"
+
+    @property
+    def grid_shape(self) -> tuple:
+        return tuple(len(values) for _, values in self.vary)
+
+    @property
+    def size(self) -> int:
+        """Number of designs."""
+        return int(np.prod(self.grid_shape, dtype=np.int64)) * self.samples
+
+    @property
+    def fields(self) -> tuple:
+        """Names of the varied and sampled fields (output columns)."""
+        return tuple(n for n, _ in self.vary) + tuple(
+            s[0] for s in self.sample)
+
+
+def _draw(spec: SweepSpec, which: int, first: int, last: int) -> np.ndarray:
+    """Samples first..last-1 of sampled field ``which`` (sample k is
+    design k: with a grid, each design draws its own values)."""
+    _, kind, a, b = spec.sample[which]
+    out = np.empty(last - first)
+    block = first // SAMPLE_BLOCK
+    done = 0
+    while first + done < last:
+        rng = np.random.default_rng([spec.seed, which, block])
+        values = rng.normal(a, b, SAMPLE_BLOCK) if kind == "normal" \
+            else rng.uniform(a, b, SAMPLE_BLOCK)
+        start = first + done - block * SAMPLE_BLOCK
+        take = min(SAMPLE_BLOCK - start, last - first - done)
+        out[done:done + take] = values[start:start + take]
+        done += take
+        block += 1
+    return out
+
+
+def chunk_inputs(spec: SweepSpec, first: int, last: int) -> dict:
+    """The varied and sampled field values of designs first..last-1."""
+    index = np.arange(first, last, dtype=np.int64)
+    point = index // spec.samples
+    values = {}
+    if spec.vary:
+        grid = np.unravel_index(point, spec.grid_shape)
+        for (name, axis), k in zip(spec.vary, grid):
+            values[name] = axis[k]
+    for which, (name, _, _, _) in enumerate(spec.sample):
+        values[name] = _draw(spec, which, first, last)
+    return values
+
+
+def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
+    """Evaluate designs first..last-1; returns the output columns."""
+    inputs = chunk_inputs(spec, first, last)
+    design = thesis_design(**{**spec.base, **inputs})
+    ev = evaluate(design, backend=spec.backend)
+    shape = (last - first,)
+    out = {column_name(n): np.broadcast_to(inputs[n], shape)
+           for n in spec.fields}
+    out.update({"y3_max_in": np.broadcast_to(ev.y3_max, shape),
+                "t_max_s": np.broadcast_to(ev.t_max, shape),
+                "psi_lb_s": np.broadcast_to(ev.psi, shape),
+                "v0_in_s": np.broadcast_to(ev.v0, shape),
+                "status": np.broadcast_to(ev.status, shape)})
+    return out
+
+
+def chunks(size: int, chunk_size: int):
+    """(first, last) of each chunk."""
+    for first in range(0, size, chunk_size):
+        yield first, min(first + chunk_size, size)
+
+
+@dataclass
+class Summary:
+    """Running statistics of max y3 over the evaluated designs."""
+
+    threshold: float | None = None
+    n: int = 0
+    failed: int = 0
+    total: float = 0.0
+    total_sq: float = 0.0
+    exceed: int = 0
+    low: float = math.inf
+    high: float = -math.inf
+    _shift: float | None = None
+
+    def add(self, columns: dict) -> None:
+        y = np.asarray(columns["y3_max_in"])
+        ok = np.asarray(columns["status"]) == 0
+        self.failed += int(np.sum(~ok))
+        y = y[ok]
+        if y.size == 0:
+            return
+        if self._shift is None:
+            self._shift = float(y[0])   # shifted sums: no cancellation
+        d = y - self._shift
+        self.n += y.size
+        self.total += float(np.sum(d))
+        self.total_sq += float(np.sum(d * d))
+        self.low = min(self.low, float(y.min()))
+        self.high = max(self.high, float(y.max()))
+        if self.threshold is not None:
+            self.exceed += int(np.sum(y > self.threshold))
+
+    def as_dict(self) -> dict:
+        """n, y3_max_mean, y3_max_std (sample), min, max, failed, and
+        p_exceed with a threshold."""
+        mean = self._shift + self.total / self.n if self.n else math.nan
+        var = (self.total_sq - self.total**2 / self.n) / (self.n - 1) \
+            if self.n > 1 else math.nan
+        out = {"n": self.n, "failed": self.failed, "y3_max_mean": mean,
+               "y3_max_std": math.sqrt(max(var, 0.0)) if self.n > 1
+               else math.nan,
+               "y3_max_min": self.low if self.n else math.nan,
+               "y3_max_max": self.high if self.n else math.nan}
+        if self.threshold is not None:
+            out["threshold_in"] = self.threshold
+            out["p_exceed"] = self.exceed / self.n if self.n else math.nan
+        return out
+
+
+def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
+              backend="compiled") -> SweepSpec:
+    """A SweepSpec from --vary / --sample texts (or parsed tuples)."""
+    vary = tuple(parse_vary(v) if isinstance(v, str) else v for v in vary)
+    sample = tuple(parse_sample(s) if isinstance(s, str) else s
+                   for s in sample)
+    names = [n for n, _ in vary]
+    if len(set(names)) != len(names):
+        raise SweepError("--vary: a field is varied twice")
+    if len({s[0] for s in sample}) != len(sample):
+        raise SweepError("--sample: a field is sampled twice")
+    if set(names) & {s[0] for s in sample}:
+        raise SweepError("a field cannot be both varied and sampled")
+    if samples is None:
+        samples = 1000 if sample else 1
+    if samples < 1 or (samples > 1 and not sample):
+        raise SweepError("--samples needs --sample (and K >= 1)")
+    base = dict(base or {})
+    return SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
+                     seed=seed, backend=backend)
