@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 
+import contactsep
 from conftest import ROOT
 
 
@@ -41,5 +42,30 @@ def test_python_example_runs(monkeypatch, capsys):
     printed = capsys.readouterr().out.splitlines()
     assert printed[0].split()[0] == "2.500000000"   # echo of card 2: XL2
     extremes = [float(line.split()[1]) for line in printed[-3:]]
+    # the decks' numbers: the loop builds the data sets the decks hold
+    for h2, value in zip(("0125", "0250", "0500"), extremes):
+        deck = contactsep.replay(ROOT / "data" / "decks" /
+                                 f"thesis_d{h2}.dat", precision="double")
+        assert value == deck[0].extreme_ty3
     # thicker separators kick the lower contact less (Figure 5)
     assert abs(extremes[0]) > abs(extremes[1]) > abs(extremes[2]) > 0
+
+
+def test_model_example_runs(monkeypatch, capsys):
+    readme = (ROOT / "README.md").read_text()
+    example = re.findall(r"```python\n(.*?)\n```", readme, flags=re.S)[1]
+    monkeypatch.chdir(ROOT)
+    exec(compile(example, "README.md", "exec"), {})
+    printed = capsys.readouterr().out
+    design = contactsep.thesis_design(d=0.25, x3=0.78 * 19.0, n_modes=20,
+                                      end2="clamped-pinned")
+    assert repr(float(contactsep.evaluate(design).y3_max)) in printed
+
+
+def test_readme_commands_are_commands():
+    """Every `contactsep ...` line of the README names a real command."""
+    readme = (ROOT / "README.md").read_text()
+    from contactsep.cli import build_parser
+    choices = build_parser()._subparsers._group_actions[0].choices
+    for name in re.findall(r"^contactsep (\w+)", readme, flags=re.M):
+        assert name in choices
