@@ -1,0 +1,112 @@
+!> Moreau-Jean time stepping of the modal members with unilateral
+!> contacts and Newton's impact law (theta-method, velocity level, the
+!> one-step LCP solved exactly).  Twin: contactsep/chatter/steppers.py.
+module chatter_moreau_jean
+  use contactsep_kinds, only: wp
+  use chatter_lcp, only: solve_lcp
+  implicit none
+  private
+  public :: moreau_jean
+
+contains
+
+  !> Integrate `steps` steps of dt; sample every `stride` steps.
+  pure subroutine moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, &
+      steps, stride, samples, t_out, g_out, e_out, p_out, first, status)
+    !> Modes (all members stacked) and contacts (1 or 2).
+    integer, intent(in) :: n, k
+    !> Mass and frequency of every mode; contact Jacobian; gap offsets.
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k)
+    !> Initial modal displacements and velocities (overwritten).
+    real(wp), intent(inout) :: q(n), v(n)
+    real(wp), intent(in) :: e, dt, theta
+    integer, intent(in) :: steps, stride, samples
+    !> Sampled times, gaps, energy, and impulses summed over each sample.
+    real(wp), intent(out) :: t_out(samples), g_out(k, samples)
+    real(wp), intent(out) :: e_out(samples), p_out(k, samples)
+    !> Contact 1's first episode: the time its first step ends, the
+    !> impulse of its consecutive contact steps.
+    real(wp), intent(out) :: first(2)
+    !> 0 ok, 1 the LCP had no solution.
+    integer, intent(out) :: status
+    real(wp) :: stiff(n), w(n), v_free(n), v_new(n), u(k), gap(k)
+    real(wp) :: d(2, 2), b(2), z(2), hw(k, n)
+    integer :: step, i, j, s, active(2), na
+    logical :: ok, touched
+    integer :: episode
+
+    status = 0
+    first = -1.0_wp
+    episode = 0
+    stiff = m * p**2
+    w = 1.0_wp / (m + dt**2 * theta**2 * stiff)
+    do i = 1, k
+      hw(i, :) = h(i, :) * w
+    end do
+    p_out = 0.0_wp
+    t_out(1) = 0.0_wp
+    g_out(:, 1) = matmul(h, q) + g0
+    e_out(1) = 0.5_wp * sum(m * v**2 + stiff * q**2)
+    do step = 1, steps
+      u = matmul(h, v)
+      gap = matmul(h, q) + g0
+      v_free = w * (m * v - dt * stiff * q &
+          - dt**2 * theta * (1.0_wp - theta) * stiff * v)
+      na = 0
+      do i = 1, k
+        if (gap(i) + 0.5_wp * dt * u(i) <= 0.0_wp) then
+          na = na + 1
+          active(na) = i
+        end if
+      end do
+      v_new = v_free
+      s = (step - 1) / stride + 2
+      if (na == 0 .and. episode == 1) episode = 2
+      if (na > 0) then
+        do i = 1, na
+          do j = 1, na
+            d(i, j) = sum(hw(active(i), :) * h(active(j), :))
+          end do
+          b(i) = sum(h(active(i), :) * v_free) + e * u(active(i))
+        end do
+        call solve_lcp(na, d, b, z, ok)
+        if (.not. ok) then
+          status = 1
+          return
+        end if
+        touched = .false.
+        do i = 1, na
+          if (active(i) == 1 .and. z(i) > 0.0_wp) touched = .true.
+        end do
+        if (touched .and. episode == 0) then
+          episode = 1
+          first(1) = step * dt
+          first(2) = 0.0_wp
+        end if
+        if (episode == 1) then
+          if (touched) then
+            do i = 1, na
+              if (active(i) == 1) first(2) = first(2) + z(i)
+            end do
+          else
+            episode = 2
+          end if
+        end if
+        do i = 1, na
+          v_new = v_new + hw(active(i), :) * z(i)
+          if (s <= samples) p_out(active(i), s) = &
+              p_out(active(i), s) + z(i)
+        end do
+      end if
+      q = q + dt * (theta * v_new + (1.0_wp - theta) * v)
+      v = v_new
+      if (mod(step, stride) == 0) then
+        s = step / stride + 1
+        t_out(s) = step * dt
+        g_out(:, s) = matmul(h, q) + g0
+        e_out(s) = 0.5_wp * sum(m * v**2 + stiff * q**2)
+      end if
+    end do
+  end subroutine moreau_jean
+
+end module chatter_moreau_jean

@@ -1,0 +1,233 @@
+"""``simulate(design, model=...)``: does the circuit open, when, how long.
+
+Models (docs/chatter.md):
+
+* ``"appE"`` — Appendix E: the upper contact against a rigid, immovable
+  separator, event-driven with the exact modal flow (the lower contact
+  never moves, so the circuit never opens: the model answers how the
+  upper contact chatters);
+* ``"newton"`` — the three beams, two unilateral contacts, Newton's
+  impact law with restitution e, Moreau-Jean time stepping;
+* ``"hertz"`` — the three beams with Hertz contact forces (elastic, or
+  Flores damping calibrated to e with V_ref the first impact speed).
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactsep.chatter import circuit
+from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.system import members
+from contactsep.errors import InputError
+
+MODELS = ("appE", "newton", "hertz")
+DAMPINGS = ("none", "flores")
+#: Default steps: Moreau-Jean 1e-7 s (impulse to 1e-5 against Appendix E);
+#: Hertz 2e-8 s (docs/chatter.md: converged to 1e-3 in the first impulse).
+DEFAULT_DT = {"appE": None, "newton": 1e-7, "hertz": 2e-8}
+#: Samples kept per simulation (the gaps are sampled, not every step).
+DEFAULT_SAMPLES = 60_000
+
+
+class ChatterError(InputError):
+    """A simulation setting the chatter layer refuses."""
+
+
+@dataclass(frozen=True)
+class ChatterResult:
+    """A simulation of the contact system over 0 <= t <= t_end from the
+    release.  Gaps are positive when open (in); times in s; impulses in
+    lb s; energies in in lb."""
+
+    model: str
+    n_modes: int
+    dt: float
+    #: Sample times (s) and both gaps (in) at them.
+    t: np.ndarray
+    gap_upper: np.ndarray
+    gap_lower: np.ndarray
+    #: Total mechanical energy at the samples (in lb).
+    energy: np.ndarray
+    #: Open intervals ((k, 2), s) of each contact and of the circuit.
+    upper_open_intervals: np.ndarray
+    lower_open_intervals: np.ndarray
+    circuit_open_intervals: np.ndarray
+    #: Total time the circuit is open, and its first opening (NaN: never).
+    circuit_open_s: float
+    first_circuit_open_s: float
+    #: Largest lower gap (in): how far the lower contact separates.
+    max_lower_gap_in: float
+    #: The first impact of the upper contact: time and impulse (the
+    #: impulse of its first contact episode).
+    first_impact_s: float
+    first_impulse_lb_s: float
+    #: Energy at the end over energy at the release.
+    energy_ratio: float
+    #: The thesis's single-impulse predictions for the same design.
+    single_impulse: dict = field(default_factory=dict)
+
+    def to_json_dict(self) -> dict:
+        """The summary (no sampled arrays), JSON-ready."""
+        def clean(x):
+            return None if isinstance(x, float) and math.isnan(x) else x
+        return {
+            "model": self.model, "n_modes": self.n_modes, "dt_s": self.dt,
+            "first_impact_s": clean(self.first_impact_s),
+            "first_impulse_lb_s": clean(self.first_impulse_lb_s),
+            "energy_ratio": clean(self.energy_ratio),
+            "max_lower_gap_in": clean(self.max_lower_gap_in),
+            "circuit_open_s": self.circuit_open_s,
+            "first_circuit_open_s": clean(self.first_circuit_open_s),
+            "circuit_open_intervals": self.circuit_open_intervals.tolist(),
+            "upper_open_s": circuit.total(self.upper_open_intervals),
+            "lower_open_s": circuit.total(self.lower_open_intervals),
+            "single_impulse": {k: clean(v)
+                               for k, v in self.single_impulse.items()},
+        }
+
+
+def _stack(design):
+    upper, sep, lower = members(design)
+    m = np.concatenate([np.full(upper.p.size, upper.mass),
+                        np.full(sep.p.size, sep.mass),
+                        np.full(lower.p.size, lower.mass)])
+    p = np.concatenate([upper.p, sep.p, lower.p])
+    zeros1, zeros3 = np.zeros(upper.p.size), np.zeros(lower.p.size)
+    h = np.stack([np.concatenate([upper.x, -sep.x, zeros3]),
+                  np.concatenate([zeros1, sep.x, -lower.x])])
+    q0 = np.concatenate([upper.q0, sep.q0, lower.q0])
+    return m, p, h, q0, np.zeros_like(q0), (upper, sep, lower)
+
+
+def _single_impulse(design) -> dict:
+    from contactsep.model import evaluate
+    ev = evaluate(design, backend="numpy")
+    impulse = evaluate(design.replace(lower_response="impulse"),
+                       backend="numpy")
+    return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
+            "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
+            "y3_max_in": float(ev.y3_max),
+            "y3_max_impulse_form_in": float(impulse.y3_max)}
+
+
+def simulate(design, model="newton", damping="none", dt=None, *,
+             t_end=0.060, open_threshold=circuit.OPEN_THRESHOLD,
+             preload=0.0, nu=0.33, button_radius=0.125,
+             backend="compiled", samples=DEFAULT_SAMPLES, theta=0.5
+             ) -> ChatterResult:
+    """Simulate the contact system of a (single) design from the release.
+
+    ``dt`` defaults per model (DEFAULT_DT); ``preload`` must be 0 (the
+    lower contact touches with zero preload; a preload is not implemented);
+    ``nu`` and ``button_radius`` (in) set the Hertz constant;
+    ``backend="numpy"`` runs the NumPy twins (slow: tests only).
+    """
+    if model not in MODELS:
+        raise ChatterError(f"model: found {model!r}, expected one of "
+                           f"{', '.join(MODELS)}")
+    if damping not in DAMPINGS:
+        raise ChatterError(f"damping: found {damping!r}, expected one of "
+                           f"{', '.join(DAMPINGS)}")
+    if preload != 0.0:
+        raise ChatterError("preload: only 0 (touching, no force) is "
+                           "implemented")
+    if not (t_end > 0.0 and math.isfinite(t_end)):
+        raise ChatterError(f"t_end: found {t_end!r}, expected a time > 0")
+    if design.shape != ():
+        raise ChatterError("design: chatter simulates one design, not a "
+                           "batch")
+    if isinstance(design.n_modes, tuple):
+        raise ChatterError("n_modes: one N for all members")
+    dt = DEFAULT_DT[model] if dt is None else float(dt)
+    single = _single_impulse(design)
+    if model == "appE":
+        return _appendix_e(design, t_end, single)
+    if not (dt > 0.0 and dt < t_end):
+        raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
+    steps = int(round(t_end / dt))
+    stride = max(1, steps // samples)
+    m, p, h, q0, v0, parts = _stack(design)
+    g0 = np.zeros(2)
+    if model == "newton":
+        t, g, energy, impulses, first = _run(
+            "moreau_jean", backend, m, p, h, g0, q0, v0, float(design.e),
+            dt, theta, steps, stride)
+    else:
+        law = HertzLaw.for_materials(float(design.E1), nu, button_radius)
+        if damping == "flores":
+            v_ref = single_speed(design)
+            law = HertzLaw.for_materials(float(design.E1), nu,
+                                         button_radius, e=float(design.e),
+                                         v_ref=v_ref)
+        t, g, energy, impulses, first = _run(
+            "hertz", backend, m, p, h, g0, q0, v0, law, dt, steps, stride)
+    first_t, first_p = (float(first[0]), float(first[1])) \
+        if first[0] >= 0.0 else (math.nan, math.nan)
+    found = circuit.discontinuity(t, g[:, 0], g[:, 1], open_threshold)
+    return ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=dt, t=t,
+        gap_upper=g[:, 0], gap_lower=g[:, 1], energy=energy, **found,
+        first_impact_s=first_t, first_impulse_lb_s=first_p,
+        energy_ratio=float(energy[-1] / energy[0]), single_impulse=single)
+
+
+def single_speed(design) -> float:
+    """The first impact speed of the upper contact (in/s), V_ref."""
+    from contactsep.model import evaluate
+    return float(evaluate(design, backend="numpy").v_impact)
+
+
+def _run(kind, backend, m, p, h, g0, q0, v0, *args):
+    if backend == "numpy":
+        from contactsep.chatter import steppers
+        if kind == "moreau_jean":
+            e, dt, theta, steps, stride = args
+            return steppers.moreau_jean(m, p, h, g0, q0, v0, e=e, dt=dt,
+                                        steps=steps, theta=theta,
+                                        stride=stride)
+        law, dt, steps, stride = args
+        return steppers.hertz(m, p, h, g0, q0, v0, law=law, dt=dt,
+                              steps=steps, stride=stride)
+    if backend != "compiled":
+        raise ChatterError(f"backend: found {backend!r}, expected "
+                           f"compiled or numpy")
+    api = importlib.import_module("contactsep._chatter").chatter_api
+    if kind == "moreau_jean":
+        e, dt, theta, steps, stride = args
+        samples = steps // stride + 1
+        t, g, energy, impulses, first, status = api.run_moreau_jean(
+            m, p, h, g0, q0, v0, e, dt, theta, steps, stride, samples)
+        if status != 0:
+            raise ChatterError("the contact LCP had no solution")
+    else:
+        law, dt, steps, stride = args
+        samples = steps // stride + 1
+        t, g, energy, impulses, first = api.run_hertz(
+            m, p, h, g0, q0, v0, law.k, law.chi, dt, steps, stride, samples)
+    return t, g.T, energy, impulses.T, first
+
+
+def _appendix_e(design, t_end, single) -> ChatterResult:
+    from contactsep.chatter.event_driven import rigid_stop_from_design
+
+    r = rigid_stop_from_design(design, t_end=t_end)
+    t = np.linspace(0.0, t_end, DEFAULT_SAMPLES + 1)
+    gap_upper = r.displacement(t)
+    gap_lower = np.zeros_like(t)
+    found = circuit.discontinuity(t, gap_upper, gap_lower)
+    energy = np.full_like(t, np.nan)
+    energy[0], energy[-1] = r.initial_energy, r.final_energy
+    return ChatterResult(
+        model="appE", n_modes=int(design.n_modes), dt=0.0, t=t,
+        gap_upper=gap_upper, gap_lower=gap_lower, energy=energy, **found,
+        first_impact_s=float(r.impact_t[0]) if len(r.impact_t)
+        else math.nan,
+        first_impulse_lb_s=float(r.impulse[0]) if len(r.impulse)
+        else math.nan,
+        energy_ratio=r.final_energy / r.initial_energy,
+        single_impulse=single)

@@ -1,0 +1,117 @@
+"""The simulations (NumPy twins of fortran/chatter/): Moreau-Jean time
+stepping with the Newton law, and Hertz contact by splitting with the
+exact modal flow.  Simulation side of the Siconos split.
+
+State: stacked modal coordinates q, v of every member (mode j of member
+i has mass m_j = M_i and frequency p_j); H (k x n) the contacts' Jacobian,
+g0 their gap offsets.  Output is sampled every ``stride`` steps.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contactsep.chatter.contacts import HertzLaw, solve_lcp
+
+
+def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
+                stride=1):
+    """Moreau-Jean on M q'' + K q = H^T lambda (theta-method, velocity-level
+    Newton law, the k-contact LCP solved exactly each step).
+
+    With theta = 1/2 the free flight is the trapezoidal rule: energy is
+    conserved for every step size (the modes far above 1/dt keep their
+    energy but not their phase); a contact is taken as active when its
+    predicted gap g + (dt/2) u is closed.  Returns sampled (t, gaps,
+    energy) and the impulses summed over each sample's steps
+    (samples, k; row s holds steps (s-1) stride + 1 .. s stride).
+    """
+    q, v = q.astype(float).copy(), v.astype(float).copy()
+    k = m * p**2
+    w = 1.0 / (m + dt**2 * theta**2 * k)
+    d_full = (h_matrix * w) @ h_matrix.T
+    samples = steps // stride + 1
+    t_out = np.empty(samples)
+    g_out = np.empty((samples, len(g0)))
+    e_out = np.empty(samples)
+    impulses = np.zeros((samples, len(g0)))
+    t_out[0], g_out[0] = 0.0, h_matrix @ q + g0
+    e_out[0] = 0.5 * np.sum(m * v**2 + k * q**2)
+    first, episode = [-1.0, -1.0], 0
+    for step in range(steps):
+        u = h_matrix @ v
+        gap = h_matrix @ q + g0
+        v_free = w * (m * v - dt * k * q - dt**2 * theta * (1 - theta)
+                      * k * v)
+        active = np.flatnonzero(gap + 0.5 * dt * u <= 0.0)
+        v_new = v_free
+        touched = 0.0
+        if active.size:
+            lcp_q = h_matrix[active] @ v_free + e * u[active]
+            impulse = solve_lcp(d_full[np.ix_(active, active)], lcp_q)
+            touched = float(impulse[0]) if active[0] == 0 else 0.0
+            if step // stride + 1 < samples:
+                impulses[step // stride + 1, active] += impulse
+            v_new = v_free + w * (h_matrix[active].T @ impulse)
+        if touched > 0.0 and episode == 0:
+            episode, first = 1, [(step + 1) * dt, 0.0]
+        if episode == 1:
+            if touched > 0.0:
+                first[1] += touched
+            else:
+                episode = 2
+        q = q + dt * (theta * v_new + (1 - theta) * v)
+        v = v_new
+        if (step + 1) % stride == 0:
+            s = (step + 1) // stride
+            t_out[s] = (step + 1) * dt
+            g_out[s] = h_matrix @ q + g0
+            e_out[s] = 0.5 * np.sum(m * v**2 + k * q**2)
+    return t_out, g_out, e_out, impulses, np.array(first)
+
+
+def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1):
+    """Hertz contact by Strang splitting: half kick of the contact forces,
+    the exact modal flow over dt (every mode, however stiff), half kick.
+    Symplectic for chi = 0; the step resolves the contact, not the modes.
+    Returns sampled (t, gaps, energy incl. the contact's) and the
+    impulses (force at each step's start x dt) summed per sample."""
+    q, v = q.astype(float).copy(), v.astype(float).copy()
+    c, s = np.cos(p * dt), np.sin(p * dt)
+    samples = steps // stride + 1
+    t_out = np.empty(samples)
+    g_out = np.empty((samples, len(g0)))
+    e_out = np.empty(samples)
+    impulses = np.zeros((samples, len(g0)))
+
+    def energy(q, v):
+        gap = h_matrix @ q + g0
+        return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + np.sum(
+            law.energy(gap))
+
+    def kick(q, v):
+        gap = h_matrix @ q + g0
+        force = law.force(gap, h_matrix @ v)
+        return force, v + 0.5 * dt * (h_matrix.T @ force) / m
+
+    t_out[0], g_out[0], e_out[0] = 0.0, h_matrix @ q + g0, energy(q, v)
+    first, episode = [-1.0, -1.0], 0
+    for step in range(steps):
+        force, v = kick(q, v)
+        if step // stride + 1 < samples:
+            impulses[step // stride + 1] += force * dt
+        if force[0] > 0.0 and episode == 0:
+            episode, first = 1, [step * dt, 0.0]
+        if episode == 1:
+            if force[0] > 0.0:
+                first[1] += force[0] * dt
+            else:
+                episode = 2
+        q, v = q * c + v / p * s, -q * p * s + v * c
+        _, v = kick(q, v)
+        if (step + 1) % stride == 0:
+            k = (step + 1) // stride
+            t_out[k] = (step + 1) * dt
+            g_out[k] = h_matrix @ q + g0
+            e_out[k] = energy(q, v)
+    return t_out, g_out, e_out, impulses, np.array(first)

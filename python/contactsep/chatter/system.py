@@ -1,0 +1,91 @@
+"""The dynamical systems: each member's modes, seen at its contact point.
+
+Model side of the Siconos split.  Member i has modal coordinates q_j with
+generalised mass M_i (modes normalised to int X^2 dx = L, so the
+generalised mass is the member's mass) and frequencies p_j:
+
+    M_i (q_j'' + p_j^2 q_j) = X_j(x_i) F_i,      y_i(x_i) = sum X_j(x_i) q_j,
+
+F_i the contact force on member i at its contact point (positive up).
+Displacements are positive UP for every member: the upper contact is
+released from +y_s above the separator; the lower contact hangs below the
+separator, touching it with zero preload (option: a preload); gravity is
+not applied (the thesis neglects it; its static sag is a constant offset
+absorbed by the preload).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactsep.model import Design, modes
+from contactsep.model.twin import GRAVITY
+
+
+@dataclass(frozen=True)
+class Member:
+    """One member's modal model at its contact point."""
+
+    #: Circular frequencies p_j (rad/s).
+    p: np.ndarray
+    #: Mode values X_j(x_c) at the contact point.
+    x: np.ndarray
+    #: Generalised (= total) mass (lb s^2/in).
+    mass: float
+    #: Initial modal displacements q_j (in) and velocities (in/s).
+    q0: np.ndarray
+    v0: np.ndarray
+
+    def energy(self, q, v) -> np.ndarray:
+        """Kinetic + strain energy (in lb), for states (..., n)."""
+        return 0.5 * self.mass * np.sum(v**2 + (self.p * q)**2, axis=-1)
+
+    def displacement(self, q) -> np.ndarray:
+        """y(x_c) = sum X_j q_j."""
+        return q @ self.x
+
+
+def _member(design: Design, i: str, n: int, q0=None) -> Member:
+    length = float(getattr(design, "L" + i))
+    width = float(getattr(design, "b" + i))
+    thick = float(getattr(design, "h" + i))
+    gamma = float(getattr(design, "gamma" + i))
+    modulus = float(getattr(design, "E" + i))
+    end = getattr(design, "end" + i)
+    x = getattr(design, "x" + i)
+    if x is None:
+        x = length / 2.0 if i == "2" else length
+    area = width * thick
+    mass = gamma * area * length / GRAVITY
+    a = np.sqrt(modulus * width * thick**3 / 12.0 * GRAVITY / (area * gamma))
+    kl = modes.eigenvalues(end, n)
+    values = modes.mode_shapes(end, n, [float(x) / length])[:, 0]
+    p = kl**2 * a / length**2
+    q = np.zeros(n) if q0 is None else q0
+    return Member(p=p, x=values, mass=mass, q0=q, v0=np.zeros(n))
+
+
+def release_state(design: Design, n: int) -> np.ndarray:
+    """Modal displacements of the released upper contact (Appendix A):
+    the model's exact amplitudes A_j of the static shape."""
+    end, length = design.end1, float(design.L1)
+    x1 = length if design.x1 is None else float(design.x1)
+    xi = 1.0 if (design.release == "tip" and end == "clamped-free") \
+        else x1 / length
+    kl = modes.eigenvalues(end, n)
+    load = modes.mode_shapes(end, n, [xi])[:, 0]
+    return float(design.ys) * load / (kl**4
+                                      * modes.static_flexibility(end, xi))
+
+
+def members(design: Design) -> tuple[Member, Member, Member]:
+    """The three members of a single design (upper, separator, lower)."""
+    if design.shape != ():
+        raise ValueError("chatter simulates one design at a time")
+    n = design.n_modes
+    n1, n2, n3 = (n, n, n) if not isinstance(n, tuple) else n
+    upper = _member(design, "1", int(n1), release_state(design, int(n1)))
+    return upper, _member(design, "2", int(n2)), _member(design, "3",
+                                                          int(n3))
