@@ -54,7 +54,10 @@ contains
           - dt**2 * theta * (1.0_wp - theta) * stiff * v)
       na = 0
       do i = 1, k
-        if (gap(i) + 0.5_wp * dt * u(i) <= 0.0_wp) then
+        ! closed and not separating: the impulse's work, P (1-e) u_k / 2,
+        ! is then never positive (energy never grows)
+        if (gap(i) + 0.5_wp * dt * u(i) <= 0.0_wp .and. u(i) <= 0.0_wp) &
+            then
           na = na + 1
           active(na) = i
         end if

@@ -22,7 +22,8 @@ def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
     With theta = 1/2 the free flight is the trapezoidal rule: energy is
     conserved for every step size (the modes far above 1/dt keep their
     energy but not their phase); a contact is taken as active when its
-    predicted gap g + (dt/2) u is closed.  Returns sampled (t, gaps,
+    predicted gap g + (dt/2) u is closed and it is not separating.
+    Returns sampled (t, gaps,
     energy) and the impulses summed over each sample's steps
     (samples, k; row s holds steps (s-1) stride + 1 .. s stride).
     """
@@ -43,7 +44,9 @@ def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
         gap = h_matrix @ q + g0
         v_free = w * (m * v - dt * k * q - dt**2 * theta * (1 - theta)
                       * k * v)
-        active = np.flatnonzero(gap + 0.5 * dt * u <= 0.0)
+        # closed and not separating: the impulse's work, P (1-e) u_k / 2,
+        # is then never positive (energy never grows)
+        active = np.flatnonzero((gap + 0.5 * dt * u <= 0.0) & (u <= 0.0))
         v_new = v_free
         touched = 0.0
         if active.size:

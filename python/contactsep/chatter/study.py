@@ -1,0 +1,41 @@
+"""``contactsep study chatter``: the three models for the five thesis
+separators and N = 4, 16, 32."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contactsep.chatter.simulate import simulate
+from contactsep.model import thesis_design
+from contactsep.studies.study import Study
+
+THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
+MODES = (4, 16, 32)
+
+
+def chatter_table(thicknesses=THICKNESSES, modes=MODES,
+                  models=("appE", "newton", "hertz")) -> Study:
+    """One row per (model, d, N): first impulse, max lower gap, circuit
+    open time and first opening, energy ratio."""
+    rows = {k: [] for k in ("model", "d_in", "N", "first_impulse_lb_s",
+                            "max_lower_gap_in", "circuit_open_s",
+                            "first_circuit_open_s", "energy_ratio")}
+    for model in models:
+        for d in thicknesses:
+            for n in modes:
+                r = simulate(thesis_design(d=d, n_modes=n), model=model)
+                for key, value in (("model", model), ("d_in", d), ("N", n),
+                                   ("first_impulse_lb_s",
+                                    r.first_impulse_lb_s),
+                                   ("max_lower_gap_in", r.max_lower_gap_in),
+                                   ("circuit_open_s", r.circuit_open_s),
+                                   ("first_circuit_open_s",
+                                    r.first_circuit_open_s),
+                                   ("energy_ratio", r.energy_ratio)):
+                    rows[key].append(value)
+    return Study("chatter", "Repeated impacts: circuit discontinuity of the "
+                 "thesis rig by model, separator and N",
+                 {k: np.array(v) for k, v in rows.items()},
+                 ("window 0-0.060 s from release; open = gap > 1e-6 in; "
+                  "default steps (newton 1e-7 s, hertz 2e-8 s)",
+                  "appE: rigid separator, the lower contact never moves"))

@@ -1,0 +1,196 @@
+"""Repeated impacts: Appendix E against analytic cases and the model's
+first impact; Moreau-Jean against Appendix E on the rigid stop; energy
+laws; Hertz against a general ODE solver; the compiled steppers against
+their NumPy twins; circuit intervals; the command."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import contactsep
+from contactsep import chatter
+from contactsep.chatter import circuit, steppers
+from contactsep.chatter.contacts import HertzLaw, solve_lcp
+from contactsep.chatter.event_driven import (rigid_stop_from_design,
+                                             simulate_rigid_stop)
+from contactsep.chatter.simulate import _stack
+from contactsep.chatter.system import members
+from contactsep.cli import main
+
+api = pytest.importorskip("contactsep._chatter").chatter_api
+
+
+def test_one_mode_against_the_stop_is_analytic():
+    """A 1-DOF oscillator released at 0.1 above a stop at its equilibrium:
+    impacts at pi/(2p) + (n-1) pi/p, each rebound e times the last."""
+    p, x, e = 10.0, 2.0, 0.5
+    r = simulate_rigid_stop([p], [x], 1.0, [0.1], [0.0], e, 2.0)
+    n = np.arange(len(r.impact_t))
+    assert len(n) == 6
+    assert np.allclose(r.impact_t, np.pi / (2 * p) + n * np.pi / p,
+                       rtol=1e-13)
+    assert np.allclose(r.v_before, -0.1 * p * x * e**n, rtol=1e-12)
+    assert np.allclose(r.v_after, -e * r.v_before, rtol=1e-12)
+
+
+def test_appendix_e_first_impact_is_the_models():
+    design = contactsep.thesis_design(n_modes=8)
+    r = rigid_stop_from_design(design, t_end=0.0225)
+    ev = contactsep.evaluate(design, backend="numpy")
+    assert abs(r.impact_t[0] / ev.t1 - 1) < 1e-12
+    upper = members(design)[0]
+    # Appendix E, eq. 9: psi = (1+e) M v- / sum X^2
+    expected = 1.375 * upper.mass * ev.v_impact / np.sum(upper.x**2)
+    assert abs(r.impulse[0] / expected - 1) < 1e-10
+
+
+def test_appendix_e_conserves_energy_for_e_one_and_never_gains():
+    design = contactsep.thesis_design(n_modes=4, e=1.0)
+    r = rigid_stop_from_design(design, t_end=0.06)
+    assert len(r.impact_t) > 3
+    assert np.allclose(r.energy_after, r.initial_energy, rtol=1e-12)
+    lossy = rigid_stop_from_design(contactsep.thesis_design(n_modes=4),
+                                   t_end=0.06)
+    energies = np.concatenate([[lossy.initial_energy], lossy.energy_after])
+    assert np.all(np.diff(energies) <= 1e-14 * energies[0])
+
+
+def test_appendix_e_never_penetrates_and_rests_with_a_compressive_force():
+    design = contactsep.thesis_design(n_modes=4)
+    r = rigid_stop_from_design(design, t_end=0.06)
+    t = np.linspace(0, 0.06, 200_001)
+    y = r.displacement(t)
+    assert y.min() > -1e-12
+    assert len(r.rest_intervals) >= 1
+    start, end = r.rest_intervals[0]
+    inside = (t > start) & (t < end)
+    assert np.all(np.abs(y[inside]) < 1e-12)
+
+
+@pytest.mark.parametrize("n, dt", [(1, 1e-7), (2, 1e-7), (4, 1e-7),
+                                   (8, 1e-7), (16, 5e-8)])
+def test_moreau_jean_matches_appendix_e_on_the_rigid_stop(n, dt):
+    design = contactsep.thesis_design(n_modes=n)
+    upper = members(design)[0]
+    t_end = 0.03
+    exact = rigid_stop_from_design(design, t_end=t_end)
+    steps = int(round(t_end / dt))
+    _, _, energy, _, first, status = api.run_moreau_jean(
+        np.full(n, upper.mass), upper.p, upper.x[None, :], np.zeros(1),
+        upper.q0, upper.v0, 0.375, dt, 0.5, steps, 1000, steps // 1000 + 1)
+    assert status == 0
+    assert abs(first[0] / exact.impact_t[0] - 1) < 1e-5
+    assert abs(first[1] / exact.impulse[0] - 1) < 1e-5
+    assert abs(energy[-1] / exact.final_energy - 1) < 1e-3
+
+
+def test_newton_three_beams_conserve_energy_for_e_one():
+    r = chatter.simulate(contactsep.thesis_design(n_modes=4, e=1.0),
+                         model="newton", dt=1e-6)
+    # the trapezoidal flight conserves the quadratic energy exactly and
+    # the velocity-level law with e = 1 returns it at each impact
+    assert np.max(np.abs(r.energy / r.energy[0] - 1)) < 1e-9
+    lossy = chatter.simulate(contactsep.thesis_design(n_modes=4),
+                             model="newton", dt=1e-6)
+    assert np.all(np.diff(lossy.energy) <= 1e-12 * lossy.energy[0])
+    # interpenetration of the velocity-level law: below dt x impact speed
+    assert lossy.gap_upper.min() > -1e-6 * 35.0
+
+
+def test_elastic_hertz_conserves_energy_and_flores_dissipates():
+    design = contactsep.thesis_design(n_modes=4)
+    elastic = chatter.simulate(design, model="hertz", dt=2e-8)
+    assert np.max(np.abs(elastic.energy / elastic.energy[0] - 1)) < 1e-6
+    damped = chatter.simulate(design, model="hertz", damping="flores")
+    assert np.all(np.diff(damped.energy) <= 1e-12 * damped.energy[0])
+    assert damped.energy_ratio < 0.9
+
+
+def test_hertz_splitting_against_a_general_ode_solver():
+    """N = 2 per member, from just before the first impact through it."""
+    integrate = pytest.importorskip("scipy.integrate")
+    design = contactsep.thesis_design(n_modes=2)
+    m, p, h, q0, v0, _ = _stack(design)
+    law = HertzLaw.for_materials(10.0e6)
+    t1 = float(contactsep.evaluate(design, backend="numpy").t1)
+    # the exact free flight up to t1 - 20 us, then both integrators
+    t0 = t1 - 2e-5
+    q = q0 * np.cos(p * t0) + v0 / p * np.sin(p * t0)
+    v = -q0 * p * np.sin(p * t0) + v0 * np.cos(p * t0)
+    span = 6e-4
+
+    def rhs(_, state):
+        qq, vv = state[:p.size], state[p.size:]
+        force = law.force(h @ qq, h @ vv)
+        return np.concatenate([vv, -p**2 * qq + h.T @ force / m])
+
+    ode = integrate.solve_ivp(rhs, (0, span), np.concatenate([q, v]),
+                              method="DOP853", rtol=1e-11, atol=1e-16,
+                              dense_output=True)
+    dt = 1e-8
+    steps = int(round(span / dt))
+    t, g, _, _, first = api.run_hertz(m, p, h, np.zeros(2), q, v, law.k,
+                                      law.chi, dt, steps, 100,
+                                      steps // 100 + 1)
+    reference = h @ ode.sol(t)[:p.size]
+    scale = np.abs(reference).max()
+    assert np.max(np.abs(g - reference)) < 1e-5 * scale
+    assert first[1] > 0
+
+
+def test_compiled_steppers_equal_their_twins():
+    design = contactsep.thesis_design(n_modes=3)
+    m, p, h, q0, v0, _ = _stack(design)
+    dt, steps, stride = 1e-6, 23_000, 100
+    samples = steps // stride + 1
+    a = steppers.moreau_jean(m, p, h, np.zeros(2), q0, v0, e=0.375, dt=dt,
+                             steps=steps, stride=stride)
+    b = api.run_moreau_jean(m, p, h, np.zeros(2), q0, v0, 0.375, dt, 0.5,
+                            steps, stride, samples)
+    # the same operations in another order: rounding only (until an
+    # active-set decision flips, which the window ends before)
+    assert np.allclose(a[1], b[1].T, rtol=0, atol=1e-12)
+    assert np.allclose(a[4], b[4], rtol=1e-10)
+    law = HertzLaw.for_materials(10.0e6)
+    c = steppers.hertz(m, p, h, np.zeros(2), q0, v0, law=law, dt=dt,
+                       steps=steps, stride=stride)
+    d = api.run_hertz(m, p, h, np.zeros(2), q0, v0, law.k, law.chi, dt,
+                      steps, stride, samples)
+    assert np.allclose(c[1], d[1].T, rtol=0, atol=1e-12)
+    assert np.allclose(c[2], d[2], rtol=1e-12)
+
+
+def test_lcp_solution_is_complementary():
+    matrix = np.array([[2.0, 0.5], [0.5, 1.0]])
+    for vector in ([-1.0, -1.0], [-1.0, 2.0], [1.0, 1.0], [3.0, -0.2]):
+        z = solve_lcp(matrix, np.array(vector))
+        w = matrix @ z + vector
+        assert np.all(z >= 0) and np.all(w >= -1e-14)
+        assert abs(z @ w) < 1e-14
+
+
+def test_circuit_intervals():
+    t = np.arange(10) * 0.1
+    up = np.array([0, 1, 1, 1, 0, 1, 1, 0, 1, 1]) * 1.0
+    low = np.array([0, 0, 1, 1, 1, 1, 0, 0, 1, 1]) * 1.0
+    found = circuit.discontinuity(t, up, low, threshold=0.5)
+    assert found["circuit_open_intervals"].tolist() == [[0.2, 0.30000000000000004],
+                                                        [0.5, 0.5],
+                                                        [0.8, 0.9]]
+    assert found["first_circuit_open_s"] == 0.2
+    assert found["max_lower_gap_in"] == 1.0
+
+
+def test_chatter_command_json(capsys):
+    assert main(["chatter", "--model", "newton", "--n-modes", "2",
+                 "--dt", "1e-6", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for key in ("first_impact_s", "first_impulse_lb_s", "energy_ratio",
+                "max_lower_gap_in", "circuit_open_s",
+                "first_circuit_open_s", "circuit_open_intervals"):
+        assert key in data
+    assert main(["chatter", "--dt", "-1"]) == 2
+    assert "dt: found -1.0" in capsys.readouterr().err
