@@ -70,8 +70,10 @@ def test_appendix_e_never_penetrates_and_rests_with_a_compressive_force():
     assert np.all(np.abs(y[inside]) < 1e-12)
 
 
-@pytest.mark.parametrize("n, dt", [(1, 1e-7), (2, 1e-7), (4, 1e-7),
-                                   (8, 1e-7), (16, 5e-8)])
+@pytest.mark.parametrize("n, dt", [
+    (1, 1e-7), (2, 1e-7), (4, 1e-7),
+    pytest.param(8, 1e-7, marks=pytest.mark.slow),
+    pytest.param(16, 5e-8, marks=pytest.mark.slow)])
 def test_moreau_jean_matches_appendix_e_on_the_rigid_stop(n, dt):
     design = contactsep.thesis_design(n_modes=n)
     upper = members(design)[0]
