@@ -32,11 +32,20 @@ def _limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
 
-def cli(*args, stdin=None, memory=True, timeout=120, **kwargs):
+def cli(*args, stdin=None, timeout=120, preexec_fn=_limit_memory):
     return subprocess.run(
         [sys.executable, "-m", "contactsep", *args], capture_output=True,
-        timeout=timeout, stdin=stdin,
-        preexec_fn=_limit_memory if memory else None, **kwargs)
+        timeout=timeout, stdin=stdin, preexec_fn=preexec_fn)
+
+
+def device(tmp_path, name: str, minor: int) -> str:
+    """A character device like /dev/NAME (1, minor).  As root, a private
+    node in tmp_path: a wrong -o would replace the machine's /dev/null."""
+    if os.geteuid() != 0:
+        return f"/dev/{name}"
+    path = tmp_path / name
+    os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, minor))
+    return str(path)
 
 
 def one_printable_line(stderr: bytes) -> str:
@@ -141,7 +150,7 @@ def test_api_refuses_endless_input():
          "except c.DeckError as e: print(e)"],
         capture_output=True, timeout=60, preexec_fn=_limit_memory)
     assert b"column 1: found character 0x00" in done.stdout, done.stderr
-    with pytest.raises(DeckError, match=r"column 81 on: found 'xxx.*\.\.\.' "
+    with pytest.raises(DeckError, match=r"card 1, column 81: found 'xxx.*\.\.\.' "
                                         r"\(the line goes on\)"):
         next(core.iter_deck(endless(b"x")))
     # blank lines that never end where a data set should start
@@ -251,17 +260,20 @@ def test_output_to_a_fifo_is_written_not_replaced(tmp_path):
 
 
 def test_output_to_dev_null_is_not_replaced(tmp_path):
-    done = cli("replay", str(good_deck(tmp_path)), "-o", "/dev/null")
+    null = device(tmp_path, "null", 3)
+    done = cli("replay", str(good_deck(tmp_path)), "-o", null)
     assert done.returncode == 0, done.stderr
-    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+    assert stat.S_ISCHR(os.stat(null).st_mode)
+    assert debris(tmp_path) == []
 
 
 def test_output_to_a_full_device_is_an_error(tmp_path):
-    done = cli("replay", str(good_deck(tmp_path)), "-o", "/dev/full")
+    full = device(tmp_path, "full", 7)
+    done = cli("replay", str(good_deck(tmp_path)), "-o", full)
     assert done.returncode == 2
-    assert "No space left on device: /dev/full" in \
+    assert f"No space left on device: {full}" in \
         one_printable_line(done.stderr)
-    assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
+    assert stat.S_ISCHR(os.stat(full).st_mode)
 
 
 def test_output_onto_a_directory_is_refused_without_debris(tmp_path):

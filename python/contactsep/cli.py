@@ -114,6 +114,7 @@ def _replay(args: argparse.Namespace) -> int:
         for result in core.iter_replay(deck, args.precision,
                                        blank=args.blank):
             output.write_text(sys.stdout, result.listing)
+            sys.stdout.flush()
         return EXIT_OK
     target = Path(args.output)
     if target.exists() and target.samefile(args.deck):

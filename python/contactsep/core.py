@@ -21,7 +21,8 @@ from typing import BinaryIO, Iterator, Union
 import numpy as np
 
 from contactsep import cards
-from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
+from contactsep.dataset import (FIXED_CARDS, MODE_GROUPS, SCALAR_CARDS,
+                                DataSet)
 from contactsep.errors import DeckError, location
 from contactsep.result import Result
 
@@ -136,12 +137,12 @@ def check_line(raw: bytes, complete: bool = True) -> tuple[int, int, str]:
         if 32 <= code <= 126:
             continue
         if code == 9:
-            found = (f"found a TAB ({describe_byte(code)}), expected a blank "
+            found = ("found a TAB (character 0x09), expected a blank "
                      f"(a TAB has no fixed column on a card)")
         elif code == 13:
-            found = (f"found a CR ({describe_byte(code)}) not followed by "
-                     f"LF, expected a printable ASCII character (a card "
-                     f"ends at LF or CR LF)")
+            found = ("found a CR (character 0x0D) not followed by "
+                     "LF, expected a printable ASCII character (a card "
+                     "ends at LF or CR LF)")
         else:
             found = (f"found {describe_byte(code)}, expected a printable "
                      f"ASCII character (a card ends at LF or CR LF)")
@@ -283,16 +284,24 @@ def _read_sets(lines: _CardLines, api, blank: str) -> Iterator[DeckSet]:
                 raise DeckError("the deck holds no data set "
                                 "(expected 6 + 3N cards)", data_set=None)
             return
-        fill(MAX_CARDS)
-        window = "".join(line + "\n" for line in
-                         (pending[i] for i in range(min(len(pending),
-                                                        MAX_CARDS))))
-        try:
-            item = _read_window(api, window, first + 1, index, blank)
-        except _Truncated as error:
-            if lines.bad is not None:
-                raise _bad_line_error(index, lines.bad) from None
-            raise error.deck_error from None
+        # cards 1-6, then as many as card 5's N asks for: never a line
+        # past the data set is read before it is run (a deck on a pipe)
+        size = FIXED_CARDS
+        while True:
+            fill(size)
+            window = "".join(pending[i] + "\n"
+                             for i in range(min(len(pending), size)))
+            try:
+                item = _read_window(api, window, first + 1, index, blank)
+                break
+            except _Truncated as error:
+                if error.n > 0 and size == FIXED_CARDS and \
+                        len(pending) >= size:
+                    size = FIXED_CARDS + 3 * min(error.n, MAX_MODES)
+                    continue
+                if lines.bad is not None:
+                    raise _bad_line_error(index, lines.bad) from None
+                raise error.deck_error from None
         used = item.last_card - first
         yield DeckSet(item.index, item.first_card, item.last_card,
                       item.data_set, "".join(
@@ -306,8 +315,8 @@ def _read_sets(lines: _CardLines, api, blank: str) -> Iterator[DeckSet]:
 class _Truncated(Exception):
     """The cards ended inside the data set (the window or the deck)."""
 
-    def __init__(self, deck_error: DeckError) -> None:
-        self.deck_error = deck_error
+    def __init__(self, deck_error: DeckError, n: int) -> None:
+        self.deck_error, self.n = deck_error, n
 
 
 def _read_window(api, window: str, first_card: int, index: int,
@@ -331,7 +340,7 @@ def _read_window(api, window: str, first_card: int, index: int,
             card=card or None,
             columns=(first_col, last_col) if first_col else None)
         if status == _STATUS_TRUNCATED:
-            raise _Truncated(error)
+            raise _Truncated(error, int(n))
         raise error
     values = dict(zip(SCALAR_NAMES, (float(x) for x in scalars)))
     for column, name in enumerate(MODE_NAMES):
