@@ -408,3 +408,12 @@ def test_one_column_is_not_a_range(tmp_path):
     done = cli("replay", str(deck))
     line = one_printable_line(done.stderr)
     assert "card 3, column 81: found '9'" in line and "81-81" not in line
+
+
+def test_pure_python_reader_names_control_characters():
+    lines = list(LINES)
+    lines[1] = lines[1][:10] + "\x1b" + lines[1][11:]
+    with pytest.raises(DeckError) as info:
+        cards.read_deck(("\n".join(lines) + "\n").encode("latin-1"))
+    assert "card 2, column 11: found character 0x1B (ESC)" in str(info.value)
+    assert "\x1b" not in str(info.value)

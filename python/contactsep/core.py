@@ -23,7 +23,7 @@ import numpy as np
 from contactsep import cards
 from contactsep.dataset import (FIXED_CARDS, MODE_GROUPS, SCALAR_CARDS,
                                 DataSet)
-from contactsep.errors import DeckError, location
+from contactsep.errors import DeckError, describe_byte, location
 from contactsep.result import Result
 
 PRECISIONS = ("single", "double")
@@ -112,17 +112,8 @@ _STATUS_NOT_NUMERIC = 10
 #: enough to show what is there (the rest of the line is never read).
 _PAST_CARD = 40
 _LINE_READ = cards.CARD_COLUMNS + _PAST_CARD + 1
-_CONTROL_NAMES = {0: "NUL", 7: "BEL", 8: "BS", 9: "TAB", 10: "LF", 11: "VT",
-                  12: "FF", 13: "CR", 26: "SUB", 27: "ESC", 127: "DEL"}
-
 #: A deck: its text (str or bytes), a path (os.PathLike) or a binary file.
 Deck = Union[str, bytes, "os.PathLike[str]", BinaryIO]
-
-
-def describe_byte(code: int) -> str:
-    """'character 0x1B (ESC)': a byte named without printing it."""
-    name = _CONTROL_NAMES.get(code)
-    return f"character 0x{code:02X}" + (f" ({name})" if name else "")
 
 
 def check_line(raw: bytes, complete: bool = True) -> tuple[int, int, str]:
