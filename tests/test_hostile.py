@@ -150,7 +150,8 @@ def test_api_refuses_endless_input():
          "except c.DeckError as e: print(e)"],
         capture_output=True, timeout=60, preexec_fn=_limit_memory)
     assert b"column 1: found character 0x00" in done.stdout, done.stderr
-    with pytest.raises(DeckError, match=r"card 1, column 81: found 'xxx.*\.\.\.' "
+    with pytest.raises(DeckError, match=r"card 1, column 81: "
+                                        r"found 'xxx.*\.\.\.' "
                                         r"\(the line goes on\)"):
         next(core.iter_deck(endless(b"x")))
     # blank lines that never end where a data set should start
@@ -165,7 +166,8 @@ def test_api_reads_a_data_set_at_a_time():
     """An endless deck of good data sets: the first results come at once."""
     results = core.iter_replay(endless(GOOD.encode()))
     first = [next(results) for _ in range(3)]
-    assert [r.listing for r in first] == [core.replay_text(GOOD)[0].listing] * 3
+    expected = core.replay_text(GOOD)[0].listing
+    assert [r.listing for r in first] == [expected] * 3
 
 
 @pytest.mark.parametrize("command,marker", [
@@ -325,7 +327,7 @@ def test_closed_stdout_is_an_error(command, tmp_path):
     deck = good_deck(tmp_path)
     done = subprocess.run(
         [sys.executable, "-m", "contactsep", command, str(deck)],
-        capture_output=False, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE, stdout=subprocess.DEVNULL,
         timeout=120, preexec_fn=lambda: os.close(1))
     assert done.returncode == 2
     assert "standard output" in one_printable_line(done.stderr)
@@ -385,7 +387,7 @@ def test_interrupt_of_any_subcommand_is_quiet(monkeypatch, capsys):
     assert capsys.readouterr().err.count("\n") <= 1
 
 
-# --- 10. messages -------------------------------------------------------------
+# --- 10. messages ----------------------------------------------------------
 
 def test_cr_only_line_ends_name_the_cr(tmp_path):
     deck = tmp_path / "cr.dat"
