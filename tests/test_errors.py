@@ -74,12 +74,12 @@ CASES = {
     "line_too_long": (put(3, 76, "1234567890"),
                       "expected nothing past column 80", 3, (81, 85)),
     "tab": (put(3, 5, "\t"), "found a TAB", 3, (5, 5)),
-    "non_ascii_byte": (put(2, 20, "\u00e9"), "found the character of code 233",
+    "non_ascii_byte": (put(2, 20, "\u00e9"), "found character 0xE9",
                        2, (20, 20)),
-    "nul_byte": (put(2, 21, "\x00"), "found the character of code 0", 2,
+    "nul_byte": (put(2, 21, "\x00"), "found character 0x00 (NUL)", 2,
                  (21, 21)),
     "nul_after_the_last_card": (GOOD + ["   \x00"],
-                                "found the character of code 0", 19,
+                                "found character 0x00 (NUL)", 19,
                                 (4, 4)),
 }
 

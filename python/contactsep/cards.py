@@ -47,7 +47,7 @@ from collections.abc import Iterable
 
 from contactsep.dataset import (FIXED_CARDS, MODE_GROUPS, SCALAR_CARDS,
                                 DataSet)
-from contactsep.errors import DeckError, location
+from contactsep.errors import DeckError, describe_byte, location
 
 #: Columns of a punched card.
 CARD_COLUMNS = 80
@@ -173,13 +173,22 @@ def _check_card(line: str, data_set: int, card: int) -> None:
         if " " <= char <= "~":
             continue
         if char == "\t":
+            found = "a TAB (character 0x09)"
             expected = "a blank (a TAB has no fixed column on a card)"
         elif char == "\r":
-            expected = "a printable character (a card ends at LF or CR LF)"
+            found = "a CR (character 0x0D) not followed by LF"
+            expected = ("a printable ASCII character (a card ends at LF or "
+                        "CR LF)")
         else:
-            expected = "a printable ASCII character"
-        raise DeckError(data_set=data_set, card=card, columns=(column, column),
-                        text=char, expected=expected)
+            found = describe_byte(ord(char))
+            expected = ("a printable ASCII character (a card ends at LF or "
+                        "CR LF)")
+        # the character is named, never echoed (issue 9)
+        raise DeckError(f"{location(data_set, card, (column, column))}: "
+                        f"found {found}, expected {expected}",
+                        data_set=data_set, card=card,
+                        columns=(column, column), text=char,
+                        expected=expected)
     if len(line) > CARD_COLUMNS:
         raise DeckError(data_set=data_set, card=card,
                         columns=(CARD_COLUMNS + 1, len(line)),

@@ -6,6 +6,9 @@
 
 Errors are reported as ``contactsep: error: <message>`` on stderr with exit
 status 2; listings of the data sets before a bad one are printed first.
+A write error (closed standard output, full disk) is such an error too;
+Ctrl-C (SIGINT) ends any command with status 130 and SIGTERM with 143,
+quietly.  ``-o FILE``: module :mod:`contactsep.output`.
 """
 
 from __future__ import annotations
@@ -13,12 +16,12 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
-import tempfile
 from pathlib import Path
 from typing import Sequence
 
-from contactsep import core
+from contactsep import core, output
 from contactsep.errors import DeckError, InputError
 from contactsep.legacy import LegacyError
 
@@ -26,6 +29,10 @@ EXIT_OK, EXIT_TOLERANCE, EXIT_ERROR = 0, 1, 2
 #: Exit status when whoever reads the listing stops reading (| head): the
 #: shell's status for a process ended by SIGPIPE.
 EXIT_BROKEN_PIPE = 128 + 13
+#: Exit statuses after SIGINT (Ctrl-C) and SIGTERM, as the shell reports
+#: a process they end.
+EXIT_INTERRUPTED = 128 + signal.SIGINT
+EXIT_TERMINATED = 128 + signal.SIGTERM
 
 
 def _precision(parser: argparse.ArgumentParser) -> None:
@@ -95,43 +102,35 @@ def _legacy(args: argparse.Namespace) -> int:
 
     sys.stdout.flush()
     try:
-        legacy.run(args.deck, args.precision, stream=sys.stdout.buffer)
+        legacy.run(Path(args.deck), args.precision, stream=sys.stdout.buffer)
     finally:
         sys.stdout.buffer.flush()
     return EXIT_OK
 
 
 def _replay(args: argparse.Namespace) -> int:
-    text = core.read_text(args.deck)
+    deck = Path(args.deck)
     if args.output is None:
-        for result in core.iter_replay(text, args.precision,
+        for result in core.iter_replay(deck, args.precision,
                                        blank=args.blank):
-            sys.stdout.write(result.listing)
+            output.write_text(sys.stdout, result.listing)
+            sys.stdout.flush()
         return EXIT_OK
     target = Path(args.output)
     if target.exists() and target.samefile(args.deck):
         raise CommandError(f"will not write the listing over the deck "
                            f"{args.deck}")
-    # Write beside the target and rename, so an existing file is replaced
-    # only by a finished (or, on a bad data set, partial) listing.
-    with tempfile.NamedTemporaryFile(
-            "w", encoding="ascii", newline="", dir=target.parent or ".",
-            prefix=f".{target.name}.", delete=False) as out:
-        try:
-            for result in core.iter_replay(text, args.precision,
-                                           blank=args.blank):
-                out.write(result.listing)
-        finally:
-            out.close()
-            os.replace(out.name, target)
+    with output.open_output(args.output) as out:
+        for result in core.iter_replay(deck, args.precision,
+                                       blank=args.blank):
+            output.write_text(out, result.listing)
     return EXIT_OK
 
 
 def _compare(args: argparse.Namespace) -> int:
     from contactsep import compare
 
-    report = compare.compare_deck(args.deck)
-    sys.stdout.write(report.text)
+    report = compare.compare_deck(Path(args.deck), stream=sys.stdout)
     if report.error is not None:
         raise report.error
     return EXIT_OK if report.passed else EXIT_TOLERANCE
@@ -139,6 +138,22 @@ def _compare(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactsep`` command; returns the exit status."""
+    output.guard_closed_streams()
+    previous = signal.getsignal(signal.SIGTERM)
+    if previous in (signal.SIG_DFL, None):
+        signal.signal(signal.SIGTERM, output.raise_terminated)
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        return output.stop_quietly(EXIT_INTERRUPTED)
+    except output.Terminated:
+        return output.stop_quietly(EXIT_TERMINATED)
+    finally:
+        if previous in (signal.SIG_DFL, None):
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     handler = getattr(args, "handler", None) or {
@@ -155,10 +170,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
     except (DeckError, LegacyError, InputError, OSError) as error:
-        sys.stdout.flush()
-        if isinstance(error, OSError) and error.filename:
-            message = f"{error.strerror}: {error.filename}"
-        else:
-            message = str(error)
-        print(f"{parser.prog}: error: {message}", file=sys.stderr)
+        try:
+            sys.stdout.flush()
+        except OSError as late:
+            error = error if isinstance(error, OSError) else late
+        output.report(parser.prog, error)
         return EXIT_ERROR

@@ -35,8 +35,9 @@ from __future__ import annotations
 
 import io
 import math
-import os
 from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterator, TextIO
 
 import numpy as np
 
@@ -111,40 +112,77 @@ class Comparison:
     notes: list[tuple[int, str]] = field(default_factory=list)
     #: The bad data set that ended the comparison, if any.
     error: DeckError | None = None
+    #: Rows within and outside tolerance, and data sets not compared (so
+    #: far; also counted when the tables were written out, not kept).
+    within: int = 0
+    outside: int = 0
+    not_compared: int = 0
 
     @property
     def passed(self) -> bool:
-        return self.error is None and not self.notes and all(
-            row.passed for _, rows in self.tables for row in rows)
+        return self.error is None and not self.not_compared and \
+            not self.outside
+
+    def add_table(self, index: int, rows: list[Row],
+                  stream: TextIO | None = None) -> None:
+        """Count the table; keep it, or write it to ``stream``."""
+        failed = sum(not r.passed for r in rows)
+        self.within += len(rows) - failed
+        self.outside += failed
+        if stream is None:
+            self.tables.append((index, rows))
+        else:
+            stream.write(_table_text(index, rows))
+
+    def add_note(self, index: int, note: str,
+                 stream: TextIO | None = None) -> None:
+        """Count the note; keep it, or write it to ``stream``."""
+        self.not_compared += 1
+        if stream is None:
+            self.notes.append((index, note))
+        else:
+            stream.write(_note_text(index, note))
+
+    @property
+    def summary(self) -> str:
+        return f"{self.within} within tolerance, {self.outside} outside\n"
 
     @property
     def text(self) -> str:
         out = io.StringIO()
-        header = (f"{'quantity':<14}{'legacy single':>16}{'restored sgl':>16}"
-                  f"{'restored dbl':>16}{'numpy dbl':>16}  "
-                  f"{'rs/ls':>7}  {'rd/np':>7} {'tol':>7}  "
-                  f"{'rs/rd':>7} {'tol':>7}  ok")
         for index, rows in self.tables:
-            out.write(f"data set {index}\n{header}\n")
-            for r in rows:
-                legacy_text = "n/a" if r.legacy_single is None \
-                    else f"{r.legacy_single:.9g}"
-                tol_single = "none" if r.tol_single is None \
-                    else f"{r.tol_single:7.1e}"
-                out.write(
-                    f"{r.name:<14}{legacy_text:>16}"
-                    f"{r.restored_single:>16.9g}{r.restored_double:>16.9g}"
-                    f"{r.numpy_double:>16.9g}  {r.rel_legacy:7.1e}  "
-                    f"{r.rel_double:7.1e} {r.tol_double:7.1e}  "
-                    f"{r.rel_single:7.1e} {tol_single:>7}  "
-                    f"{'yes' if r.passed else 'NO'}\n")
-            out.write("\n")
+            out.write(_table_text(index, rows))
         for index, note in self.notes:
-            out.write(f"data set {index}: not compared: {note}\n")
-        failed = sum(not r.passed for _, rows in self.tables for r in rows)
-        total = sum(len(rows) for _, rows in self.tables)
-        out.write(f"{total - failed} within tolerance, {failed} outside\n")
+            out.write(_note_text(index, note))
+        out.write(self.summary)
         return out.getvalue()
+
+
+def _note_text(index: int, note: str) -> str:
+    return f"data set {index}: not compared: {note}\n"
+
+
+def _table_text(index: int, rows: list[Row]) -> str:
+    out = io.StringIO()
+    header = (f"{'quantity':<14}{'legacy single':>16}{'restored sgl':>16}"
+              f"{'restored dbl':>16}{'numpy dbl':>16}  "
+              f"{'rs/ls':>7}  {'rd/np':>7} {'tol':>7}  "
+              f"{'rs/rd':>7} {'tol':>7}  ok")
+    out.write(f"data set {index}\n{header}\n")
+    for r in rows:
+        legacy_text = "n/a" if r.legacy_single is None \
+            else f"{r.legacy_single:.9g}"
+        tol_single = "none" if r.tol_single is None \
+            else f"{r.tol_single:7.1e}"
+        out.write(
+            f"{r.name:<14}{legacy_text:>16}"
+            f"{r.restored_single:>16.9g}{r.restored_double:>16.9g}"
+            f"{r.numpy_double:>16.9g}  {r.rel_legacy:7.1e}  "
+            f"{r.rel_double:7.1e} {r.tol_double:7.1e}  "
+            f"{r.rel_single:7.1e} {tol_single:>7}  "
+            f"{'yes' if r.passed else 'NO'}\n")
+    out.write("\n")
+    return out.getvalue()
 
 
 @dataclass(frozen=True)
@@ -257,37 +295,57 @@ def _rows(printed: listing.DataSetListing | None, single: Result,
     return rows
 
 
-def compare_deck(path: str | os.PathLike) -> Comparison:
+def compare_deck(path: core.Deck, stream: TextIO | None = None
+                 ) -> Comparison:
     """Compare all implementations on every data set of the deck at
-    ``path``.  A bad data set ends the comparison with its error; the
-    tables of the data sets before it are kept.  The original program runs
-    each data set on its own cards (one listing per data set, as it prints
-    them back to back), and only where N <= 4."""
+    ``path`` (or any deck :func:`contactsep.core.iter_deck` takes).  A bad
+    data set ends the comparison with its error; the tables of the data
+    sets before it are kept.  The original program runs each data set on
+    its own cards (one listing per data set, as it prints them back to
+    back), and only where N <= 4.
+
+    The deck is read a data set at a time.  With ``stream``, each table
+    (or note) is written there as soon as it is made, then the summary
+    line, and the returned comparison only counts them: memory does not
+    grow with the deck."""
     comparison = Comparison()
-    text = core.read_text(path)
-    lines = text.split("\n")
+    if isinstance(path, str):        # a file name, as before
+        path = Path(path)
     try:
-        for s_item, d_item in zip(core.iter_deck(text, precision="single"),
-                                  core.iter_deck(text, precision="double")):
-            where = dict(data_set_index=d_item.index,
-                         first_card=d_item.first_card)
-            single = core.solve(s_item.data_set, "single", **where)
-            double = core.solve(d_item.data_set, "double", **where)
-            slowest = 2 * math.pi / float(np.min(double.p))
-            try:
-                ref = reference.run(d_item.data_set, search_horizon=max(
-                    4 * slowest, double.t_impact + slowest))
-            except ValueError as error:
-                comparison.notes.append((d_item.index, str(error)))
-                continue
-            printed = None
-            if d_item.data_set.n <= legacy.LEGACY_MAX_MODES:
-                cards = "".join(line + "\n" for line in
-                                lines[d_item.first_card - 1:d_item.last_card])
-                printed = listing.parse(legacy.run_cards(cards, "single"))[0]
-            comparison.tables.append((d_item.index, _rows(
-                printed, single, listing.parse(single.listing)[0], double,
-                ref)))
+        for index, kind, payload in iter_compare(path):
+            if kind == "note":
+                comparison.add_note(index, payload, stream)
+            else:
+                comparison.add_table(index, payload, stream)
+            if stream is not None:
+                stream.flush()
     except DeckError as error:
         comparison.error = error
+    if stream is not None:
+        stream.write(comparison.summary)
     return comparison
+
+
+def iter_compare(source: core.Deck) -> Iterator[tuple[int, str, object]]:
+    """(data set, "table", rows) or (data set, "note", why it could not
+    be compared) for each data set of the deck, as they are made; raises
+    :class:`DeckError` at the first bad data set."""
+    for d_item in core.iter_deck(source, precision="double"):
+        s_item = core.reread(d_item, "single")
+        where = dict(data_set_index=d_item.index,
+                     first_card=d_item.first_card)
+        single = core.solve(s_item.data_set, "single", **where)
+        double = core.solve(d_item.data_set, "double", **where)
+        slowest = 2 * math.pi / float(np.min(double.p))
+        try:
+            ref = reference.run(d_item.data_set, search_horizon=max(
+                4 * slowest, double.t_impact + slowest))
+        except ValueError as error:
+            yield d_item.index, "note", str(error)
+            continue
+        printed = None
+        if d_item.data_set.n <= legacy.LEGACY_MAX_MODES:
+            printed = listing.parse(
+                legacy.run_cards(d_item.cards, "single"))[0]
+        yield d_item.index, "table", _rows(
+            printed, single, listing.parse(single.listing)[0], double, ref)

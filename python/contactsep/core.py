@@ -10,16 +10,20 @@ card reader, runs data sets, and turns status codes into
 from __future__ import annotations
 
 import importlib
+import io
 import math
 import os
+from collections import deque
 from dataclasses import dataclass
-from typing import Iterator
+from pathlib import Path
+from typing import BinaryIO, Iterator, Union
 
 import numpy as np
 
 from contactsep import cards
-from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
-from contactsep.errors import DeckError, location
+from contactsep.dataset import (FIXED_CARDS, MODE_GROUPS, SCALAR_CARDS,
+                                DataSet)
+from contactsep.errors import DeckError, describe_byte, location
 from contactsep.result import Result
 
 PRECISIONS = ("single", "double")
@@ -83,100 +87,282 @@ class DeckSet:
     first_card: int
     last_card: int
     data_set: DataSet
+    #: Its card images as read (one line each, LF-ended, a CR before the
+    #: LF dropped): what ``contactsep legacy`` feeds the original program.
+    cards: str = ""
 
 
 def read_text(path: str | os.PathLike) -> str:
     """The deck file as text, one character per byte (card images are
-    ASCII; any other byte is kept so the reader can point at it)."""
+    ASCII; any other byte is kept so the reader can point at it).  The
+    whole file is held: :func:`iter_deck` and :func:`iter_replay` take the
+    path itself and read it a card at a time."""
     with open(path, "rb") as handle:
         return handle.read().decode("latin-1")
 
 
 #: The most modes card 5's I2 field can give, and so the most cards a data
-#: set can have.
+#: set can have: 6 + 3 * 99 = 303.
 MAX_MODES = 99
-_MAX_CARDS = 6 + 3 * MAX_MODES
+MAX_CARDS = 6 + 3 * MAX_MODES
+_MAX_CARDS = MAX_CARDS
 _STATUS_TRUNCATED = 14
+_STATUS_NOT_NUMERIC = 10
+#: Columns past the card's 80 a line is read for before it is refused:
+#: enough to show what is there (the rest of the line is never read).
+_PAST_CARD = 40
+_LINE_READ = cards.CARD_COLUMNS + _PAST_CARD + 1
+#: A deck: its text (str or bytes), a path (os.PathLike) or a binary file.
+Deck = Union[str, bytes, "os.PathLike[str]", BinaryIO]
 
 
-def _card_lines(text: str) -> list[str]:
-    """The deck's lines (cards), as the core counts them: ended by LF."""
-    lines = text.split("\n")
-    if lines and lines[-1] == "":
-        lines.pop()
-    return lines
+def check_line(raw: bytes, complete: bool = True) -> tuple[int, int, str]:
+    """What is wrong with one line of a deck (its LF removed, at most
+    ``_LINE_READ`` bytes; ``complete`` False when the line goes on):
+    (first column, last column, what was found and expected), or
+    (0, 0, "") for a good card.  A character outside printable ASCII is
+    named by its code, never echoed; a TAB and a stray CR get their own
+    words; then a line past column 80 is refused, quoting (printable)
+    what is there."""
+    for column, code in enumerate(raw, start=1):
+        if 32 <= code <= 126:
+            continue
+        if code == 9:
+            found = ("found a TAB (character 0x09), expected a blank "
+                     f"(a TAB has no fixed column on a card)")
+        elif code == 13:
+            found = ("found a CR (character 0x0D) not followed by "
+                     "LF, expected a printable ASCII character (a card "
+                     "ends at LF or CR LF)")
+        else:
+            found = (f"found {describe_byte(code)}, expected a printable "
+                     f"ASCII character (a card ends at LF or CR LF)")
+        return column, column, found
+    width = cards.CARD_COLUMNS
+    if len(raw) > width:
+        shown = raw[width:width + _PAST_CARD].decode("ascii")
+        more = "..." if not complete or len(raw) > width + _PAST_CARD else ""
+        last = len(raw) if complete else width + 1
+        return (width + 1, last,
+                f"found '{shown}{more}'"
+                f"{'' if complete else ' (the line goes on)'}, expected "
+                f"nothing past column 80 (a card has 80 columns)")
+    return 0, 0, ""
 
 
-def iter_deck(text: str, *, precision: str = "single",
+class _CardLines:
+    """The lines of a deck, read one at a time (never more than
+    ``_LINE_READ`` bytes of one) and checked as they come.
+
+    ``next()`` gives a good line as text without its LF (and one CR
+    before it), or None at the end of the deck or at the first bad line,
+    whose place and message are then in ``bad`` (line, first column, last
+    column, message without the data set); nothing after it is read."""
+
+    def __init__(self, stream: BinaryIO) -> None:
+        self._stream = stream
+        self.count = 0
+        self.bad: tuple[int, int, int, str] | None = None
+
+    def next(self) -> str | None:
+        if self.bad is not None:
+            return None
+        raw = self._stream.readline(_LINE_READ)
+        if not raw:
+            return None
+        self.count += 1
+        complete = raw.endswith(b"\n") or len(raw) < _LINE_READ
+        if raw.endswith(b"\n"):
+            raw = raw[:-1]
+        if complete and raw.endswith(b"\r"):
+            raw = raw[:-1]
+        first, last, found = check_line(raw, complete)
+        if found:
+            self.bad = (self.count, first, last, found)
+            return None
+        return raw.decode("ascii")
+
+
+def _bad_line_error(index: int, bad: tuple[int, int, int, str]) -> DeckError:
+    card, first, last, found = bad
+    return DeckError(f"{location(index, card, (first, last))}: {found}",
+                     data_set=index, card=card, columns=(first, last))
+
+
+class _open_deck:
+    """Context manager: a binary stream over any :data:`Deck`."""
+
+    def __init__(self, source: Deck) -> None:
+        self._source, self._owned = source, None
+
+    def __enter__(self) -> BinaryIO:
+        source = self._source
+        if isinstance(source, str):
+            source = source.encode("latin-1")
+        if isinstance(source, (bytes, bytearray, memoryview)):
+            return io.BytesIO(bytes(source))
+        if isinstance(source, os.PathLike):
+            self._owned = open(source, "rb")
+            return self._owned
+        if hasattr(source, "readline"):
+            return source
+        raise TypeError("a deck is its text (str or bytes), a path "
+                        "(os.PathLike) or a binary file")
+
+    def __exit__(self, *exc) -> None:
+        if self._owned is not None:
+            self._owned.close()
+
+
+def iter_deck(source: Deck, *, precision: str = "single",
               blank: str = "null") -> Iterator[DeckSet]:
-    """Read data sets from deck ``text`` with the core's card reader.
+    """Read data sets from a deck with the core's card reader.
 
-    Values are read in the working precision of ``precision``, exactly as the
-    original program reads them.  Raises :class:`DeckError` at the first bad
-    card; data sets before it have already been yielded.
+    ``source`` is the deck's text (str, or bytes), a path (os.PathLike:
+    a str is always text) or a binary file.  Values are read in the
+    working precision of ``precision``, exactly as the original program
+    reads them.  Raises :class:`DeckError` at the first bad card; data
+    sets before it have already been yielded.
 
-    The core is handed one data set's worth of cards at a time (at most
-    6 + 3 * 99), so reading is linear in the size of the deck, as bytes,
-    so that any byte reaches the core's check for printable ASCII.  f2py
-    passes text as a C string, which would end at a NUL byte: the core is
-    given only the lines before the first NUL, and the NUL is reported here
-    when reading reaches it.
+    The deck is read a line at a time and at most one data set ahead
+    (6 + 3 * 99 = 303 cards), so memory is bounded by one data set
+    whatever the deck's size, and input that never ends is refused: a
+    line at its column 81 (only 40 columns past the card are read, to
+    show them), a character outside printable ASCII when it is read,
+    more than 303 blank lines where a data set should start.  The core is
+    handed one data set's worth of cards at a time.
     """
     if blank not in BLANK_MODES:
         raise ValueError(f"blank must be one of {BLANK_MODES}, not {blank!r}")
     api = _api(precision)
-    lines = _card_lines(text)
-    usable = len(lines)
-    nul = text.find("\x00")
-    if nul >= 0:
-        usable = text.count("\n", 0, nul)
-        nul_card = usable + 1
-        nul_column = nul - (text.rfind("\n", 0, nul) + 1) + 1
-    # next_content[i]: first line at or after i that is not blank
-    next_content = [usable] * (usable + 1)
-    for i in range(usable - 1, -1, -1):
-        next_content[i] = i if lines[i].strip() else next_content[i + 1]
+    with _open_deck(source) as stream:
+        yield from _read_sets(_CardLines(stream), api, blank)
 
-    first, index = 0, 0          # first: 0-based line of the data set
+
+def _read_sets(lines: _CardLines, api, blank: str) -> Iterator[DeckSet]:
+    pending: deque[str] = deque()   # good lines read, not yet used
+    first, index = 0, 0             # first: 0-based line of the data set
+
+    def fill(count: int) -> None:
+        while len(pending) < count:
+            line = lines.next()
+            if line is None:
+                return
+            pending.append(line)
+
     while True:
         index += 1
-        if next_content[min(first, usable)] >= usable:
-            if nul >= 0:
-                raise _nul_error(index, nul_card, nul_column)
+        # blank lines where a data set starts: the end of the deck, or
+        # cards of zeros (an error at card 1); never more than a data set
+        # of them, so blank lines that never end are refused
+        blanks = 0
+        while True:
+            fill(blanks + 1)
+            if blanks == len(pending) or pending[blanks].strip(" "):
+                break
+            blanks += 1
+            if blanks > MAX_CARDS:
+                raise DeckError(
+                    f"data set {index}, cards {first + 1}-{first + blanks}: "
+                    f"found {blanks} blank lines and the deck goes on, "
+                    f"expected a data set (at most 6 + 3 * {MAX_MODES} = "
+                    f"{MAX_CARDS} cards) or the end of the deck",
+                    data_set=index)
+        if blanks == len(pending):
+            if lines.bad is not None:
+                raise _bad_line_error(index, lines.bad)
             if index == 1:
                 raise DeckError("the deck holds no data set "
                                 "(expected 6 + 3N cards)", data_set=None)
             return
-        # blank lines are cards of zeros, so a window that starts with
-        # them still reaches the next card with something on it
-        stop = min(usable, max(first + _MAX_CARDS, next_content[first] + 1))
-        window = "".join(line + "\n" for line in lines[first:stop])
-        (scalars, n, modes, next_card, status, message, card, first_col,
-         last_col) = api.read_data_set(
-             text=window.encode("latin-1"), first_line=first + 1,
-             first_card=first + 1, blank_zero=int(blank == "zero"),
-             max_modes=MAX_MODES)
-        if status == _STATUS_TRUNCATED and nul >= 0:
-            raise _nul_error(index, nul_card, nul_column)
-        if status != 0:
-            raise DeckError(
-                f"data set {index}, {_text(message)}" if card else
-                f"data set {index}: {_text(message)}", data_set=index,
-                card=card or None,
-                columns=(first_col, last_col) if first_col else None)
-        values = dict(zip(SCALAR_NAMES, (float(x) for x in scalars)))
-        for column, name in enumerate(MODE_NAMES):
-            values[name] = np.array(modes[:n, column], dtype=np.float64)
-        yield DeckSet(index, first + 1, next_card - 1,
-                      DataSet(n=int(n), **values))
+        # cards 1-6, then as many as card 5's N asks for: never a line
+        # past the data set is read before it is run (a deck on a pipe)
+        size = FIXED_CARDS
+        while True:
+            fill(size)
+            window = "".join(pending[i] + "\n"
+                             for i in range(min(len(pending), size)))
+            try:
+                item = _read_window(api, window, first + 1, index, blank)
+                break
+            except _Truncated as error:
+                if error.n > 0 and size == FIXED_CARDS and \
+                        len(pending) >= size:
+                    size = FIXED_CARDS + 3 * min(error.n, MAX_MODES)
+                    continue
+                if lines.bad is not None:
+                    raise _bad_line_error(index, lines.bad) from None
+                raise error.deck_error from None
+        used = item.last_card - first
+        yield DeckSet(item.index, item.first_card, item.last_card,
+                      item.data_set, "".join(
+                          pending[i] + "\n" for i in range(used)))
+        next_card = item.last_card + 1
+        for _ in range(next_card - 1 - first):
+            pending.popleft()
         first = next_card - 1
 
 
-def _nul_error(index: int, card: int, column: int) -> DeckError:
-    return DeckError(
-        f"data set {index}, card {card}, column {column}: found the "
-        f"character of code 0 (NUL), expected a printable ASCII character",
-        data_set=index, card=card, columns=(column, column))
+class _Truncated(Exception):
+    """The cards ended inside the data set (the window or the deck)."""
+
+    def __init__(self, deck_error: DeckError, n: int) -> None:
+        self.deck_error, self.n = deck_error, n
+
+
+def _read_window(api, window: str, first_card: int, index: int,
+                 blank: str) -> DeckSet:
+    """Read the data set at the start of ``window`` (cards from line
+    ``first_card`` of the deck on) with the core's reader."""
+    (scalars, n, modes, next_card, status, message, card, first_col,
+     last_col) = api.read_data_set(
+         text=window.encode("ascii"), first_line=first_card,
+         first_card=first_card, blank_zero=int(blank == "zero"),
+         max_modes=MAX_MODES)
+    if status != 0:
+        text = _text(message)
+        if status == _STATUS_NOT_NUMERIC and card and first_col:
+            line = window.split("\n")[card - first_card]
+            text = _exponent_message(text, line, (first_col, last_col),
+                                     blank)
+        error = DeckError(
+            f"data set {index}, {text}" if card else
+            f"data set {index}: {text}", data_set=index,
+            card=card or None,
+            columns=(first_col, last_col) if first_col else None)
+        if status == _STATUS_TRUNCATED:
+            raise _Truncated(error, int(n))
+        raise error
+    values = dict(zip(SCALAR_NAMES, (float(x) for x in scalars)))
+    for column, name in enumerate(MODE_NAMES):
+        values[name] = np.array(modes[:n, column], dtype=np.float64)
+    return DeckSet(index, first_card, next_card - 1,
+                   DataSet(n=int(n), **values))
+
+
+def reread(item: DeckSet, precision: str, *, blank: str = "null") -> DeckSet:
+    """The data set ``item`` read again from its cards in ``precision``
+    (errors name the same data set, cards and columns)."""
+    try:
+        return _read_window(_api(precision), item.cards, item.first_card,
+                            item.index, blank)
+    except _Truncated as error:
+        raise error.deck_error from None
+
+
+def _exponent_message(message: str, line: str, columns: tuple[int, int],
+                      blank: str) -> str:
+    """The core's 'expected a number' for a field gfortran refuses only for
+    its exponent beyond 9999 says so, as the deck format's docs do."""
+    field = line.ljust(cards.CARD_COLUMNS)[columns[0] - 1:columns[1]]
+    try:
+        cards.parse_real(field, blank=blank)
+    except DeckError as error:
+        if error.expected and error.expected.startswith("an exponent"):
+            return message.replace("expected a number (",
+                                   "expected a number with an exponent "
+                                   "below 10000 (", 1)
+    return message
 
 
 def history_length(delt: float, precision: str = "double") -> int:
@@ -265,16 +451,17 @@ def solve(data_set: DataSet, precision: str = "single", *,
         listing=text)
 
 
-def iter_replay(text: str, precision: str = "single", *,
+def iter_replay(source: Deck, precision: str = "single", *,
                 blank: str = "null") -> Iterator[Result]:
-    """Run the data sets of deck ``text`` one after another (a generator,
-    so a long deck need not be held in memory); see :func:`replay`."""
-    for item in iter_deck(text, precision=precision, blank=blank):
+    """Run the data sets of a deck one after another (a generator: the
+    deck is read a data set at a time, so its size does not matter);
+    ``source`` as for :func:`iter_deck`; see :func:`replay`."""
+    for item in iter_deck(source, precision=precision, blank=blank):
         yield solve(item.data_set, precision, data_set_index=item.index,
                     first_card=item.first_card)
 
 
-def replay_text(text: str, precision: str = "single", *,
+def replay_text(text: Deck, precision: str = "single", *,
                 blank: str = "null") -> list[Result]:
     """Run every data set of deck ``text``; see :func:`replay`."""
     results: list[Result] = []
@@ -295,4 +482,4 @@ def replay(path: str | os.PathLike, precision: str = "single", *,
     prints for the deck.  On a bad data set :class:`DeckError` is raised with
     the results of the data sets before it in ``error.partial``.
     """
-    return replay_text(read_text(path), precision, blank=blank)
+    return replay_text(Path(path), precision, blank=blank)

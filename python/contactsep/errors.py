@@ -22,6 +22,17 @@ def location(data_set: int | None = None, card: int | None = None,
     return ", ".join(parts) if parts else "deck"
 
 
+_CONTROL_NAMES = {0: "NUL", 7: "BEL", 8: "BS", 9: "TAB", 10: "LF", 11: "VT",
+                  12: "FF", 13: "CR", 26: "SUB", 27: "ESC", 127: "DEL"}
+
+
+def describe_byte(code: int) -> str:
+    """'character 0x1B (ESC)': a byte (or character code) named without
+    printing it, for messages that must stay one printable line."""
+    name = _CONTROL_NAMES.get(code)
+    return f"character 0x{code:02X}" + (f" ({name})" if name else "")
+
+
 class DeckError(ValueError):
     """A deck that cannot be read or run, and where it went wrong.
 

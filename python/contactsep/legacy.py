@@ -13,12 +13,15 @@ limit.  Its output is returned unchanged.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
+import threading
+import time
 from importlib import resources
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, Iterator
 
 from contactsep import core
 from contactsep.errors import DeckError
@@ -75,55 +78,175 @@ def run_cards(cards: str, precision: str = "single", *,
     return "" if stream is not None else completed.stdout.decode("latin-1")
 
 
-def validated_cards(text: str, precision: str = "single", *,
+def iter_validated(source: core.Deck, precision: str = "single", *,
+                   max_modes: int | None = LEGACY_MAX_MODES,
+                   blank: str = "null") -> Iterator[core.DeckSet]:
+    """The data sets of the deck that pass validation (read by the
+    restored core, N <= ``max_modes``, run by the restored core), one at
+    a time as they are read; raises :class:`DeckError` at the first bad
+    one.  Their ``cards`` are what the original program may be fed."""
+    for item in core.iter_deck(source, precision=precision, blank=blank):
+        if max_modes is not None and item.data_set.n > max_modes:
+            first_card = item.first_card + 4
+            raise DeckError(
+                f"data set {item.index}, card {first_card}, columns "
+                f"16-17: N = {item.data_set.n}, but the original program "
+                f"holds at most {max_modes} modes (DIMENSION (4))",
+                data_set=item.index, card=first_card, columns=(16, 17))
+        core.solve(item.data_set, precision, data_set_index=item.index,
+                   first_card=item.first_card)
+        yield item
+
+
+def validated_cards(text: core.Deck, precision: str = "single", *,
                     max_modes: int | None = LEGACY_MAX_MODES,
                     blank: str = "null"
                     ) -> tuple[str, int, DeckError | None]:
     """The cards of the leading data sets that pass validation.
 
-    Returns the card images (one line each, as in the file) of every data
-    set up to the first bad one, how many data sets they hold, and the
-    error for the bad one (or None).
+    Returns the card images (one line each, as in the file, a CR before
+    the LF dropped) of every data set up to the first bad one, how many
+    data sets they hold, and the error for the bad one (or None).  Holds
+    them all: :func:`run` feeds them to the program as they pass.
     """
-    # a card is a line ended by LF, as for the core's reader (a trailing CR
-    # stays: gfortran drops it, like the core's reader)
-    lines = text.split("\n")
-    kept_through = passed = 0
+    fed: list[str] = []
     failure: DeckError | None = None
     try:
-        for item in core.iter_deck(text, precision=precision, blank=blank):
-            if max_modes is not None and item.data_set.n > max_modes:
-                first_card = item.first_card + 4
-                raise DeckError(
-                    f"data set {item.index}, card {first_card}, columns "
-                    f"16-17: N = {item.data_set.n}, but the original program "
-                    f"holds at most {max_modes} modes (DIMENSION (4))",
-                    data_set=item.index, card=first_card, columns=(16, 17))
-            core.solve(item.data_set, precision, data_set_index=item.index,
-                       first_card=item.first_card)
-            kept_through, passed = item.last_card, item.index
+        for item in iter_validated(text, precision, max_modes=max_modes,
+                                   blank=blank):
+            fed.append(item.cards)
     except DeckError as error:
         failure = error
-    cards = "".join(line + "\n" for line in lines[:kept_through])
-    return cards, passed, failure
+    return "".join(fed), len(fed), failure
 
 
-def run(path: str | os.PathLike, precision: str = "single", *,
+class _Program:
+    """The original program running while its cards are fed, its listing
+    copied to a stream (or kept) as it comes.  Each data set fed gives it
+    ``time_limit`` more seconds; past the deadline it is killed."""
+
+    def __init__(self, precision: str, program, stream: BinaryIO | None,
+                 time_limit: float) -> None:
+        self.stream, self.time_limit = stream, time_limit
+        self.chunks: list[bytes] = []
+        self.errors: list[BaseException] = []
+        self.stderr = b""
+        self.timed_out = False
+        self.deadline = time.monotonic() + time_limit
+        self.process = subprocess.Popen(
+            [os.fspath(program or executable(precision))],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE, bufsize=0)
+        self.done = threading.Event()
+        self.threads = [threading.Thread(target=target, daemon=True)
+                        for target in (self._copy, self._keep_stderr,
+                                       self._watch)]
+        for thread in self.threads:
+            thread.start()
+
+    def _copy(self) -> None:
+        fd = self.process.stdout.fileno()
+        try:
+            while True:
+                chunk = os.read(fd, 1 << 16)
+                if not chunk:
+                    return
+                if self.stream is None:
+                    self.chunks.append(chunk)
+                else:
+                    self.stream.write(chunk)
+                    self.stream.flush()
+        except BaseException as error:      # the stream failed: stop
+            self.errors.append(error)
+            self.process.kill()
+
+    def _keep_stderr(self) -> None:
+        for line in self.process.stderr:
+            if len(self.stderr) < 4096:
+                self.stderr += line
+
+    def _watch(self) -> None:
+        while not self.done.wait(0.2):
+            if time.monotonic() > self.deadline and \
+                    self.process.poll() is None:
+                self.timed_out = True
+                self.process.kill()
+                return
+
+    def feed(self, cards: str) -> None:
+        self.deadline = time.monotonic() + self.time_limit
+        try:
+            self.process.stdin.write(cards.encode("ascii"))
+        except BrokenPipeError:
+            pass            # it stopped: finish() says why
+
+    def finish(self) -> str:
+        with contextlib.suppress(BrokenPipeError):
+            self.process.stdin.close()
+        self.process.wait()
+        self.done.set()
+        for thread in self.threads:
+            thread.join()
+        if self.errors:
+            raise self.errors[0]
+        if self.timed_out:
+            raise LegacyError(f"the original program did not finish "
+                              f"within {self.time_limit:g} s of its last "
+                              f"data set")
+        if self.process.returncode != 0:
+            detail = self.stderr.decode("latin-1", "replace").splitlines()
+            raise LegacyError(
+                f"the original program failed (exit status "
+                f"{self.process.returncode}): {' '.join(detail[:2])}")
+        return b"".join(self.chunks).decode("latin-1")
+
+    def kill(self) -> None:
+        self.process.kill()
+        self.process.wait()
+        self.done.set()
+        for thread in self.threads:
+            thread.join(5)
+
+
+def run(path: core.Deck, precision: str = "single", *,
         max_modes: int | None = LEGACY_MAX_MODES,
         program: str | os.PathLike | None = None,
         stream: BinaryIO | None = None) -> str:
-    """The listing the original program prints for the deck at ``path``.
+    """The listing the original program prints for the deck at ``path``
+    (a path, or any deck :func:`contactsep.core.iter_deck` takes; a str
+    is a file name here).
 
-    With ``stream``, the listing is written there as it is printed and ""
-    is returned.  Raises :class:`DeckError` for the first bad data set,
-    with the listing of the data sets before it in
+    The deck is read a data set at a time; each is fed to the program as
+    soon as it passes validation, so the listing starts before the rest of
+    the deck is read.  With ``stream``, the listing is written there as it
+    is printed and "" is returned.  Raises :class:`DeckError` for the first
+    bad data set, with the listing of the data sets before it in
     ``error.listing_before`` (or already written to ``stream``).
     """
-    cards, passed, failure = validated_cards(
-        core.read_text(path), precision, max_modes=max_modes)
-    listing = run_cards(cards, precision, program=program, stream=stream,
-                        time_limit=TIME_LIMIT_PER_DATA_SET * passed) \
-        if cards else ""
+    if isinstance(path, str):
+        path = Path(path)
+    items = iter_validated(path, precision, max_modes=max_modes)
+    failure: DeckError | None = None
+    try:
+        first = next(items)
+    except DeckError as error:
+        error.listing_before = ""
+        raise
+    except StopIteration:        # pragma: no cover (iter_deck raises)
+        return ""
+    program_run = _Program(precision, program, stream,
+                           TIME_LIMIT_PER_DATA_SET)
+    try:
+        program_run.feed(first.cards)
+        try:
+            for item in items:
+                program_run.feed(item.cards)
+        except DeckError as error:
+            failure = error
+        listing = program_run.finish()
+    except BaseException:
+        program_run.kill()
+        raise
     if failure is not None:
         failure.listing_before = listing
         raise failure

@@ -368,6 +368,13 @@ def _minima_between(vel, t: np.ndarray, v_grid: np.ndarray
     return k, _bisect(lambda s: -vel(s), t[k], t[k + 1])
 
 
+#: Most samples the first-impact search may take (at 1/32 of the shortest
+#: period): a search that needs more is refused with a ValueError rather
+#: than run for hours (a deck with all lengths 1e-6 in asks for ~1e15).
+MAX_SEARCH_SAMPLES = 10_000_000
+_SEARCH_CHUNK = 1 << 16
+
+
 def first_impact(ape, p, c, dely: float, *, horizon: float | None = None
                  ) -> float:
     """The first t > 0 at which y(L,t) = sum ape_j c_j cos p_j t (III-(3))
@@ -394,20 +401,33 @@ def first_impact(ape, p, c, dely: float, *, horizon: float | None = None
     if horizon is None:
         horizon = 4.0 * 2.0 * math.pi / float(np.min(p))
     step = 2.0 * math.pi / float(np.max(p)) / _SAMPLES_PER_PERIOD
-    t = np.arange(int(math.ceil(horizon / step)) + 1) * step
-    y = disp(t)
-    below = np.nonzero(~(y > 0.0))[0]
-    k_direct = int(below[0]) if below.size else t.size
-    # displacement minima in the intervals up to the first sample at or
-    # below DELY
-    scan = t[:k_direct + 1]
-    k_min, t_min = _minima_between(vel, scan, vel(scan))
-    dips = np.nonzero(~(disp(t_min) > 0.0))[0] if t_min.size else t_min
-    if dips.size:
-        first = int(dips[0])
-        lo, hi = t[k_min[first]], t_min[first]
-    elif k_direct < t.size:
-        lo, hi = t[k_direct - 1], t[k_direct]
+    samples = horizon / step
+    if not samples < MAX_SEARCH_SAMPLES:
+        raise ValueError(
+            f"the first impact search would take {samples:.3g} samples "
+            f"(1/{_SAMPLES_PER_PERIOD} of the shortest period, {step:.3g} "
+            f"s, over {horizon:.3g} s), more than MAX_SEARCH_SAMPLES = "
+            f"{MAX_SEARCH_SAMPLES:.3g}")
+    count = int(math.ceil(samples)) + 1
+    # in chunks that share their end samples: memory does not grow with
+    # the horizon
+    for start in range(0, count - 1, _SEARCH_CHUNK):
+        t = np.arange(start, min(start + _SEARCH_CHUNK, count - 1) + 1) * step
+        y = disp(t)
+        below = np.nonzero(~(y > 0.0))[0]
+        k_direct = int(below[0]) if below.size else t.size
+        # displacement minima in the intervals up to the first sample at
+        # or below DELY
+        scan = t[:k_direct + 1]
+        k_min, t_min = _minima_between(vel, scan, vel(scan))
+        dips = np.nonzero(~(disp(t_min) > 0.0))[0] if t_min.size else t_min
+        if dips.size:
+            first = int(dips[0])
+            lo, hi = t[k_min[first]], t_min[first]
+            break
+        if k_direct < t.size:
+            lo, hi = t[k_direct - 1], t[k_direct]
+            break
     else:
         raise ValueError(
             f"the tip does not reach DELY = {dely!r} within {horizon!r} s")

@@ -1,0 +1,209 @@
+"""Where the command's output goes, and how it stops (issue 9).
+
+``-o PATH`` (:func:`open_output`):
+
+* a regular file, new or existing, is written to a temporary file beside
+  it (``.NAME.XXXX.tmp``) and renamed into place when the command ends, so
+  the target is either what it was or a whole listing.  A new file gets
+  the permissions the umask allows (0666 & ~umask); an existing one keeps
+  its own.  A bad data set is not a failure of the output: the listings
+  of the data sets before it are what the command computed, and are
+  renamed into place before the error is reported;
+* a write error, Ctrl-C (SIGINT) or SIGTERM removes the temporary file
+  and leaves the target as it was;
+* a symbolic link is followed: the file it points to is written, the link
+  stays;
+* anything that is not a regular file (``/dev/null``, a FIFO,
+  ``/dev/stdout``, a terminal) is opened and written directly, never
+  replaced; a directory is refused;
+* messages name the path as the user gave it, never the temporary file.
+
+Standard output: a closed standard output (``>&-``) is an error at the
+first write, ``standard output is closed``; a write error (``/dev/full``)
+is reported like any other, exit status 2.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import stat
+import sys
+import tempfile
+from typing import Iterator, TextIO
+
+from contactsep.errors import DeckError, InputError
+
+#: Characters written at a time: a listing of tens of megabytes is never
+#: encoded whole.
+_CHUNK = 1 << 20
+
+
+class Terminated(BaseException):
+    """SIGTERM arrived: unwind (removing temporary files) and stop."""
+
+
+def raise_terminated(signum, frame) -> None:
+    raise Terminated
+
+
+class _ClosedBinary:
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def write(self, data) -> int:
+        raise OSError(errno.EBADF, f"{self.name} is closed")
+
+    def flush(self) -> None:
+        pass
+
+    def fileno(self) -> int:
+        raise OSError(errno.EBADF, f"{self.name} is closed")
+
+    def isatty(self) -> bool:
+        return False
+
+
+class _ClosedText(_ClosedBinary):
+    """Stands for a standard stream that was closed when the command
+    started: writing to it is an OSError, flushing it (nothing written)
+    is not."""
+
+    @property
+    def buffer(self) -> _ClosedBinary:
+        return _ClosedBinary(self.name)
+
+
+def guard_closed_streams() -> None:
+    """Python sets ``sys.stdout`` to None when file descriptor 1 is closed
+    at start-up (likewise 0 and 2).  Put a stand-in there that fails on
+    write with a clear OSError, and hold descriptors 0-2 open on the null
+    device, so that no file the command opens can take their place."""
+    for fd, name in ((0, "stdin"), (1, "stdout"), (2, "stderr")):
+        if getattr(sys, name) is not None:
+            continue
+        try:
+            os.fstat(fd)
+        except OSError:
+            null = os.open(os.devnull, os.O_RDWR)
+            if null != fd:
+                os.dup2(null, fd)
+                os.close(null)
+        if name == "stdout":
+            sys.stdout = _ClosedText("standard output")
+        elif name == "stderr":
+            sys.stderr = open(os.devnull, "w")
+
+
+def write_text(stream: TextIO, text: str) -> None:
+    """Write ``text`` a megabyte at a time (no copy of a long listing)."""
+    for start in range(0, len(text), _CHUNK):
+        stream.write(text[start:start + _CHUNK])
+
+
+def _named(error: OSError, path: str) -> OSError:
+    """The error with the user's path in it (not a temporary file's)."""
+    if error.strerror is None:
+        return error
+    renamed = OSError(error.errno, error.strerror, path)
+    renamed.__cause__ = None
+    return renamed
+
+
+@contextlib.contextmanager
+def open_output(path: str | os.PathLike) -> Iterator[TextIO]:
+    """A text stream to ``path`` for ``-o`` (module docstring)."""
+    path = os.fspath(path)
+    target = os.path.realpath(path)
+    try:
+        info = os.stat(target)
+    except FileNotFoundError:
+        info = None
+    except OSError as error:
+        raise _named(error, path) from None
+    if info is not None and stat.S_ISDIR(info.st_mode):
+        raise OSError(errno.EISDIR, "Is a directory, not a file", path)
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        try:
+            with open(target, "w", encoding="ascii", newline="") as out:
+                yield out
+        except OSError as error:
+            raise _named(error, path) from None
+        return
+    directory, name = os.path.split(target)
+    try:
+        fd, temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp",
+                                    dir=directory or ".")
+    except OSError as error:
+        raise _named(error, path) from None
+    kept: BaseException | None = None
+    try:
+        if info is not None:
+            mode = stat.S_IMODE(info.st_mode)
+        else:
+            umask = os.umask(0)
+            os.umask(umask)
+            mode = 0o666 & ~umask
+        os.fchmod(fd, mode)
+        with os.fdopen(fd, "w", encoding="ascii", newline="") as out:
+            try:
+                yield out
+            except (DeckError, InputError) as error:
+                # the deck's fault, not the output's: keep what was done
+                kept = error
+        os.replace(temp, target)
+    except BaseException as error:
+        with contextlib.suppress(OSError):
+            os.unlink(temp)
+        if isinstance(error, OSError):
+            raise _named(error, path) from None
+        raise
+    if kept is not None:
+        raise kept
+
+
+def _printable(message: str) -> str:
+    """One line: line ends and TABs become blanks, other control
+    characters are named by their code."""
+    out = []
+    for char in message:
+        if char in "\n\r\t\v\f":
+            out.append(" ")
+        elif char.isprintable():
+            out.append(char)
+        else:
+            out.append(f"<0x{ord(char):02X}>")
+    return "".join(out)
+
+
+def _silence_stdout() -> None:
+    """After a failed write, point stdout at the null device so that the
+    interpreter's last flush cannot print a second message."""
+    try:
+        sys.stdout.flush()
+    except (OSError, ValueError):
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            null = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(null, sys.stdout.fileno())
+            os.close(null)
+
+
+def report(prog: str, error: BaseException) -> None:
+    """Print ``prog: error: <message>``: one printable line."""
+    if isinstance(error, OSError) and error.strerror:
+        message = error.strerror
+        if error.filename is not None:
+            message += f": {os.fsdecode(error.filename)}"
+    else:
+        message = str(error)
+    _silence_stdout()
+    with contextlib.suppress(OSError, ValueError):
+        sys.stderr.write(f"{prog}: error: {_printable(message)}\n")
+        sys.stderr.flush()
+
+
+def stop_quietly(status: int) -> int:
+    """After SIGINT or SIGTERM: flush what was printed, say nothing."""
+    _silence_stdout()
+    return status
