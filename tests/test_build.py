@@ -48,3 +48,18 @@ def test_double_build_computes_in_double():
     np.testing.assert_allclose(double.p, p, rtol=1e-14)
     assert np.max(np.abs(single.p / p - 1)) > 1e-9  # float32 cannot do that
     assert double.listing != single.listing
+
+
+def test_version_and_typing_marker(capsys):
+    import importlib.resources
+
+    import contactsep
+    from contactsep.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == \
+        f"contactsep {contactsep.__version__}"
+    assert importlib.resources.files("contactsep").joinpath(
+        "py.typed").is_file()

@@ -55,6 +55,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="contactsep",
         description="Contact separation due to impact in a redundant "
                     "contact system: the thesis program of Appendix G.")
+    from contactsep import __version__
+    parser.add_argument("--version", action="version",
+                        version=f"contactsep {__version__}")
     commands = parser.add_subparsers(dest="command", required=True,
                                      metavar="COMMAND")
 
