@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 from dataclasses import dataclass
 
 import numpy as np
@@ -9,12 +11,98 @@ import numpy as np
 from contactsep.dataset import DataSet
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Result:
     """Every quantity the Appendix G listing prints for one data set.
 
     Names follow the listing (lower-cased); arrays are NumPy arrays of the
     build's precision (float32 for ``"single"``, float64 for ``"double"``).
+    ``to_dict()`` and ``to_json()`` give every field as plain values.
+
+    Attributes
+    ----------
+    inputs
+        The data set that was run.
+    precision
+        ``"single"`` (the listing's REAL) or ``"double"``.
+    p
+        Upper-contact natural frequencies P(I), rad/s.
+    ape
+        Initial modal amplitudes APE(I) (the D1-D8 closed-form integrals),
+        in.
+    trace_t
+        Impact-search trace, one entry per printed line: T, s.
+    trace_ty
+        Impact-search trace: tip displacement TY, in.
+    trace_tydtl
+        Impact-search trace: tip velocity TYDTL, in/s.
+    t_impact
+        Time of the first impact T (the last point of the search above
+        DELY), s.
+    ey
+        Impulse EY (the listing's psi, eq. 20 with its ACT), lb s.
+    ct
+        Sums of squared mode values CT (upper tip), CT2 (separator mid-
+        span), CT3 (lower tip) used in the impulse.
+    ct2
+        see above (Sums of squared mode values CT (upper tip), CT2
+        (separator mid-span), CT3 (lower tip) used in the impulse.)
+    ct3
+        see above (Sums of squared mode values CT (upper tip), CT2
+        (separator mid-span), CT3 (lower tip) used in the impulse.)
+    a1
+        Post-impact coefficients A1(I), B1(I,1) of the upper contact.
+    b1
+        see above (Post-impact coefficients A1(I), B1(I,1) of the upper
+        contact.)
+    tip_ty
+        Upper-contact tip state printed at line 315 (T = 0 after impact):
+        displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the tip
+        velocity just before impact).
+    tip_tydtl
+        see above (Upper-contact tip state printed at line 315 (T = 0 after
+        impact): displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the
+        tip velocity just before impact).)
+    tip_act
+        see above (Upper-contact tip state printed at line 315 (T = 0 after
+        impact): displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the
+        tip velocity just before impact).)
+    ty2dt
+        Separator mid-span velocity TY2DT after impact, in/s.
+    history_t
+        Lower-contact tip history: times T and displacements TY3, up to TAU.
+    history_ty3
+        see above (Lower-contact tip history: times T and displacements TY3,
+        up to TAU.)
+    p2
+        Separator and lower-contact frequencies P2(I), P3(I), rad/s.
+    p3
+        see above (Separator and lower-contact frequencies P2(I), P3(I),
+        rad/s.)
+    wm
+        Masses WM, WM2 (after the XL2C correction, as printed), WM3, lb
+        s^2/in.
+    wm2
+        see above (Masses WM, WM2 (after the XL2C correction, as printed),
+        WM3, lb s^2/in.)
+    wm3
+        see above (Masses WM, WM2 (after the XL2C correction, as printed),
+        WM3, lb s^2/in.)
+    gr
+        Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 = WM2/WM, MR3
+        = WM2/WM3.
+    beta
+        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
+        WM2/WM, MR3 = WM2/WM3.)
+    mr1
+        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
+        WM2/WM, MR3 = WM2/WM3.)
+    mr3
+        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
+        WM2/WM, MR3 = WM2/WM3.)
+    listing
+        This data set's part of the listing, exactly as the program prints
+        it.
     """
 
     #: The data set that was run.
@@ -88,3 +176,39 @@ class Result:
         if not self.history_ty3.size:
             return float("nan")
         return float(self.history_t[np.argmax(np.abs(self.history_ty3))])
+
+    def __repr__(self) -> str:
+        return (f"Result(precision={self.precision!r}, N={self.inputs.n}, "
+                f"h2={self.inputs.h2!r}, t_impact={self.t_impact:.6g} s, "
+                f"ey={self.ey:.6g} lb s, ty2dt={self.ty2dt:.6g} in/s, "
+                f"extreme_ty3={self.extreme_ty3:.6g} in, "
+                f"history={self.history_t.size} lines)")
+
+    def to_dict(self, *, listing: bool = False) -> dict:
+        """Every field as plain Python values (arrays as lists, the data
+        set as a dict of its cards' values); the listing text only when
+        ``listing`` is true."""
+        out = {}
+        for field in dataclasses.fields(self):
+            if field.name == "listing" and not listing:
+                continue
+            value = getattr(self, field.name)
+            if field.name == "inputs":
+                value = {f.name: _plain(getattr(value, f.name))
+                         for f in dataclasses.fields(value)}
+            out[field.name] = _plain(value)
+        out["extreme_ty3"] = self.extreme_ty3
+        out["extreme_time"] = self.extreme_time
+        return out
+
+    def to_json(self, *, listing: bool = False, **options) -> str:
+        """:meth:`to_dict` as JSON text (``options`` go to json.dumps)."""
+        return json.dumps(self.to_dict(listing=listing), **options)
+
+
+def _plain(value):
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value

@@ -317,7 +317,6 @@ def evaluate_packed(packed: Packed) -> dict:
     tip_release = (release_option == 0) & (ends[0] == 1)
     xi_load = np.where(tip_release, 1.0, xi[0])
     flex = np.zeros(m)
-    load_values = np.zeros((m, n_max))
     for c, end in enumerate(modes.END_CONDITIONS, 1):
         rows = ends[0] == c
         flex[rows] = modes.static_flexibility(end, xi_load[rows])
