@@ -42,64 +42,49 @@ class Result:
     ey
         Impulse EY (the listing's psi, eq. 20 with its ACT), lb s.
     ct
-        Sums of squared mode values CT (upper tip), CT2 (separator mid-
-        span), CT3 (lower tip) used in the impulse.
+        CT: sum of squared upper-tip mode values used in the impulse.
     ct2
-        see above (Sums of squared mode values CT (upper tip), CT2
-        (separator mid-span), CT3 (lower tip) used in the impulse.)
+        CT2: sum of squared separator mid-span mode values.
     ct3
-        see above (Sums of squared mode values CT (upper tip), CT2
-        (separator mid-span), CT3 (lower tip) used in the impulse.)
+        CT3: sum of squared lower-tip mode values.
     a1
         Post-impact coefficients A1(I), B1(I,1) of the upper contact.
     b1
-        see above (Post-impact coefficients A1(I), B1(I,1) of the upper
-        contact.)
+        Post-impact coefficients B1(I,1) of the upper contact.
     tip_ty
         Upper-contact tip state printed at line 315 (T = 0 after impact):
         displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the tip
         velocity just before impact).
     tip_tydtl
-        see above (Upper-contact tip state printed at line 315 (T = 0 after
-        impact): displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the
-        tip velocity just before impact).)
+        Its tip velocity TYDTL at T = 0 after impact, in/s.
     tip_act
-        see above (Upper-contact tip state printed at line 315 (T = 0 after
-        impact): displacement TY, velocity TYDTL, and ACT = sum P*B1*C (the
-        tip velocity just before impact).)
+        ACT = sum P*B1*C: the tip velocity just before impact, in/s.
     ty2dt
         Separator mid-span velocity TY2DT after impact, in/s.
     history_t
         Lower-contact tip history: times T and displacements TY3, up to TAU.
     history_ty3
-        see above (Lower-contact tip history: times T and displacements TY3,
-        up to TAU.)
+        Lower-contact tip displacements TY3 at history_t, in.
     p2
         Separator and lower-contact frequencies P2(I), P3(I), rad/s.
     p3
-        see above (Separator and lower-contact frequencies P2(I), P3(I),
-        rad/s.)
+        Lower-contact frequencies P3(I), rad/s.
     wm
         Masses WM, WM2 (after the XL2C correction, as printed), WM3, lb
         s^2/in.
     wm2
-        see above (Masses WM, WM2 (after the XL2C correction, as printed),
-        WM3, lb s^2/in.)
+        Separator mass WM2 after the XL2C correction (as printed).
     wm3
-        see above (Masses WM, WM2 (after the XL2C correction, as printed),
-        WM3, lb s^2/in.)
+        Lower-contact mass WM3, lb s^2/in.
     gr
         Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 = WM2/WM, MR3
         = WM2/WM3.
     beta
-        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
-        WM2/WM, MR3 = WM2/WM3.)
+        BETA = WM/(WM2+WM3).
     mr1
-        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
-        WM2/WM, MR3 = WM2/WM3.)
+        MR1 = WM2/WM.
     mr3
-        see above (Closing ratios: GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 =
-        WM2/WM, MR3 = WM2/WM3.)
+        MR3 = WM2/WM3.
     listing
         This data set's part of the listing, exactly as the program prints
         it.
