@@ -68,8 +68,8 @@ def compare(design):
     return a, b
 
 
-def test_compiled_equals_twin_on_random_designs():
-    compare(random_designs(200, seed=11, n_max=12))
+def test_compiled_equals_twin_on_1000_random_designs():
+    compare(random_designs(1000, seed=11, n_max=12))
 
 
 @pytest.mark.slow

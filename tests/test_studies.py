@@ -227,3 +227,26 @@ def test_bad_requests_are_one_line_errors(argv, message, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
+
+
+def test_parquet_output_equals_the_csv(tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")
+    path = tmp_path / "s.parquet"
+    csv_out = Collect()
+    runner.run_sweep(spec(), writers=[runner.ParquetWriter(str(path)),
+                                      csv_out], chunk_size=64, workers=1)
+    table = pq.read_table(path).to_pydict()
+    expected = csv_out.table()
+    assert list(table) == list(expected)
+    for key in expected:
+        assert np.array_equal(np.array(table[key]), expected[key])
+
+
+def test_progress_bar_only_on_a_terminal(monkeypatch):
+    pytest.importorskip("tqdm")
+    monkeypatch.setattr("sys.stderr.isatty", lambda: False, raising=False)
+    assert runner._progress(10**6, None) is None
+    assert runner._progress(10**6, False) is None
+    bar = runner._progress(10, True)
+    assert bar is not None
+    bar.close()
