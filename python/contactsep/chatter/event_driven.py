@@ -14,7 +14,8 @@ step of 2y'/B > 0, so round-off cannot create a false re-contact.
 Impacts of a beam on a stop accumulate (Zeno): the rebound speeds fall
 geometrically.  When a rebound speed falls below ``zeno_speed`` times the
 first impact speed, the contact is taken as closed (the remaining normal
-velocity removed, a loss below 1e-12 of the energy for the default) and
+velocity removed: at most (1e-4)^2 of the first impact's energy at the
+contact for the default) and
 the beam moves as a constrained (propped) system, exactly in the modes
 of that system, until the contact force turns tensile; then it flies
 again.  The printed recursion (eq. 7) writes B_j1 where B_j(n-1) belongs
@@ -30,7 +31,7 @@ import numpy as np
 
 #: Rebound speed (relative to the first impact's) below which impacts are
 #: taken to have accumulated into resting contact.
-ZENO_SPEED = 1e-7
+ZENO_SPEED = 1e-4
 #: Safe steps allowed per search before a grazing approach is taken as a
 #: contact.
 MAX_STEPS = 200_000
