@@ -13,7 +13,11 @@ _KERNEL = _model.model_api
 
 def evaluate_packed(packed: Packed) -> dict:
     """Evaluate a packed batch; returns the contract's dict of arrays."""
-    n_max = int(packed.ints[:, 3:].max()) if packed.size else 1
+    if packed.size == 0:
+        # f2py cannot pass zero-length rows: the twin's empty answer
+        from contactsep.model import twin
+        return twin.evaluate_packed(packed)
+    n_max = int(packed.ints[:, 3:].max())
     (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
      status, m1, m2, m3, p1, p2, p3, c3) = _KERNEL.evaluate_batch(
         max(n_max, 1), packed.real.T, packed.ints.T, packed.options)
