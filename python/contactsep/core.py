@@ -1,4 +1,4 @@
-"""The restored Fortran core (fortran/*.f90), called through f2py.
+"""The restored Fortran core (fortran/restored/*.f90), called through f2py.
 
 Two extension modules are built from one generic source: ``_core_single``
 (the listing's REAL, float32) and ``_core_double`` (float64).  This module is
@@ -52,7 +52,7 @@ MAX_HISTORY_LINES = 1_000_000
 _FIELD = 15
 _STATUS_END_OF_DECK = 1
 #: Solver failures and the card field that decides them (status codes of
-#: fortran/status.f90): (card within the data set, columns).
+#: fortran/restored/status.f90): (card within the data set, columns).
 _SOLVER_FIELDS = {
     20: (4, (31, 45)),   # DELY: the release point is not above it
     21: (4, (1, 15)),    # DELT: the search step no longer moves T
