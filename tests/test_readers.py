@@ -88,3 +88,22 @@ def test_replay_honours_the_blank_option(tmp_path):
     bz = core.replay(deck, blank="zero")[0]
     assert bn.inputs.b == 2.0 and bz.inputs.b == 20.0
     assert bn.listing != bz.listing
+
+
+def test_data_set_with_modes_and_a_clear_replace_message():
+    import numpy as np
+    import pytest
+
+    from contactsep import beams, thesis
+
+    ds = thesis.thesis_data_set(0.25)
+    three = ds.with_modes(3)
+    assert three.n == 3 and three.h2 == ds.h2 and three.xl2c == ds.xl2c
+    assert np.array_equal(three.v, beams.eigenvalues("cantilever", 3))
+    assert np.array_equal(three.c2, beams.midspan_values(3))
+    with pytest.raises(ValueError, match=r"use with_modes\(3\)"):
+        ds.replace(n=3)
+    # changing N together with the mode arrays stays possible
+    assert ds.replace(n=3, **{k: v for k, v in
+                              thesis.mode_constants(3).items()
+                              if k != "n"}) == three
