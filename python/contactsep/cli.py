@@ -43,11 +43,18 @@ def _blank(parser: argparse.ArgumentParser) -> None:
              "as zeros (BZ, as on the original card readers)")
 
 
+def _version() -> str:
+    from contactsep import __version__
+    return __version__
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="contactsep",
         description="Contact separation due to impact in a redundant "
                     "contact system: the thesis program of Appendix G.")
+    parser.add_argument("--version", action="version",
+                        version=f"%(prog)s {_version()}")
     commands = parser.add_subparsers(dest="command", required=True,
                                      metavar="COMMAND")
 

@@ -113,8 +113,23 @@ class DataSet:
         object.__setattr__(self, "n", int(self.n))
 
     def replace(self, **changes) -> "DataSet":
-        """A copy with some fields changed (mode arrays may change N)."""
+        """A copy with some fields changed (mode arrays may change N).
+
+        To change N with the mode constants recomputed, use
+        :meth:`with_modes`."""
+        if "n" in changes and int(changes["n"]) != self.n and not any(
+                name in changes for group in MODE_GROUPS for name in group):
+            raise ValueError(
+                f"replace(n={changes['n']}) keeps the {self.n} mode cards; "
+                f"use ds.with_modes({changes['n']}) to recompute them")
         return dataclasses.replace(self, **changes)
+
+    def with_modes(self, n: int) -> "DataSet":
+        """A copy with ``n`` modes and the mode cards recomputed for the
+        program's members (cantilever contacts, clamped-clamped separator)
+        by :func:`contactsep.thesis.mode_constants`."""
+        from contactsep.thesis import mode_constants
+        return dataclasses.replace(self, **mode_constants(int(n)))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, DataSet):

@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 from dataclasses import dataclass
 
 import numpy as np
 
 from contactsep.dataset import DataSet
+
+
+def _plain(value):
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
 
 
 @dataclass(frozen=True, eq=False)
@@ -15,6 +25,48 @@ class Result:
 
     Names follow the listing (lower-cased); arrays are NumPy arrays of the
     build's precision (float32 for ``"single"``, float64 for ``"double"``).
+    Units: inch, pound (force), second.
+
+    Attributes
+    ----------
+    inputs : DataSet
+        The data set that was run.
+    precision : str
+        ``"single"`` (the listing's REAL) or ``"double"``.
+    p : ndarray
+        Upper-contact natural frequencies P(I), rad/s.
+    ape : ndarray
+        Initial modal amplitudes APE(I) (the D1-D8 integrals), in.
+    trace_t, trace_ty, trace_tydtl : ndarray
+        Impact-search trace, one entry per printed line: time T (s), tip
+        displacement TY (in), tip velocity TYDTL (in/s).
+    t_impact : float
+        Time of the first impact T (last point of the search above DELY), s.
+    ey : float
+        Impulse EY (the listing's psi, eq. 20 with its ACT), lb s.
+    ct, ct2, ct3 : float
+        Sums of squared mode values: upper tip, separator mid-span, lower
+        tip (dimensionless), used in the impulse.
+    a1, b1 : ndarray
+        Post-impact coefficients A1(I), B1(I,1) of the upper contact, in.
+    tip_ty, tip_tydtl, tip_act : float
+        Upper-contact tip state at line 315 (T = 0 after impact):
+        displacement (in), velocity (in/s), ACT = sum P*B1*C (in/s).
+    ty2dt : float
+        Separator mid-span velocity TY2DT after impact, in/s.
+    history_t, history_ty3 : ndarray
+        Lower-contact tip history up to TAU = 0.060 s: times (s) and
+        displacements TY3 (in, positive toward the separator's side as
+        the listing signs it).
+    p2, p3 : ndarray
+        Separator and lower-contact frequencies P2(I), P3(I), rad/s.
+    wm, wm2, wm3 : float
+        Masses WM, WM2 (after the XL2C correction), WM3, lb s^2/in.
+    gr, beta, mr1, mr3 : float
+        Closing ratios GR = H2/XL2, BETA = WM/(WM2+WM3), MR1 = WM2/WM,
+        MR3 = WM2/WM3 (dimensionless).
+    listing : str
+        This data set's part of the listing, exactly as the program prints.
     """
 
     #: The data set that was run.
@@ -69,6 +121,30 @@ class Result:
     mr3: float
     #: This data set's part of the listing, exactly as the program prints it.
     listing: str
+
+    def __repr__(self) -> str:
+        return (f"Result(precision={self.precision!r}, n={self.inputs.n}, "
+                f"t_impact={self.t_impact:.6g} s, ey={self.ey:.6g} lb s, "
+                f"extreme_ty3={self.extreme_ty3:.6g} in at "
+                f"{self.extreme_time:.6g} s, "
+                f"{self.history_ty3.size} history lines)")
+
+    def to_dict(self) -> dict:
+        """Plain Python values (lists, floats, str): ``json.dumps``-able.
+        ``inputs`` becomes a dict of the data set's fields."""
+        out = {}
+        for field in dataclasses.fields(self):
+            value = getattr(self, field.name)
+            if isinstance(value, DataSet):
+                value = {f.name: _plain(getattr(value, f.name))
+                         for f in dataclasses.fields(value)}
+            out[field.name] = _plain(value)
+        return out
+
+    def to_json(self, **kwargs) -> str:
+        """:meth:`to_dict` as JSON text (keyword arguments go to
+        :func:`json.dumps`)."""
+        return json.dumps(self.to_dict(), **kwargs)
 
     @property
     def tip_velocity_before(self) -> float:
