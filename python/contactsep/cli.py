@@ -15,10 +15,11 @@ import importlib
 import os
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 from typing import Sequence
 
-from contactsep import core
+from contactsep import core, formats
 from contactsep.errors import DeckError, InputError
 from contactsep.legacy import LegacyError
 
@@ -75,6 +76,12 @@ def build_parser() -> argparse.ArgumentParser:
     _blank(replay)
     replay.add_argument("-o", "--output", metavar="FILE",
                         help="write the listing to FILE instead of stdout")
+    replay.add_argument(
+        "--format", choices=("listing", "summary", "json", "csv"),
+        default="listing",
+        help="listing (default: the program's, byte-identical), summary "
+             "(every number with name, unit, meaning), json (one object "
+             "per data set and line), csv (one row per data set)")
 
     compare = commands.add_parser(
         "compare", help="compare all implementations on a deck",
@@ -111,9 +118,9 @@ def _legacy(args: argparse.Namespace) -> int:
 def _replay(args: argparse.Namespace) -> int:
     text = core.read_text(args.deck)
     if args.output is None:
-        for result in core.iter_replay(text, args.precision,
-                                       blank=args.blank):
-            sys.stdout.write(result.listing)
+        for index, result in enumerate(core.iter_replay(
+                text, args.precision, blank=args.blank), 1):
+            sys.stdout.write(formats.render(result, args.format, index))
         return EXIT_OK
     target = Path(args.output)
     if target.exists() and target.samefile(args.deck):
@@ -125,9 +132,9 @@ def _replay(args: argparse.Namespace) -> int:
             "w", encoding="ascii", newline="", dir=target.parent or ".",
             prefix=f".{target.name}.", delete=False) as out:
         try:
-            for result in core.iter_replay(text, args.precision,
-                                           blank=args.blank):
-                out.write(result.listing)
+            for index, result in enumerate(core.iter_replay(
+                    text, args.precision, blank=args.blank), 1):
+                out.write(formats.render(result, args.format, index))
         finally:
             out.close()
             os.replace(out.name, target)
@@ -144,10 +151,17 @@ def _compare(args: argparse.Namespace) -> int:
     return EXIT_OK if report.passed else EXIT_TOLERANCE
 
 
+def _one_line_warning(message, category, filename, lineno, file=None,
+                      line=None) -> None:
+    """Warnings as one line on stderr: ``contactsep: warning: ...``."""
+    print(f"contactsep: warning: {message}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contactsep`` command; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    warnings.showwarning = _one_line_warning
     handler = getattr(args, "handler", None) or {
         "legacy": _legacy, "replay": _replay,
         "compare": _compare}[args.command]

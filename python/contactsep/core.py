@@ -18,6 +18,7 @@ from typing import Iterator
 import numpy as np
 
 from contactsep import cards
+from contactsep import checks
 from contactsep.dataset import MODE_GROUPS, SCALAR_CARDS, DataSet
 from contactsep.errors import DeckError, location
 from contactsep.result import Result
@@ -245,7 +246,7 @@ def solve(data_set: DataSet, precision: str = "single", *,
         raise DeckError(f"{where}{_text(message)}",
                         data_set=data_set_index, card=card, columns=columns,
                         listing=text)
-    return Result(
+    result = Result(
         inputs=data_set, precision=precision,
         p=p.copy(), ape=ape.copy(),
         trace_t=trace[:n_trace, 0].copy(),
@@ -263,6 +264,9 @@ def solve(data_set: DataSet, precision: str = "single", *,
         gr=float(closing[4]), beta=float(closing[5]),
         mr1=float(closing[6]), mr3=float(closing[7]),
         listing=text)
+    checks.warn(checks.input_messages(data_set)
+                + checks.result_messages(result))
+    return result
 
 
 def iter_replay(text: str, precision: str = "single", *,
