@@ -285,9 +285,16 @@ def compare_deck(path: str | os.PathLike) -> Comparison:
                 cards = "".join(line + "\n" for line in
                                 lines[d_item.first_card - 1:d_item.last_card])
                 printed = listing.parse(legacy.run_cards(cards, "single"))[0]
+            single_printed = listing.parse(single.listing)[0]
+            # the same program in the same precision prints the same lines:
+            # a history shorter or longer than the legacy one is a failure
+            if printed is not None and len(printed.history) != len(
+                    single_printed.history):
+                comparison.notes.append((d_item.index, (
+                    f"history has {len(single_printed.history)} lines, "
+                    f"the legacy program's {len(printed.history)}")))
             comparison.tables.append((d_item.index, _rows(
-                printed, single, listing.parse(single.listing)[0], double,
-                ref)))
+                printed, single, single_printed, double, ref)))
     except DeckError as error:
         comparison.error = error
     return comparison
