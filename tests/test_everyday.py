@@ -182,3 +182,14 @@ def test_cli_warning_one_line_listing_unchanged(tmp_path):
     assert err.count("\n") == 1
     assert err.startswith("contactsep: warning: RHO2 = 0.1 looks like")
     assert out == "".join(r.listing for r in contactsep.replay(str(deck)))
+
+
+def test_solve_without_listing_same_numbers(result):
+    lean = contactsep.solve(thesis.thesis_data_set(0.25), "double",
+                            listing=False)
+    assert lean.listing == ""
+    for name in ("p", "ape", "trace_t", "trace_ty", "trace_tydtl", "a1",
+                 "b1", "history_t", "history_ty3", "p2", "p3"):
+        assert np.array_equal(getattr(lean, name), getattr(result, name))
+    for name in ("t_impact", "ey", "tip_act", "ty2dt", "wm2", "beta"):
+        assert getattr(lean, name) == getattr(result, name)
