@@ -535,7 +535,10 @@ def test_thesis_midspan_values_from_published_constants():
 
 def test_thesis_data_set_needs_a_table_iii_thickness():
     with pytest.raises(ValueError, match="Table III"):
-        thesis.thesis_data_set(0.3)
+        thesis.thesis_data_set(0.8)
+    # between Table III's rows, the stated rule: linear in d
+    assert thesis.thesis_data_set(0.3).xl2c == pytest.approx(
+        3.60 + (3.81 - 3.60) * (0.3 - 0.25) / (0.35 - 0.25))
     custom = thesis.thesis_data_set(0.3, equivalent_length=3.7)
     assert (custom.h2, custom.xl2c) == (0.3, 3.7)
 

@@ -97,6 +97,31 @@ def test_a_wrong_implementation_is_caught(monkeypatch):
     assert not report.passed
 
 
+def test_a_short_history_is_caught(monkeypatch):
+    """A restored history one line shorter than the legacy one fails."""
+    from contactsep import core, listing
+    real_solve = core.solve
+
+    def short(data_set, precision="single", **kw):
+        result = real_solve(data_set, precision, **kw)
+        if precision != "single":
+            return result
+        lines = result.listing.splitlines(keepends=True)
+        # drop one history line: the restored history is the run of
+        # 2-field lines after the closing table
+        parsed = listing.parse(result.listing)[0]
+        last = f"{parsed.history[-1, 0]:15.9f}"
+        index = max(i for i, line in enumerate(lines)
+                    if line.startswith(last))
+        del lines[index]
+        return dataclasses.replace(result, listing="".join(lines))
+
+    monkeypatch.setattr(core, "solve", short)
+    report = compare.compare_deck(THESIS_DECKS[0])
+    assert not report.passed
+    assert any("history has" in note for _, note in report.notes)
+
+
 def cli(*args):
     return subprocess.run([sys.executable, "-m", "contactsep", *args],
                           capture_output=True, text=True, timeout=300)

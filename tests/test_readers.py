@@ -101,7 +101,7 @@ def test_data_set_with_modes_and_a_clear_replace_message():
     assert three.n == 3 and three.h2 == ds.h2 and three.xl2c == ds.xl2c
     assert np.array_equal(three.v, beams.eigenvalues("cantilever", 3))
     assert np.array_equal(three.c2, beams.midspan_values(3))
-    with pytest.raises(ValueError, match=r"use with_modes\(3\)"):
+    with pytest.raises(ValueError, match=r"with_modes\(3\)"):
         ds.replace(n=3)
     # changing N together with the mode arrays stays possible
     assert ds.replace(n=3, **{k: v for k, v in

@@ -69,3 +69,31 @@ def test_readme_commands_are_commands():
     choices = build_parser()._subparsers._group_actions[0].choices
     for name in re.findall(r"^contactsep (\w+)", readme, flags=re.M):
         assert name in choices
+
+
+def test_designers_loop_gives_the_decks_numbers():
+    """The README's loop (thesis_data_set(d), double) gives what each
+    thickness's deck gives when replayed in double."""
+    import numpy as np
+    import pytest
+
+    import contactsep
+    from contactsep import thesis
+    from contactsep.dataset import MODE_GROUPS
+    for d, name in ((0.125, "thesis_d0125"), (0.25, "thesis_d0250"),
+                    (0.5, "thesis_d0500")):
+        deck = contactsep.replay(ROOT / "data" / "decks" / f"{name}.dat",
+                                 precision="double")[0]
+        ds = thesis.thesis_data_set(d)
+        # every card field but the mode constants is the deck's, XL2C
+        # included; the mode constants are the deck's to its 9 decimals
+        modes = {name: getattr(deck.inputs, name) for group in MODE_GROUPS
+                 for name in group}
+        assert ds.replace(**modes) == deck.inputs
+        for name in modes:
+            np.testing.assert_allclose(getattr(ds, name), modes[name],
+                                       rtol=0, atol=5e-10 + 1e-15)
+        loop = contactsep.solve(ds, "double")
+        # 9-decimal ALPHA moves A_4 by <= 1.4e-3 relative (reference.py)
+        assert loop.extreme_ty3 == pytest.approx(deck.extreme_ty3, rel=1.4e-3)
+        assert loop.extreme_time == deck.extreme_time

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from contactsep import reference as ref
+from contactsep import thesis
 from contactsep.dataset import DataSet
 
 EPS = float(np.finfo(np.float64).eps)
@@ -616,6 +617,9 @@ def test_table_III_equivalent_lengths(d):
     the printed L_c to its 3 digits; the 0.750 row gives 3.73 in, not 4.15:
     4.15 is what p = 6.28 x 9000 = 56 520 rad/s would give."""
     p, printed = TABLE_III[d]
+    # the package's Table III is the thesis's
+    assert thesis.EQUIVALENT_LENGTHS[d] == printed
+    assert thesis.thesis_data_set(d).xl2c == printed
     lc = math.sqrt(1.3e6 * d / p)
     assert p == pytest.approx(6.28 * TABLE_II_EXPERIMENTAL[d], rel=5e-3)
     if d < 0.75:

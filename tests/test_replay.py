@@ -201,21 +201,3 @@ def test_cli_replay_output_file(tmp_path):
     assert done.returncode == 0 and done.stdout == ""
     assert target.read_text() == legacy.run(deck, "single")
 
-
-def test_result_reads_and_exports():
-    """help() shows each field's meaning; repr is short; to_dict/to_json
-    carry the values the listing prints."""
-    import json
-    import pydoc
-
-    import contactsep
-
-    r = contactsep.replay(ROOT / "data" / "decks" / "thesis_d0250.dat",
-                          precision="double")[0]
-    assert len(repr(r)) < 250 and "ey=" in repr(r)
-    text = pydoc.render_doc(contactsep.Result)
-    assert "Separator mid-span velocity TY2DT after impact" in text
-    data = json.loads(r.to_json())
-    assert data["ey"] == r.ey and data["history_ty3"] == r.history_ty3.tolist()
-    assert data["inputs"]["h2"] == 0.25 and "listing" not in data
-    assert json.loads(r.to_json(listing=True))["listing"] == r.listing

@@ -71,9 +71,12 @@ contains
   !> they hold what came before it, the listing ending with its last
   !> whole line.
   subroutine solve(scalars, n, modes, max_trace, max_history, max_listing, &
-      p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history, &
-      n_history, p2, p3, closing, listing, listing_length, status, message)
+      with_listing, p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, &
+      history, n_history, p2, p3, closing, listing, listing_length, &
+      status, message)
     real(wp), intent(in) :: scalars(18)
+    !> 0: do not format the listing text (listing_length is 0).
+    integer, intent(in) :: with_listing
     !> Number of modes N.
     integer, intent(in) :: n
     !> Most trace lines, history lines and listing bytes there is room for.
@@ -162,7 +165,7 @@ contains
         alph2=modes(:, 6), v3=modes(:, 7), c3=modes(:, 8), &
         alph3=modes(:, 9))
     call run_data_set(inputs, max_trace, max_history, max_listing, result, &
-        status, message)
+        status, message, keep_listing=with_listing /= 0)
 
     if (allocated(result%p)) then
       p = result%p
@@ -181,7 +184,8 @@ contains
     ty2dt = result%ty2dt
     closing = [result%wm, result%wm2, result%wm3, result%xl2c, result%gr, &
         result%beta, result%mr1, result%mr3]
-    count = result%listing%length
+    count = 0
+    if (with_listing /= 0) count = result%listing%length
     do i = 1, count
       listing(i) = int(iachar(result%listing%text(i:i)), int8)
     end do

@@ -26,18 +26,25 @@ module contactsep_listing
     !> Bytes written so far: text(1:length).
     integer :: length = 0
     integer :: capacity = 0
+    !> False: records are counted as written but neither formatted nor
+    !> kept (a caller that never reads the text).
+    logical :: enabled = .true.
   end type listing_text
 
 contains
 
   !> An empty listing that may grow to capacity bytes.
-  pure subroutine start_listing(listing, capacity)
+  pure subroutine start_listing(listing, capacity, enabled)
     type(listing_text), intent(out) :: listing
     integer, intent(in) :: capacity
+    !> Whether to keep the text (default true).
+    logical, intent(in), optional :: enabled
 
     listing%capacity = max(capacity, 0)
     listing%length = 0
     listing%text = ''
+    listing%enabled = .true.
+    if (present(enabled)) listing%enabled = enabled
   end subroutine start_listing
 
   !> Append one record of at most 7 values, formatted with (7F15.9).
@@ -63,6 +70,7 @@ contains
       return
     end if
     width = size(values) * field_width
+    if (.not. listing%enabled) return
     write (record, '(7F15.9)', iostat=ios, iomsg=io_message) values
     if (ios /= 0) then
       status = status_format_failed

@@ -88,10 +88,12 @@ contains
   !>
   !> max_trace and max_history bound the trace and history lines and
   !> max_listing the bytes of listing text.
+  !> keep_listing false skips formatting the text (default true).
   subroutine run_data_set(inputs, max_trace, max_history, max_listing, &
-      result, status, message)
+      result, status, message, keep_listing)
     type(data_set), intent(in) :: inputs
     integer, intent(in) :: max_trace, max_history, max_listing
+    logical, intent(in), optional :: keep_listing
     type(solution), intent(out) :: result
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
@@ -120,7 +122,7 @@ contains
     result%b1 = 0.0_wp
     result%p2 = 0.0_wp
     result%p3 = 0.0_wp
-    call start_listing(result%listing, max_listing)
+    call start_listing(result%listing, max_listing, keep_listing)
 
     associate (d => inputs, r => result)
       call emit([d%xl2, d%b2, d%h2, d%rho2])

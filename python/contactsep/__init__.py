@@ -11,13 +11,13 @@ import importlib
 
 from contactsep.core import replay, solve
 from contactsep.dataset import DataSet, cards_per_set
-from contactsep.errors import DeckError, InputError
+from contactsep.errors import ContactsepWarning, DeckError, InputError
 from contactsep.result import Result
 
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 
-__all__ = ["DataSet", "DeckError", "InputError", "Result", "cards_per_set",
+__all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError", "Result", "cards_per_set",
            "replay", "solve", *_MODEL_NAMES]
 
 

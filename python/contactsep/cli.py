@@ -18,10 +18,11 @@ import importlib
 import os
 import signal
 import sys
+import warnings
 from pathlib import Path
 from typing import Sequence
 
-from contactsep import core, output
+from contactsep import core, formats, output
 from contactsep.errors import DeckError, InputError
 from contactsep.legacy import LegacyError
 
@@ -50,14 +51,18 @@ def _blank(parser: argparse.ArgumentParser) -> None:
              "as zeros (BZ, as on the original card readers)")
 
 
+def _version() -> str:
+    from contactsep import __version__
+    return __version__
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="contactsep",
         description="Contact separation due to impact in a redundant "
                     "contact system: the thesis program of Appendix G.")
-    from contactsep import __version__
     parser.add_argument("--version", action="version",
-                        version=f"contactsep {__version__}")
+                        version=f"%(prog)s {_version()}")
     commands = parser.add_subparsers(dest="command", required=True,
                                      metavar="COMMAND")
 
@@ -78,6 +83,12 @@ def build_parser() -> argparse.ArgumentParser:
     _blank(replay)
     replay.add_argument("-o", "--output", metavar="FILE",
                         help="write the listing to FILE instead of stdout")
+    replay.add_argument(
+        "--format", choices=("listing", "summary", "json", "csv"),
+        default="listing",
+        help="listing (default: the program's, byte-identical), summary "
+             "(every number with name, unit, meaning), json (one object "
+             "per data set and line), csv (one row per data set)")
 
     compare = commands.add_parser(
         "compare", help="compare all implementations on a deck",
@@ -114,9 +125,10 @@ def _legacy(args: argparse.Namespace) -> int:
 def _replay(args: argparse.Namespace) -> int:
     deck = Path(args.deck)
     if args.output is None:
-        for result in core.iter_replay(deck, args.precision,
-                                       blank=args.blank):
-            output.write_text(sys.stdout, result.listing)
+        for index, result in enumerate(core.iter_replay(
+                deck, args.precision, blank=args.blank), 1):
+            output.write_text(sys.stdout,
+                              formats.render(result, args.format, index))
             sys.stdout.flush()
         return EXIT_OK
     target = Path(args.output)
@@ -124,9 +136,10 @@ def _replay(args: argparse.Namespace) -> int:
         raise CommandError(f"will not write the listing over the deck "
                            f"{args.deck}")
     with output.open_output(args.output) as out:
-        for result in core.iter_replay(deck, args.precision,
-                                       blank=args.blank):
-            output.write_text(out, result.listing)
+        for index, result in enumerate(core.iter_replay(
+                deck, args.precision, blank=args.blank), 1):
+            output.write_text(out, formats.render(result, args.format,
+                                                  index))
     return EXIT_OK
 
 
@@ -137,6 +150,12 @@ def _compare(args: argparse.Namespace) -> int:
     if report.error is not None:
         raise report.error
     return EXIT_OK if report.passed else EXIT_TOLERANCE
+
+
+def _one_line_warning(message, category, filename, lineno, file=None,
+                      line=None) -> None:
+    """Warnings as one line on stderr: ``contactsep: warning: ...``."""
+    print(f"contactsep: warning: {message}", file=sys.stderr)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -159,6 +178,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    warnings.showwarning = _one_line_warning
     handler = getattr(args, "handler", None) or {
         "legacy": _legacy, "replay": _replay,
         "compare": _compare}[args.command]

@@ -347,5 +347,13 @@ def iter_compare(source: core.Deck) -> Iterator[tuple[int, str, object]]:
         if d_item.data_set.n <= legacy.LEGACY_MAX_MODES:
             printed = listing.parse(
                 legacy.run_cards(d_item.cards, "single"))[0]
+        single_printed = listing.parse(single.listing)[0]
+        # the same program in the same precision prints the same lines: a
+        # history shorter or longer than the legacy one is a failure
+        if printed is not None and len(printed.history) != len(
+                single_printed.history):
+            yield d_item.index, "note", (
+                f"history has {len(single_printed.history)} lines, the "
+                f"legacy program's {len(printed.history)}")
         yield d_item.index, "table", _rows(
-            printed, single, listing.parse(single.listing)[0], double, ref)
+            printed, single, single_printed, double, ref)

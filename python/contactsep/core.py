@@ -21,6 +21,7 @@ from typing import BinaryIO, Iterator, Union
 import numpy as np
 
 from contactsep import cards
+from contactsep import checks
 from contactsep.dataset import (FIXED_CARDS, MODE_GROUPS, SCALAR_CARDS,
                                 DataSet)
 from contactsep.errors import DeckError, describe_byte, location
@@ -44,7 +45,7 @@ MAX_SEARCH_LINES = 1_000_000
 #: Room for search lines on a first try: f2py zero-fills every output
 #: array, so room costs time even unused (12 ms per call for a million
 #: lines); a search that needs more is run again with MAX_SEARCH_LINES.
-_FIRST_SEARCH_LINES = 10_000
+_FIRST_SEARCH_LINES = 512
 _STATUS_SEARCH_FULL = 23
 #: Most lower-contact history lines (T = 0, DELT, ... < TAU) the core will
 #: produce: DELT must be at least TAU / 1e6 = 6e-8 s.
@@ -393,7 +394,7 @@ def listing_capacity(n: int, history: int, search: int) -> int:
 
 def solve(data_set: DataSet, precision: str = "single", *,
           data_set_index: int | None = None,
-          first_card: int | None = None) -> Result:
+          first_card: int | None = None, listing: bool = True) -> Result:
     """Run one data set through the restored core.
 
     This is the call a designer makes in a loop: no deck file is involved.
@@ -401,6 +402,8 @@ def solve(data_set: DataSet, precision: str = "single", *,
     outside their ranges, a release point not above the separator or an
     impact that never comes raise :class:`DeckError`; ``data_set_index``
     and ``first_card`` (the data set's place in a deck) locate it.
+    ``listing=False`` skips formatting the listing text (``Result.listing``
+    is then ``""``); every number is the same.
     """
     api = _api(precision)
     dtype = np.float32 if precision == "single" else np.float64
@@ -411,13 +414,16 @@ def solve(data_set: DataSet, precision: str = "single", *,
         dtype=dtype)
     n = data_set.n
     max_history = history_length(data_set.delt, precision)
+    with_listing = listing
     for search in (_FIRST_SEARCH_LINES, MAX_SEARCH_LINES):
         (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history,
          n_history, p2, p3, closing, listing, listing_length, status,
          message) = api.solve(
              scalars=scalars, n=n, modes=modes, max_trace=search,
              max_history=max_history,
-             max_listing=listing_capacity(n, max_history, search))
+             max_listing=listing_capacity(n, max_history, search)
+             if with_listing else 1,
+             with_listing=int(bool(with_listing)))
         if status != _STATUS_SEARCH_FULL:
             break
     text = listing[:listing_length].tobytes().decode("ascii")
@@ -431,7 +437,7 @@ def solve(data_set: DataSet, precision: str = "single", *,
         raise DeckError(f"{where}{_text(message)}",
                         data_set=data_set_index, card=card, columns=columns,
                         listing=text)
-    return Result(
+    result = Result(
         inputs=data_set, precision=precision,
         p=p.copy(), ape=ape.copy(),
         trace_t=trace[:n_trace, 0].copy(),
@@ -449,6 +455,9 @@ def solve(data_set: DataSet, precision: str = "single", *,
         gr=float(closing[4]), beta=float(closing[5]),
         mr1=float(closing[6]), mr3=float(closing[7]),
         listing=text)
+    checks.warn(checks.input_messages(data_set)
+                + checks.result_messages(result))
+    return result
 
 
 def iter_replay(source: Deck, precision: str = "single", *,

@@ -113,25 +113,23 @@ class DataSet:
         object.__setattr__(self, "n", int(self.n))
 
     def replace(self, **changes) -> "DataSet":
-        """A copy with some fields changed (mode arrays may change N; to
-        change N with the mode constants recomputed, use
-        :meth:`with_modes`)."""
-        if "n" in changes and not any(
+        """A copy with some fields changed (mode arrays may change N).
+
+        To change N with the mode constants recomputed, use
+        :meth:`with_modes`."""
+        if "n" in changes and int(changes["n"]) != self.n and not any(
                 name in changes for group in MODE_GROUPS for name in group):
-            n = changes["n"]
             raise ValueError(
-                f"replace(n={n!r}) would keep the {self.n} mode cards of each "
-                f"member; use with_modes({n!r}) to recompute them for "
-                f"N = {n!r}, or pass the mode arrays too")
+                f"replace(n={changes['n']}) keeps the {self.n} mode cards; "
+                f"use ds.with_modes({changes['n']}) to recompute them")
         return dataclasses.replace(self, **changes)
 
     def with_modes(self, n: int) -> "DataSet":
-        """The same data set with N modes, its mode cards (k_jL, X_j at
-        the contact point, alpha_j of the thesis's cantilever contacts and
-        clamped-clamped separator) recomputed by contactsep.beams, in full
-        double precision (the decks' cards hold 9 decimals)."""
-        from contactsep import thesis
-        return dataclasses.replace(self, **thesis.mode_constants(n))
+        """A copy with ``n`` modes and the mode cards recomputed for the
+        program's members (cantilever contacts, clamped-clamped separator)
+        by :func:`contactsep.thesis.mode_constants`."""
+        from contactsep.thesis import mode_constants
+        return dataclasses.replace(self, **mode_constants(int(n)))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, DataSet):

@@ -80,3 +80,9 @@ class InputError(ValueError):
     simulation setting); the message is one printable line naming the
     field, what was found and what is expected.  Each layer raises it or
     a subclass of its own."""
+
+
+class ContactsepWarning(UserWarning):
+    """A result that runs but may not mean what it seems (a unit trap, a
+    deck beyond what its cards or the beam theory carry, an extreme at the
+    end of the window).  Filter it with ``warnings.simplefilter``."""

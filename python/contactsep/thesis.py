@@ -20,6 +20,8 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from contactsep import beams, cards
 from contactsep.dataset import DataSet
 
@@ -59,17 +61,13 @@ def thesis_data_set(separator_thickness: float, *,
                     modes: int = MODES) -> DataSet:
     """The data set for one separator of the experiment.
 
-    ``equivalent_length`` defaults to Table III's L_c for the thickness
-    (which must then be one of the five separators).
+    ``equivalent_length`` defaults to :func:`equivalent_length` of the
+    thickness: Table III's L_c for the five separators, the stated rule
+    between them.
     """
     if equivalent_length is None:
-        try:
-            equivalent_length = EQUIVALENT_LENGTHS[separator_thickness]
-        except KeyError:
-            raise ValueError(
-                f"no Table III equivalent length for a separator "
-                f"{separator_thickness!r} in thick; the thesis used "
-                f"{sorted(EQUIVALENT_LENGTHS)}") from None
+        equivalent_length = globals()["equivalent_length"](
+            separator_thickness)
     return DataSet(
         xl=CONTACT_LENGTH, b=CONTACT_WIDTH, h=CONTACT_THICKNESS,
         rho=WEIGHT_DENSITY, ystat=static_deflection,
@@ -81,6 +79,29 @@ def thesis_data_set(separator_thickness: float, *,
         e=YOUNGS_MODULUS, xl2c=equivalent_length,
         **mode_constants(modes),
     )
+
+
+def equivalent_length(separator_thickness: float) -> float:
+    """L_c for a separator of thickness d (in).
+
+    Table III's value where the thesis gives one (d = 0.125, 0.25, 0.35,
+    0.5, 0.75 in).  Elsewhere a stated rule, not the thesis's: L_c is
+    interpolated linearly in d between Table III's neighbours, and below
+    0.125 in it is 3.60 in (the two thinnest separators share it: the
+    correction vanishes for a thin separator).  Above 0.75 in the thesis
+    gives nothing to interpolate from: ValueError.
+    """
+    d = float(separator_thickness)
+    if d in EQUIVALENT_LENGTHS:
+        return EQUIVALENT_LENGTHS[d]
+    ds = sorted(EQUIVALENT_LENGTHS)
+    if not 0 < d <= ds[-1]:
+        raise ValueError(
+            f"no equivalent length for a separator {d!r} in thick: Table "
+            f"III covers 0 < d <= {ds[-1]} in; pass equivalent_length=")
+    if d < ds[0]:
+        return EQUIVALENT_LENGTHS[ds[0]]
+    return float(np.interp(d, ds, [EQUIVALENT_LENGTHS[k] for k in ds]))
 
 
 def mode_constants(n: int) -> dict:
