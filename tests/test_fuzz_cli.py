@@ -5,8 +5,9 @@ a memory limit (RLIMIT_AS) and a time limit: it must exit 0 with the
 listing on stdout and nothing on stderr but one-line warnings (issue 10),
 or exit 2 with one printable line ``contactsep: error: ...`` (and the
 listings of the data sets before the bad one).  Never a traceback, a
-hang, another status, or more memory than the bound.  Kept to ~25 s in CI (derandomized, few examples); set
-HYPOTHESIS_PROFILE=thorough for a long run.
+hang, another status, or more memory than the bound.  Kept to ~25 s in
+CI (derandomized, few examples); set HYPOTHESIS_PROFILE=thorough for a
+long run.
 """
 
 from __future__ import annotations
