@@ -110,6 +110,7 @@ def _single_impulse(design) -> dict:
     impulse = evaluate(design.replace(lower_response="impulse"),
                        backend="numpy")
     return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
+            "v_impact_in_s": float(ev.v_impact),
             "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
             "y3_max_in": float(ev.y3_max),
             "y3_max_impulse_form_in": float(impulse.y3_max)}
@@ -158,12 +159,10 @@ def simulate(design, model="newton", damping="none", dt=None, *,
             "moreau_jean", backend, m, p, h, g0, q0, v0, float(design.e),
             dt, theta, steps, stride)
     else:
-        law = HertzLaw.for_materials(float(design.E1), nu, button_radius)
-        if damping == "flores":
-            v_ref = single_speed(design)
-            law = HertzLaw.for_materials(float(design.E1), nu,
-                                         button_radius, e=float(design.e),
-                                         v_ref=v_ref)
+        flores = dict(e=float(design.e), v_ref=single["v_impact_in_s"]) \
+            if damping == "flores" else {}
+        law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
+                                     **flores)
         t, g, energy, impulses, first = _run(
             "hertz", backend, m, p, h, g0, q0, v0, law, dt, steps, stride)
     first_t, first_p = (float(first[0]), float(first[1])) \
@@ -174,12 +173,6 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         gap_upper=g[:, 0], gap_lower=g[:, 1], energy=energy, **found,
         first_impact_s=first_t, first_impulse_lb_s=first_p,
         energy_ratio=float(energy[-1] / energy[0]), single_impulse=single)
-
-
-def single_speed(design) -> float:
-    """The first impact speed of the upper contact (in/s), V_ref."""
-    from contactsep.model import evaluate
-    return float(evaluate(design, backend="numpy").v_impact)
 
 
 def _run(kind, backend, m, p, h, g0, q0, v0, *args):

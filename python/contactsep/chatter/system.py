@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep.model import Design, modes
-from contactsep.model.twin import GRAVITY
+from contactsep.model.twin import member_constants
 
 
 @dataclass(frozen=True)
@@ -57,9 +57,7 @@ def _member(design: Design, i: str, n: int, q0=None) -> Member:
     x = getattr(design, "x" + i)
     if x is None:
         x = length / 2.0 if i == "2" else length
-    area = width * thick
-    mass = gamma * area * length / GRAVITY
-    a = np.sqrt(modulus * width * thick**3 / 12.0 * GRAVITY / (area * gamma))
+    mass, a = member_constants(length, width, thick, gamma, modulus)
     kl = modes.eigenvalues(end, n)
     values = modes.mode_shapes(end, n, [float(x) / length])[:, 0]
     p = kl**2 * a / length**2
