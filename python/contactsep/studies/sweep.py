@@ -33,7 +33,7 @@ RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
 _UNITS = {"L": "in", "b": "in", "h": "in", "x": "in", "Lc": "in",
           "gamma": "lb_in3", "E": "psi", "ys": "in", "e": "", "tau": "s",
           "gap": "in"}
-_SWEEPABLE = tuple(n for n in REAL_COLUMNS)
+_SWEEPABLE = REAL_COLUMNS
 
 
 class SweepError(InputError):
