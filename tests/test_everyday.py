@@ -158,15 +158,18 @@ def test_thesis_decks_run_without_warnings():
             contactsep.solve(thesis.thesis_data_set(d), "double")
 
 
-def test_extreme_at_end_of_window_warns(result):
-    y = np.array([0.0, 0.1, 0.2])
-
-    class Fake:
-        history_ty3 = y
-        history_t = np.array([0.0, 0.001, 0.002])
-    assert checks.result_messages(Fake())
-    assert not checks.result_messages(result) or \
-        np.argmax(np.abs(result.history_ty3)) == result.history_ty3.size - 1
+def test_extreme_at_end_of_window_warns():
+    """The thesis lower contact peaks at 0.017 s (eq. 13's first swing):
+    a window ending at 0.005 s has its largest |TY3| on the last line and
+    says so; the listing's 0.06 s window does not."""
+    ds = thesis.thesis_data_set(0.25)
+    with pytest.warns(ContactsepWarning, match="last history line.*"
+                      r"TAU = 0\.005 s"):
+        short = contactsep.solve(ds, "double", tau=0.005)
+    assert np.argmax(np.abs(short.history_ty3)) == short.history_ty3.size - 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ContactsepWarning)
+        contactsep.solve(ds, "double")
 
 
 def test_cli_warning_one_line_listing_unchanged(tmp_path):
@@ -193,3 +196,69 @@ def test_solve_without_listing_same_numbers(result):
         assert np.array_equal(getattr(lean, name), getattr(result, name))
     for name in ("t_impact", "ey", "tip_act", "ty2dt", "wm2", "beta"):
         assert getattr(lean, name) == getattr(result, name)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_mode_card_shortcut_never_hides_a_warning(seed):
+    """checks skips the per-mode estimate when even the coarsest rounding
+    at the largest kL cannot reach MODE_ERROR; wherever it skips, the full
+    estimate (mode_card_error) stays below MODE_ERROR."""
+    rng = np.random.default_rng(seed)
+    skipped = 0
+    for _ in range(2000):
+        n = int(rng.integers(1, 12))
+        v = np.sort(rng.uniform(0.5, rng.uniform(2.0, 40.0), n))
+        alpha = rng.uniform(-3.0, 3.0, n) * 10.0 ** rng.integers(0, 8)
+        if rng.random() < 0.5:
+            alpha = np.round(alpha, checks.CARD_DECIMALS)
+        if not checks._may_exceed(v, alpha):
+            skipped += 1
+            assert np.all(checks.mode_card_error(v, alpha)
+                          <= checks.MODE_ERROR)
+    assert skipped > 100
+
+
+def test_tau_extends_the_history_window():
+    """solve(tau=...) runs the same history loop to another end: the
+    first 0.06 s are the listing's lines bit for bit, and every line is
+    eq. 13 (TY3 = TY2DT sum C3^2 sin(P3 T) / (XL3 P3)) on T < tau."""
+    ds = thesis.thesis_data_set(0.25)
+    base = contactsep.solve(ds, "double")
+    assert base.tau == 0.060
+    long = contactsep.solve(ds, "double", tau=0.2)
+    assert long.tau == 0.2
+    k = base.history_t.size
+    np.testing.assert_array_equal(long.history_t[:k], base.history_t)
+    np.testing.assert_array_equal(long.history_ty3[:k], base.history_ty3)
+    assert long.history_t[-1] < 0.2 <= long.history_t[-1] + ds.delt * 1.001
+    t = long.history_t[:, None]
+    eq13 = long.ty2dt * np.sum(ds.c3**2 * np.sin(long.p3 * t)
+                               / (ds.xl3 * long.p3), axis=1)
+    np.testing.assert_allclose(long.history_ty3, eq13, rtol=1e-12,
+                               atol=1e-15)
+    short = contactsep.solve(ds, "double", tau=0.02, listing=False)
+    assert short.history_t[-1] < 0.02 and short.history_t.size == 40
+
+
+@pytest.mark.parametrize("tau, match", [
+    (0.0, "TAU = 0.0.*positive"), (float("nan"), "TAU = NaN.*positive"),
+    (-1.0, "positive"), (1.0, "at most 1000000 history lines")])
+def test_a_bad_tau_is_refused(tau, match):
+    ds = thesis.thesis_data_set(0.25).replace(delt=1e-7)
+    with pytest.raises(contactsep.DeckError, match=match):
+        contactsep.solve(ds, "double", tau=tau)
+
+
+def test_separation_is_in_the_kick_direction_extreme_is_either_sign():
+    """Over 0.2 s the thesis lower contact (kicked down: TY2DT < 0) swings
+    back up through the separator farther than it went down: extreme_ty3
+    reports that swing, separation_ty3 the separation (the most negative
+    TY3 on the grid)."""
+    r = contactsep.solve(thesis.thesis_data_set(0.25), "double", tau=0.2)
+    assert r.ty2dt < 0
+    assert r.extreme_ty3 == r.history_ty3.max() > 0
+    assert r.separation_ty3 == r.history_ty3.min() < 0
+    assert r.history_ty3[r.history_t == r.separation_time][0] \
+        == r.separation_ty3
+    base = contactsep.solve(thesis.thesis_data_set(0.25), "double")
+    assert base.separation_ty3 == base.extreme_ty3 == base.history_ty3.min()

@@ -66,6 +66,28 @@ def test_generated_decks_byte_identical(name, precision, tmp_path):
     assert replayed(deck, precision) == legacy.run(deck, precision)
 
 
+def test_long_search_and_history_byte_identical(precision, tmp_path):
+    """DELT = 2e-6 s: a search of thousands of lines (the core's trace
+    room grows from 64 rows by doubling; the listing is reserved once
+    the search is done) and 30,000 history lines, against the original
+    program; the tables come back at exactly their length."""
+    lines = THESIS_DECKS[0].read_text().split("\n")
+    lines[3] = "    0.000002000" + lines[3][15:]
+    deck = tmp_path / "long.dat"
+    deck.write_text("\n".join(lines))
+    results = core.replay(deck, precision)
+    assert "".join(r.listing for r in results) == legacy.run(deck, precision)
+    r = results[0]
+    assert len(r.trace_t) > 64 * 2**6
+    assert len(r.trace_t) == len(r.trace_ty) == len(r.trace_tydtl)
+    # (T accumulated in float32 runs ahead: a few lines fewer there)
+    assert len(r.history_t) == len(r.history_ty3) > 0.999 * 0.06 / 2e-6
+    lean = core.solve(r.inputs, precision, listing=False)
+    assert lean.listing == ""
+    np.testing.assert_array_equal(lean.trace_ty, r.trace_ty)
+    np.testing.assert_array_equal(lean.history_ty3, r.history_ty3)
+
+
 @pytest.mark.parametrize("n", [5, 6, 8])
 def test_more_modes_than_the_listing_holds(n, precision, tmp_path,
                                            wide_legacy):

@@ -17,10 +17,14 @@ module contactsep_api
   use contactsep_solver, only: data_set, solution, run_data_set
   use contactsep_status, only: status_ok, status_out_of_range, &
       integer_text, real_text
-  use contactsep_validation, only: scalar_names, mode_names, requirement
+  use contactsep_validation, only: scalar_names, mode_names, requirement, &
+      max_history_lines
   implicit none
   private
-  public :: read_data_set, solve
+  public :: read_data_set, solve, take_tables, take_listing
+
+  !> What the last solve produced beyond its numbers, until taken.
+  type(solution), save :: kept
 
   ! The bounds below are literals because f2py must read them from the
   ! declarations: 512 is message_length (status.f90), 18 scalar_count and
@@ -64,29 +68,30 @@ contains
 
   !> Run one data set as the listing does.
   !>
-  !> trace, history and listing are filled up to n_trace, n_history and
-  !> listing_length (ASCII bytes, each line ending in LF); beyond that
-  !> they are left as they were, so that room for a long search costs
-  !> nothing until it is used.  On an error
-  !> they hold what came before it, the listing ending with its last
-  !> whole line.
-  subroutine solve(scalars, n, modes, max_trace, max_history, max_listing, &
-      with_listing, p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, &
-      history, n_history, p2, p3, closing, listing, listing_length, &
-      status, message)
+  !> The numbers come back at once; the search trace, the history and the
+  !> listing text stay here, sized to what the run produced, until
+  !> take_tables and take_listing copy them out at exactly that size
+  !> (f2py zero-fills every output array, so room for the worst case
+  !> would cost time and memory on every call).  max_trace, max_history
+  !> and max_listing are limits, not room: pages never written are never
+  !> touched.  On an error the tables and the listing hold what came
+  !> before it, the listing ending with its last whole line.  The kept
+  !> state is one per process: callers serialise solve and the takes.
+  subroutine solve(scalars, n, modes, t_end, max_trace, max_history, &
+      max_listing, with_listing, p, ape, impact, a1, b1, tip, ty2dt, p2, &
+      p3, closing, n_trace, n_history, listing_length, status, message)
     real(wp), intent(in) :: scalars(18)
-    !> 0: do not format the listing text (listing_length is 0).
-    integer, intent(in) :: with_listing
     !> Number of modes N.
     integer, intent(in) :: n
-    !> Most trace lines, history lines and listing bytes there is room for.
-    integer, intent(in) :: max_trace, max_history, max_listing
     real(wp), intent(in) :: modes(n, 9)
+    !> End of the lower contact's history (the listing's TAU = 0.060 s).
+    real(wp), intent(in) :: t_end
+    !> Most trace lines, history lines and listing bytes allowed.
+    integer, intent(in) :: max_trace, max_history, max_listing
+    !> 0: do not format the listing text (listing_length is 0).
+    integer, intent(in) :: with_listing
     !> P(I), APE(I).
     real(wp), intent(out) :: p(n), ape(n)
-    !> Impact-search lines T, TY, TYDTL.
-    real(wp), intent(out) :: trace(max_trace, 3)
-    integer, intent(out) :: n_trace
     !> T, EY, CT, CT2, CT3 (the WRITE after statement 132).
     real(wp), intent(out) :: impact(5)
     !> A1(I), B1(I,1).
@@ -95,34 +100,30 @@ contains
     real(wp), intent(out) :: tip(4)
     !> Separator mid-span velocity.
     real(wp), intent(out) :: ty2dt
-    !> History lines T, TY3 up to TAU.
-    real(wp), intent(out) :: history(max_history, 2)
-    integer, intent(out) :: n_history
     real(wp), intent(out) :: p2(n), p3(n)
     !> WM, WM2 (corrected, as printed), WM3, XL2C, GR, BETA, MR1, MR3.
     real(wp), intent(out) :: closing(8)
-    !> ASCII bytes of this data set's listing.
-    integer(int8), intent(out) :: listing(max_listing)
-    integer, intent(out) :: listing_length
+    !> Lines of the trace and the history, bytes of the listing kept.
+    integer, intent(out) :: n_trace, n_history, listing_length
     integer, intent(out) :: status
     character(len=512), intent(out) :: message
     type(data_set) :: inputs
-    type(solution) :: result
-    integer :: i, count, column, mode
+    integer :: i, column, mode
     character(len=:), allocatable :: expected
 
+    call release_kept()
     p = 0.0_wp
     ape = 0.0_wp
-    n_trace = 0
     impact = 0.0_wp
     a1 = 0.0_wp
     b1 = 0.0_wp
     tip = 0.0_wp
     ty2dt = 0.0_wp
-    n_history = 0
     p2 = 0.0_wp
     p3 = 0.0_wp
     closing = 0.0_wp
+    n_trace = 0
+    n_history = 0
     listing_length = 0
 
     ! A direct call is held to the ranges a deck is.
@@ -155,6 +156,20 @@ contains
       end do
     end do
 
+    if (.not. (t_end > 0.0_wp .and. t_end <= huge(t_end))) then
+      status = status_out_of_range
+      message = 'TAU = ' // real_text(t_end) // ': expected a positive' &
+          // ' end of the history window, s'
+      return
+    end if
+    if (t_end / scalars(14) > real(max_history_lines, wp)) then
+      status = status_out_of_range
+      message = 'TAU = ' // real_text(t_end) // ': expected at most ' &
+          // integer_text(max_history_lines) // ' history lines, TAU/DELT' &
+          // ' with DELT = ' // real_text(scalars(14))
+      return
+    end if
+
     inputs = data_set(xl=scalars(1), b=scalars(2), h=scalars(3), &
         rho=scalars(4), ystat=scalars(5), xl2=scalars(6), b2=scalars(7), &
         h2=scalars(8), rho2=scalars(9), xl3=scalars(10), b3=scalars(11), &
@@ -164,32 +179,84 @@ contains
         alpha=modes(:, 3), v2=modes(:, 4), c2=modes(:, 5), &
         alph2=modes(:, 6), v3=modes(:, 7), c3=modes(:, 8), &
         alph3=modes(:, 9))
-    call run_data_set(inputs, max_trace, max_history, max_listing, result, &
-        status, message, keep_listing=with_listing /= 0)
+    call run_data_set(inputs, max_trace, max_history, max_listing, kept, &
+        status, message, keep_listing=with_listing /= 0, t_end=t_end)
 
-    if (allocated(result%p)) then
-      p = result%p
-      ape = result%ape
-      a1 = result%a1
-      b1 = result%b1
-      p2 = result%p2
-      p3 = result%p3
-      n_trace = result%n_trace
-      trace(1:n_trace, :) = result%trace(1:n_trace, :)
-      n_history = result%n_history
-      history(1:n_history, :) = result%history(1:n_history, :)
+    if (allocated(kept%p)) then
+      p = kept%p
+      ape = kept%ape
+      a1 = kept%a1
+      b1 = kept%b1
+      p2 = kept%p2
+      p3 = kept%p3
+      n_trace = kept%n_trace
+      n_history = kept%n_history
     end if
-    impact = [result%t_impact, result%ey, result%ct, result%ct2, result%ct3]
-    tip = result%tip
-    ty2dt = result%ty2dt
-    closing = [result%wm, result%wm2, result%wm3, result%xl2c, result%gr, &
-        result%beta, result%mr1, result%mr3]
-    count = 0
-    if (with_listing /= 0) count = result%listing%length
-    do i = 1, count
-      listing(i) = int(iachar(result%listing%text(i:i)), int8)
-    end do
-    listing_length = count
+    impact = [kept%t_impact, kept%ey, kept%ct, kept%ct2, kept%ct3]
+    tip = kept%tip
+    ty2dt = kept%ty2dt
+    closing = [kept%wm, kept%wm2, kept%wm3, kept%xl2c, kept%gr, &
+        kept%beta, kept%mr1, kept%mr3]
+    if (with_listing /= 0) listing_length = kept%listing%length
   end subroutine solve
+
+  !> The last solve's trace and history lines, then forgotten here.
+  !>
+  !> n_trace and n_history are what solve returned (fewer are allowed);
+  !> a call without a solve before it gives what is left, or zeros.
+  subroutine take_tables(n_trace, n_history, trace_t, trace_ty, &
+      trace_tydtl, history_t, history_ty3)
+    integer, intent(in) :: n_trace, n_history
+    !> Impact-search lines T, TY, TYDTL.
+    real(wp), intent(out) :: trace_t(n_trace), trace_ty(n_trace)
+    real(wp), intent(out) :: trace_tydtl(n_trace)
+    !> History lines T, TY3 up to TAU.
+    real(wp), intent(out) :: history_t(n_history), history_ty3(n_history)
+    integer :: rows
+
+    trace_t = 0.0_wp
+    trace_ty = 0.0_wp
+    trace_tydtl = 0.0_wp
+    history_t = 0.0_wp
+    history_ty3 = 0.0_wp
+    if (allocated(kept%trace)) then
+      rows = max(0, min(n_trace, kept%n_trace))
+      trace_t(1:rows) = kept%trace(1:rows, 1)
+      trace_ty(1:rows) = kept%trace(1:rows, 2)
+      trace_tydtl(1:rows) = kept%trace(1:rows, 3)
+      deallocate (kept%trace)
+    end if
+    if (allocated(kept%history)) then
+      rows = max(0, min(n_history, kept%n_history))
+      history_t(1:rows) = kept%history(1:rows, 1)
+      history_ty3(1:rows) = kept%history(1:rows, 2)
+      deallocate (kept%history)
+    end if
+  end subroutine take_tables
+
+  !> The last solve's listing text (ASCII bytes, each line ending in LF),
+  !> then forgotten here; listing_length as solve returned it.
+  subroutine take_listing(listing_length, listing)
+    integer, intent(in) :: listing_length
+    integer(int8), intent(out) :: listing(listing_length)
+    integer :: i, count
+
+    count = 0
+    if (allocated(kept%listing%text)) then
+      count = max(0, min(listing_length, kept%listing%length))
+      do i = 1, count
+        listing(i) = int(iachar(kept%listing%text(i:i)), int8)
+      end do
+      deallocate (kept%listing%text)
+    end if
+    listing(count + 1:) = 0_int8
+  end subroutine take_listing
+
+  !> Forget what the last solve kept.
+  subroutine release_kept()
+    if (allocated(kept%trace)) deallocate (kept%trace)
+    if (allocated(kept%history)) deallocate (kept%history)
+    if (allocated(kept%listing%text)) deallocate (kept%listing%text)
+  end subroutine release_kept
 
 end module contactsep_api

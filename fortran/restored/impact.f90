@@ -9,10 +9,12 @@
 !> a trace line.  This module mirrors that loop step for step.
 module contactsep_impact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
   use contactsep_status, only: message_length, status_ok, &
       status_release_not_above, status_search_stalled, &
-      status_search_not_finite, status_trace_full, real_text, integer_text
+      status_search_not_finite, status_trace_full, status_out_of_memory, &
+      real_text, integer_text
   implicit none
   private
   public :: tip_before_impact, mode_square_sums, search_first_impact
@@ -86,12 +88,16 @@ contains
   !> The listing also starts from an undefined TT when the tip at T = 0
   !> is below DELY; that, and a tip exactly at DELY at T = 0, are
   !> refused: the contact must be released above the separator.
-  subroutine search_first_impact(ape, c, p, delt, dely, trace, n_trace, &
-      t, ty, tydtl, act, status, message)
+  subroutine search_first_impact(ape, c, p, delt, dely, max_trace, trace, &
+      n_trace, t, ty, tydtl, act, status, message)
     real(wp), intent(in) :: ape(:), c(:), p(:)
     !> First step DELT and separator position DELY.
     real(wp), intent(in) :: delt, dely
-    real(wp), intent(inout) :: trace(:, :)
+    !> Most trace lines: the bound on the search.
+    integer, intent(in) :: max_trace
+    !> Grown (doubled) as lines come, up to max_trace rows: a search of a
+    !> few lines does not pay for room for a million.
+    real(wp), allocatable, intent(inout) :: trace(:, :)
     integer, intent(out) :: n_trace
     real(wp), intent(out) :: t, ty, tydtl, act
     integer, intent(out) :: status
@@ -122,10 +128,13 @@ contains
         if (n_trace == 0) call release_not_above('exactly at')
         return
       else
+        if (n_trace >= size(trace, 1) .and. n_trace < max_trace) &
+            call grow_trace()
+        if (status /= status_ok) return
         if (n_trace >= size(trace, 1)) then
           status = status_trace_full
           message = 'no impact found within ' &
-              // integer_text(size(trace, 1)) // ' trace lines (max_trace):' &
+              // integer_text(max_trace) // ' trace lines (max_trace):' &
               // ' the tip is still above DELY = ' // real_text(dely) &
               // ' at T = ' // real_text(t)
           if (p(1) > 0.0_wp) message = trim(message) // ', ' &
@@ -163,6 +172,23 @@ contains
     end do
 
   contains
+
+    !> Double the trace's rows (at most max_trace), keeping its lines.
+    subroutine grow_trace()
+      real(wp), allocatable :: grown(:, :)
+      integer :: rows, stat
+
+      rows = int(min(int(max_trace, int64), &
+          max(64_int64, 2_int64 * size(trace, 1))))
+      allocate (grown(rows, 3), stat=stat)
+      if (stat /= 0) then
+        status = status_out_of_memory
+        message = 'no memory for ' // integer_text(rows) // ' trace lines'
+        return
+      end if
+      grown(1:n_trace, :) = trace(1:n_trace, :)
+      call move_alloc(grown, trace)
+    end subroutine grow_trace
 
     subroutine release_not_above(relation)
       character(len=*), intent(in) :: relation

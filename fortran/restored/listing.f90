@@ -11,7 +11,7 @@ module contactsep_listing
       integer_text
   implicit none
   private
-  public :: listing_text, start_listing, write_record
+  public :: listing_text, start_listing, reserve_listing, write_record
 
   !> Width of one F15.9 field.
   integer, parameter :: field_width = 15
@@ -46,6 +46,31 @@ contains
     listing%enabled = .true.
     if (present(enabled)) listing%enabled = enabled
   end subroutine start_listing
+
+  !> Make room for bytes more bytes (at most the capacity) at once.
+  !>
+  !> A caller that knows what is left to list calls this so that the
+  !> text is allocated once at its size, not grown by doubling (which
+  !> holds the old and the new text at once: 1.5x the listing at the
+  !> end).  Pages never written are never touched, so reserving a few
+  !> lines too many costs nothing.  A failed allocation is not an error
+  !> here: write_record then grows the text as before.
+  subroutine reserve_listing(listing, bytes)
+    type(listing_text), intent(inout) :: listing
+    !> Bytes still to be written.
+    integer, intent(in) :: bytes
+    character(len=:), allocatable :: grown
+    integer :: new_size, stat
+
+    if (.not. listing%enabled .or. bytes <= 0) return
+    new_size = listing%length + min(bytes, listing%capacity &
+        - listing%length)
+    if (new_size <= len(listing%text)) return
+    allocate (character(len=new_size) :: grown, stat=stat)
+    if (stat /= 0) return
+    grown(1:listing%length) = listing%text(1:listing%length)
+    call move_alloc(grown, listing%text)
+  end subroutine reserve_listing
 
   !> Append one record of at most 7 values, formatted with (7F15.9).
   !>

@@ -62,19 +62,22 @@ contains
     end do
   end function lower_contact_tip
 
-  !> History lines T, TY3 for T = 0, DELT, 2*DELT, ... while T < TAU.
+  !> History lines T, TY3 for T = 0, DELT, 2*DELT, ... while T < t_end
+  !> (the listing's TAU unless a caller asks for another window).
   !>
   !> T is accumulated as the listing does (T = T + DELT), so its rounding
   !> and the last line match.  The listing loops forever when T + DELT
   !> does not advance T; that is refused, as is a history longer than
   !> history has rows.  Lines before the failure are kept.
-  subroutine lower_contact_history(ty2dt, c3, p3, xl3, delt, history, &
-      n_history, status, message)
+  subroutine lower_contact_history(ty2dt, c3, p3, xl3, delt, t_end, &
+      history, n_history, status, message)
     real(wp), intent(in) :: ty2dt
     real(wp), intent(in) :: c3(:), p3(:)
     real(wp), intent(in) :: xl3
     !> The step from card 4 (the search's halving does not carry over).
     real(wp), intent(in) :: delt
+    !> End of the window (TAU in the listing).
+    real(wp), intent(in) :: t_end
     real(wp), intent(inout) :: history(:, :)
     integer, intent(out) :: n_history
     integer, intent(out) :: status
@@ -88,7 +91,7 @@ contains
     do
       if (n_history >= size(history, 1)) then
         status = status_history_full
-        message = 'the history to TAU = ' // real_text(tau) &
+        message = 'the history to TAU = ' // real_text(t_end) &
             // ' needs more than ' // integer_text(size(history, 1)) &
             // ' lines (max_history) with DELT = ' // real_text(delt)
         return
@@ -98,10 +101,10 @@ contains
       previous = t
       t = t + delt
       ! IF (T - TAU) 520,600,600: a NaN T ends the history too.
-      if (.not. (t - tau < 0.0_wp)) exit
+      if (.not. (t - t_end < 0.0_wp)) exit
       if (.not. (t > previous)) then
         status = status_history_stalled
-        message = 'the history cannot reach TAU = ' // real_text(tau) &
+        message = 'the history cannot reach TAU = ' // real_text(t_end) &
             // ': T + DELT does not advance T = ' // real_text(previous) &
             // ' with DELT = ' // real_text(delt) // ' (DELT must be > 0)'
         return

@@ -10,6 +10,7 @@
 !> whose branches meet again at 120), K and X of loop 133, and the
 !> second index of B1 (always J = 1).
 module contactsep_solver
+  use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
   use contactsep_status, only: message_length, status_ok, &
       status_bad_argument, status_out_of_memory, integer_text
@@ -18,8 +19,10 @@ module contactsep_solver
   use contactsep_impact, only: mode_square_sums, search_first_impact, &
       impulse, post_impact_coefficients, tip_after_impact
   use contactsep_lower_contact, only: corrected_separator_mass, &
-      separator_midspan_velocity, lower_contact_history, closing_ratios
-  use contactsep_listing, only: listing_text, start_listing, write_record
+      separator_midspan_velocity, lower_contact_history, closing_ratios, &
+      tau
+  use contactsep_listing, only: listing_text, start_listing, &
+      reserve_listing, write_record
   implicit none
   private
   public :: data_set, solution, run_data_set
@@ -88,17 +91,19 @@ contains
   !>
   !> max_trace and max_history bound the trace and history lines and
   !> max_listing the bytes of listing text.
-  !> keep_listing false skips formatting the text (default true).
+  !> keep_listing false skips formatting the text (default true);
+  !> t_end ends the history (default the listing's TAU).
   subroutine run_data_set(inputs, max_trace, max_history, max_listing, &
-      result, status, message, keep_listing)
+      result, status, message, keep_listing, t_end)
     type(data_set), intent(in) :: inputs
     integer, intent(in) :: max_trace, max_history, max_listing
     logical, intent(in), optional :: keep_listing
+    real(wp), intent(in), optional :: t_end
     type(solution), intent(out) :: result
     integer, intent(out) :: status
     character(len=message_length), intent(out) :: message
     type(beam) :: contact, separator, lower
-    real(wp) :: ty, tydtl, act
+    real(wp) :: ty, tydtl, act, history_end
     integer :: n, i, stat
 
     status = status_ok
@@ -107,7 +112,7 @@ contains
     call check_inputs()
     if (status /= status_ok) return
     allocate (result%p(n), result%ape(n), result%a1(n), result%b1(n), &
-        result%p2(n), result%p3(n), result%trace(max_trace, 3), &
+        result%p2(n), result%p3(n), result%trace(min(max_trace, 64), 3), &
         result%history(max_history, 2), stat=stat)
     if (stat /= 0) then
       status = status_out_of_memory
@@ -123,6 +128,8 @@ contains
     result%p2 = 0.0_wp
     result%p3 = 0.0_wp
     call start_listing(result%listing, max_listing, keep_listing)
+    history_end = tau
+    if (present(t_end)) history_end = t_end
 
     associate (d => inputs, r => result)
       call emit([d%xl2, d%b2, d%h2, d%rho2])
@@ -145,9 +152,11 @@ contains
       call mode_square_sums(d%c(1:n), d%c2(1:n), d%c3(1:n), r%ct, r%ct2, &
           r%ct3)
       call search_first_impact(r%ape, d%c(1:n), r%p, d%delt, d%dely, &
-          r%trace, r%n_trace, r%t_impact, ty, tydtl, act, status, message)
+          max_trace, r%trace, r%n_trace, r%t_impact, ty, tydtl, act, &
+          status, message)
       ! No impact time to report when the search failed.
       if (status /= status_ok) r%t_impact = 0.0_wp
+      call reserve_listing(r%listing, bytes_left(r%n_trace))
       call emit_rows(r%trace, r%n_trace)
       if (status /= status_ok) return
       call emit([end_of_trace_mark])
@@ -181,7 +190,7 @@ contains
       if (status /= status_ok) return
 
       call lower_contact_history(r%ty2dt, d%c3(1:n), r%p3, d%xl3, d%delt, &
-          r%history, r%n_history, status, message)
+          history_end, r%history, r%n_history, status, message)
       call emit_rows(r%history, r%n_history)
       if (status /= status_ok) return
 
@@ -227,6 +236,27 @@ contains
             // integer_text(n) // ' modes'
       end if
     end subroutine check_inputs
+
+    !> Bytes of the rest of the listing, from the search trace on, with
+    !> the history at its most (max_history lines).
+    pure integer function bytes_left(n_trace)
+      integer, intent(in) :: n_trace
+      integer(int64) :: bytes
+
+      bytes = int(n_trace, int64) * line(3) + line(1) + line(5) &
+          + int(n, int64) * line(2) + line(4) + line(1) &
+          + int(max_history, int64) * line(2) &
+          + 2 * int(n, int64) * line(4) &
+          + 2 * line(4)
+      bytes_left = int(min(bytes, int(huge(0), int64)))
+    end function bytes_left
+
+    !> Bytes of a record of k values (F15.9 each) and its LF.
+    pure integer(int64) function line(k)
+      integer, intent(in) :: k
+
+      line = 15_int64 * k + 1
+    end function line
 
     !> One WRITE(6,10); on failure, status and message say why.
     subroutine emit(values)

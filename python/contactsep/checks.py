@@ -27,6 +27,7 @@ Thresholds and their sources:
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -50,11 +51,26 @@ def mode_card_error(v, alpha) -> np.ndarray:
     return delta * np.exp(v) * v ** 3 / 12
 
 
+def _may_exceed(v, alpha) -> bool:
+    """Whether any mode can reach MODE_ERROR at all: the estimate with
+    the coarser of the two roundings for the largest |ALPHA| and the
+    largest v.  Cheap, so a designer's loop does not pay for the full
+    check on every call."""
+    top = max((float(x) for x in v), default=0.0)
+    size = max((abs(float(x)) for x in alpha), default=0.0)
+    if not (math.isfinite(top) and math.isfinite(size)) or top > 700.0:
+        return True
+    delta = max(0.5 * 10.0 ** -CARD_DECIMALS, size * 2.0 ** -52)
+    return delta * math.exp(top) * top ** 3 / 12 > MODE_ERROR
+
+
 def input_messages(ds) -> list[str]:
     """Messages about a data set's inputs alone."""
     out = []
     for name, v, alpha in (("upper", ds.v, ds.alpha),
                            ("lower", ds.v3, ds.alph3)):
+        if not _may_exceed(v, alpha):
+            continue
         err = mode_card_error(v, alpha)
         bad = np.nonzero(err > MODE_ERROR)[0]
         if bad.size:
@@ -83,7 +99,8 @@ def result_messages(result) -> list[str]:
     if y.size > 1 and int(np.argmax(np.abs(y))) == y.size - 1:
         return [f"the extreme TY3 = {float(y[-1]):.6g} in is on the last "
                 f"history line (T = {float(result.history_t[-1]):.6g} s): "
-                f"the true extreme may lie beyond TAU"]
+                f"the true extreme may lie beyond TAU = {result.tau:g} s "
+                f"(solve(..., tau=...) extends the window)"]
     return []
 
 

@@ -13,6 +13,7 @@ import importlib
 import io
 import math
 import os
+import threading
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,11 +43,8 @@ TAU = 0.060
 #: as the history may have, so any DELT the history allows can also reach
 #: an impact up to 0.06 s away.
 MAX_SEARCH_LINES = 1_000_000
-#: Room for search lines on a first try: f2py zero-fills every output
-#: array, so room costs time even unused (12 ms per call for a million
-#: lines); a search that needs more is run again with MAX_SEARCH_LINES.
-_FIRST_SEARCH_LINES = 512
-_STATUS_SEARCH_FULL = 23
+#: The core keeps one run's tables and listing until they are taken.
+_KEPT = threading.Lock()
 #: Most lower-contact history lines (T = 0, DELT, ... < TAU) the core will
 #: produce: DELT must be at least TAU / 1e6 = 6e-8 s.
 MAX_HISTORY_LINES = 1_000_000
@@ -366,21 +364,22 @@ def _exponent_message(message: str, line: str, columns: tuple[int, int],
     return message
 
 
-def history_length(delt: float, precision: str = "double") -> int:
-    """Room for the history loop T = 0, DELT, ... < TAU.
+def history_length(delt: float, precision: str = "double",
+                   tau: float = TAU) -> int:
+    """Room for the history loop T = 0, DELT, ... < tau.
 
     T is accumulated in the working precision, and each T + DELT can fall
-    short of the exact sum by half an ulp of T <= TAU, i.e. by less than
-    TAU * eps; so the loop runs at most TAU / (DELT - TAU * eps) times.
+    short of the exact sum by half an ulp of T <= tau, i.e. by less than
+    tau * eps; so the loop runs at most tau / (DELT - tau * eps) times.
     Never more than twice MAX_HISTORY_LINES: the core refuses a DELT that
     needs more than MAX_HISTORY_LINES before it uses the room.
     """
     eps = float(np.finfo(np.float32 if precision == "single"
                          else np.float64).eps)
-    step = delt - TAU * eps
-    if not step > 0:
+    step = delt - tau * eps
+    if not (step > 0 and math.isfinite(tau) and tau > 0):
         return 2 * MAX_HISTORY_LINES
-    return int(min(math.ceil(TAU / step), 2 * MAX_HISTORY_LINES)) + 2
+    return int(min(math.ceil(tau / step), 2 * MAX_HISTORY_LINES)) + 2
 
 
 def listing_capacity(n: int, history: int, search: int) -> int:
@@ -394,7 +393,8 @@ def listing_capacity(n: int, history: int, search: int) -> int:
 
 def solve(data_set: DataSet, precision: str = "single", *,
           data_set_index: int | None = None,
-          first_card: int | None = None, listing: bool = True) -> Result:
+          first_card: int | None = None, listing: bool = True,
+          tau: float = TAU) -> Result:
     """Run one data set through the restored core.
 
     This is the call a designer makes in a loop: no deck file is involved.
@@ -403,7 +403,10 @@ def solve(data_set: DataSet, precision: str = "single", *,
     impact that never comes raise :class:`DeckError`; ``data_set_index``
     and ``first_card`` (the data set's place in a deck) locate it.
     ``listing=False`` skips formatting the listing text (``Result.listing``
-    is then ``""``); every number is the same.
+    is then ``""``); every number is the same.  ``tau`` (s) ends the
+    lower contact's history (the listing's TAU = 0.060 s; the listing
+    with another ``tau`` is not the original program's); at most
+    1,000,000 history lines (tau / DELT).
     """
     api = _api(precision)
     dtype = np.float32 if precision == "single" else np.float64
@@ -413,20 +416,23 @@ def solve(data_set: DataSet, precision: str = "single", *,
         np.column_stack([getattr(data_set, name) for name in MODE_NAMES]),
         dtype=dtype)
     n = data_set.n
-    max_history = history_length(data_set.delt, precision)
-    with_listing = listing
-    for search in (_FIRST_SEARCH_LINES, MAX_SEARCH_LINES):
-        (p, ape, trace, n_trace, impact, a1, b1, tip, ty2dt, history,
-         n_history, p2, p3, closing, listing, listing_length, status,
-         message) = api.solve(
-             scalars=scalars, n=n, modes=modes, max_trace=search,
-             max_history=max_history,
-             max_listing=listing_capacity(n, max_history, search)
-             if with_listing else 1,
-             with_listing=int(bool(with_listing)))
-        if status != _STATUS_SEARCH_FULL:
-            break
-    text = listing[:listing_length].tobytes().decode("ascii")
+    max_history = history_length(data_set.delt, precision, tau)
+    with _KEPT:
+        (p, ape, impact, a1, b1, tip, ty2dt, p2, p3, closing, n_trace,
+         n_history, listing_length, status, message) = api.solve(
+             scalars=scalars, n=n, modes=modes, t_end=tau,
+             max_trace=MAX_SEARCH_LINES, max_history=max_history,
+             max_listing=listing_capacity(n, max_history,
+                                          MAX_SEARCH_LINES),
+             with_listing=int(bool(listing)))
+        (trace_t, trace_ty, trace_tydtl, history_t,
+         history_ty3) = api.take_tables(n_trace, n_history)
+        text = ""
+        if listing:
+            codes = api.take_listing(listing_length)
+            # decoded from the array's buffer (one copy), then dropped
+            text = str(codes.data, "ascii")
+            del codes
     if status != 0:
         card = columns = None
         if first_card is not None and status in _SOLVER_FIELDS:
@@ -439,22 +445,19 @@ def solve(data_set: DataSet, precision: str = "single", *,
                         listing=text)
     result = Result(
         inputs=data_set, precision=precision,
-        p=p.copy(), ape=ape.copy(),
-        trace_t=trace[:n_trace, 0].copy(),
-        trace_ty=trace[:n_trace, 1].copy(),
-        trace_tydtl=trace[:n_trace, 2].copy(),
+        p=p, ape=ape,
+        trace_t=trace_t, trace_ty=trace_ty, trace_tydtl=trace_tydtl,
         t_impact=float(impact[0]), ey=float(impact[1]),
         ct=float(impact[2]), ct2=float(impact[3]), ct3=float(impact[4]),
-        a1=a1.copy(), b1=b1.copy(),
+        a1=a1, b1=b1,
         tip_ty=float(tip[1]), tip_tydtl=float(tip[2]), tip_act=float(tip[3]),
         ty2dt=float(ty2dt),
-        history_t=history[:n_history, 0].copy(),
-        history_ty3=history[:n_history, 1].copy(),
-        p2=p2.copy(), p3=p3.copy(),
+        history_t=history_t, history_ty3=history_ty3,
+        p2=p2, p3=p3,
         wm=float(closing[0]), wm2=float(closing[1]), wm3=float(closing[2]),
         gr=float(closing[4]), beta=float(closing[5]),
         mr1=float(closing[6]), mr3=float(closing[7]),
-        listing=text)
+        listing=text, tau=float(tau))
     checks.warn(checks.input_messages(data_set)
                 + checks.result_messages(result))
     return result

@@ -23,8 +23,11 @@ SUMMARY_FIELDS: tuple[tuple[str, str, str], ...] = (
     ("tip_act", "in/s", "ACT = sum P*B1*C"),
     ("ty2dt", "in/s", "separator mid-span velocity after impact"),
     ("extreme_ty3", "in", "largest-magnitude lower-contact tip "
-                          "displacement up to TAU"),
+                          "displacement up to TAU, either sign"),
     ("extreme_time", "s", "time of extreme_ty3"),
+    ("separation_ty3", "in", "farthest lower-contact tip displacement in "
+                             "the kick's direction (sign of TY2DT)"),
+    ("separation_time", "s", "time of separation_ty3"),
     ("wm", "lb s^2/in", "upper-contact mass WM"),
     ("wm2", "lb s^2/in", "separator mass WM2 (after the XL2C correction)"),
     ("wm3", "lb s^2/in", "lower-contact mass WM3"),

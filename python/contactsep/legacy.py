@@ -93,8 +93,9 @@ def iter_validated(source: core.Deck, precision: str = "single", *,
                 f"16-17: N = {item.data_set.n}, but the original program "
                 f"holds at most {max_modes} modes (DIMENSION (4))",
                 data_set=item.index, card=first_card, columns=(16, 17))
+        # validation only: the original program prints the listing
         core.solve(item.data_set, precision, data_set_index=item.index,
-                   first_card=item.first_card)
+                   first_card=item.first_card, listing=False)
         yield item
 
 

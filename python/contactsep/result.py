@@ -55,9 +55,9 @@ class Result:
     ty2dt : float
         Separator mid-span velocity TY2DT after impact, in/s.
     history_t, history_ty3 : ndarray
-        Lower-contact tip history up to TAU = 0.060 s: times (s) and
-        displacements TY3 (in, positive toward the separator's side as
-        the listing signs it).
+        Lower-contact tip history for T < ``tau`` (the listing's TAU =
+        0.060 s): times (s) and displacements TY3 (in, signed as the
+        listing signs them: the kick's direction is the sign of TY2DT).
     p2, p3 : ndarray
         Separator and lower-contact frequencies P2(I), P3(I), rad/s.
     wm, wm2, wm3 : float
@@ -67,6 +67,14 @@ class Result:
         MR3 = WM2/WM3 (dimensionless).
     listing : str
         This data set's part of the listing, exactly as the program prints.
+    tau : float
+        End of the history window, s (0.060 unless ``solve(tau=...)``).
+
+    Derived (properties): ``extreme_ty3``/``extreme_time``, the largest
+    |TY3| whichever its sign; ``separation_ty3``/``separation_time``, the
+    farthest TY3 in the kick's direction (the lower contact's largest
+    separation from the separator; eq. 13 lets the contact swing back
+    through the separator, and ``extreme_ty3`` then may be that swing).
     """
 
     #: The data set that was run.
@@ -121,6 +129,8 @@ class Result:
     mr3: float
     #: This data set's part of the listing, exactly as the program prints it.
     listing: str
+    #: End of the history window (the listing's TAU = 0.060 s), s.
+    tau: float = 0.060
 
     def __repr__(self) -> str:
         return (f"Result(precision={self.precision!r}, n={self.inputs.n}, "
@@ -153,10 +163,35 @@ class Result:
 
     @property
     def extreme_ty3(self) -> float:
-        """Largest-magnitude lower-contact displacement in the history."""
+        """Largest-magnitude lower-contact displacement in the history,
+        whichever its sign: after the contact has swung back through the
+        separator (eq. 13 has nothing there to stop it) this may be that
+        swing; :attr:`separation_ty3` is the separation itself."""
         if not self.history_ty3.size:
             return float("nan")
         return float(self.history_ty3[np.argmax(np.abs(self.history_ty3))])
+
+    @property
+    def separation_ty3(self) -> float:
+        """Signed TY3 (in) farthest in the kick's direction (the sign of
+        TY2DT): the lower contact's largest separation from the separator,
+        which it leaves in that direction.  Unlike :attr:`extreme_ty3` it
+        never reports a swing back through the separator (which eq. 13,
+        with no separator in the way, allows).  NaN without a kick."""
+        index = self._separation_index()
+        return float("nan") if index is None \
+            else float(self.history_ty3[index])
+
+    @property
+    def separation_time(self) -> float:
+        """Time of :attr:`separation_ty3` on the listing's grid, s."""
+        index = self._separation_index()
+        return float("nan") if index is None else float(self.history_t[index])
+
+    def _separation_index(self):
+        if not self.history_ty3.size or not self.ty2dt:
+            return None
+        return int(np.argmax(np.sign(self.ty2dt) * self.history_ty3))
 
     @property
     def extreme_time(self) -> float:
