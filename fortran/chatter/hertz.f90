@@ -9,17 +9,21 @@ module chatter_hertz
 
 contains
 
-  !> F = k delta^{3/2} (1 + chi delta'), F >= 0, delta = -gap.
-  pure subroutine contact_forces(k, stiffness, chi, gap, rate, force)
-    integer, intent(in) :: k
-    real(wp), intent(in) :: stiffness, chi, gap(k), rate(k)
+  !> F = k delta^{3/2} (1 + chi delta'), F >= 0, delta = -gap; the
+  !> contact's rate h v is formed only where a contact is closed.
+  pure subroutine contact_forces(n, k, stiffness, chi, gap, ht, v, force)
+    integer, intent(in) :: n, k
+    real(wp), intent(in) :: stiffness, chi, gap(k), ht(n, k), v(n)
     real(wp), intent(out) :: force(k)
+    real(wp) :: depth
     integer :: i
 
     do i = 1, k
       if (gap(i) < 0.0_wp) then
-        force(i) = max(stiffness * (-gap(i))**1.5_wp &
-            * (1.0_wp - chi * rate(i)), 0.0_wp)
+        depth = -gap(i)
+        force(i) = stiffness * depth * sqrt(depth)
+        if (chi /= 0.0_wp) force(i) = max(force(i) &
+            * (1.0_wp - chi * dot_product(ht(:, i), v)), 0.0_wp)
       else
         force(i) = 0.0_wp
       end if
@@ -27,6 +31,10 @@ contains
   end subroutine contact_forces
 
   !> Integrate `steps` steps of dt; sample every `stride` steps.
+  !>
+  !> The gap after the flow is the next step's gap before it (a kick
+  !> changes v, not q), so one 2 x n product a step finds both; kicks
+  !> and contact rates cost only while a contact is closed.
   pure subroutine hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, &
       steps, stride, samples, t_out, g_out, e_out, p_out, first)
     integer, intent(in) :: n, k
@@ -42,21 +50,26 @@ contains
     !> Contact 1's first episode: the start of its first step with a
     !> force, and the impulse of its consecutive steps with one.
     real(wp), intent(out) :: first(2)
-    real(wp) :: c(n), s(n), force(k), gap(k), qn(n)
+    real(wp) :: c(n), sine_over_p(n), p_sine(n), ht(n, k), half_kick(n, k)
+    real(wp) :: force(k), gap(k), qn(n)
     integer :: step, i, sample, episode
 
     c = cos(p * dt)
-    s = sin(p * dt)
+    sine_over_p = sin(p * dt) / p
+    p_sine = p * sin(p * dt)
+    ht = transpose(h)
+    do i = 1, k
+      half_kick(:, i) = 0.5_wp * dt * ht(:, i) / m
+    end do
     p_out = 0.0_wp
     first = -1.0_wp
     episode = 0
     t_out(1) = 0.0_wp
-    gap = matmul(h, q) + g0
+    gap = gaps()
     g_out(:, 1) = gap
     e_out(1) = energy()
     do step = 1, steps
-      gap = matmul(h, q) + g0
-      call contact_forces(k, stiffness, chi, gap, matmul(h, v), force)
+      call contact_forces(n, k, stiffness, chi, gap, ht, v, force)
       sample = (step - 1) / stride + 2
       if (sample <= samples) p_out(:, sample) = p_out(:, sample) &
           + force * dt
@@ -72,17 +85,13 @@ contains
           episode = 2
         end if
       end if
-      do i = 1, k
-        v = v + 0.5_wp * dt * h(i, :) * force(i) / m
-      end do
-      qn = q * c + v / p * s
-      v = -q * p * s + v * c
+      call kick(v)
+      qn = q * c + v * sine_over_p
+      v = v * c - q * p_sine
       q = qn
-      gap = matmul(h, q) + g0
-      call contact_forces(k, stiffness, chi, gap, matmul(h, v), force)
-      do i = 1, k
-        v = v + 0.5_wp * dt * h(i, :) * force(i) / m
-      end do
+      gap = gaps()
+      call contact_forces(n, k, stiffness, chi, gap, ht, v, force)
+      call kick(v)
       if (mod(step, stride) == 0) then
         sample = step / stride + 1
         t_out(sample) = step * dt
@@ -93,10 +102,29 @@ contains
 
   contains
 
+    pure function gaps() result(g)
+      real(wp) :: g(k)
+      integer :: j
+
+      do j = 1, k
+        g(j) = dot_product(ht(:, j), q) + g0(j)
+      end do
+    end function gaps
+
+    pure subroutine kick(velocity)
+      real(wp), intent(inout) :: velocity(n)
+      integer :: j
+
+      do j = 1, k
+        if (force(j) /= 0.0_wp) velocity = velocity &
+            + half_kick(:, j) * force(j)
+      end do
+    end subroutine kick
+
     pure function energy() result(total)
       real(wp) :: total, g(k)
 
-      g = matmul(h, q) + g0
+      g = gaps()
       total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
           + 0.4_wp * stiffness * sum(max(-g, 0.0_wp)**2.5_wp)
     end function energy
