@@ -60,6 +60,8 @@ def simulate_rigid_stop_compiled(p, x, mass, q0, v0, e, t_end, *,
     if p.ndim != 1 or not p.shape == x.shape == q0.shape == v0.shape:
         raise ValueError(f"p, x, q0, v0 must be 1-D of one length: found "
                          f"{p.shape}, {x.shape}, {q0.shape}, {v0.shape}")
+    if p.size < 1:
+        raise ValueError("the beam needs at least one mode")
     max_impacts = int(max_impacts)
     if max_impacts < 1:
         raise ValueError(f"max_impacts: found {max_impacts}, expected >= 1")
