@@ -287,3 +287,41 @@ def test_jacobi_constrained_basis_is_the_twins():
     frozen = np.argmax(np.abs(v.T @ x))
     assert frozen == np.argmax(np.abs(vectors.T @ x)) == 0
     assert abs(v[:, 0] @ x) == pytest.approx(np.linalg.norm(x), rel=1e-12)
+
+
+def test_fortran_source_keeps_the_project_rules():
+    """event_driven.f90: never stops or prints, <= 80 columns, one module,
+    implicit none, intent on every dummy argument, a doc comment on every
+    procedure and public parameter (test_sources.py's rules, which cover
+    the restored core only)."""
+    import re
+
+    from conftest import ROOT
+    from test_sources import code_lines, procedures
+
+    path = ROOT / "fortran" / "chatter" / "event_driven.f90"
+    text = path.read_text()
+    lines = text.splitlines()
+    assert all(len(line) <= 80 for line in lines)
+    assert not [line for _, line in code_lines(path) if re.search(
+        r"^\s*(stop|error\s+stop|print|pause)\b|write\s*\(|\bgo\s*to\b",
+        line, re.I)]
+    assert len(re.findall(r"^\s*module\s+\w+\s*$", text, re.I | re.M)) == 1
+    assert re.search(r"^\s*implicit none", text, re.I | re.M)
+    undocumented, missing = [], []
+    for number, line in enumerate(lines):
+        if re.match(r"\s*(pure\s+)?(subroutine|function)\s+\w+|"
+                    r"\s*integer, parameter ::", line, re.I):
+            if not lines[number - 1].lstrip().startswith("!>"):
+                undocumented.append(line.strip())
+    assert not undocumented
+    for name, args, body in procedures(text):
+        declared = set()
+        for line in body.splitlines():
+            line = line.split("!", 1)[0]
+            if re.search(r"intent\s*\(", line, re.I) and "::" in line:
+                names = re.sub(r"\([^()]*\)", "", re.sub(
+                    r"\([^()]*\)", "", line.split("::", 1)[1]))
+                declared |= {n.strip().lower() for n in names.split(",")}
+        missing += [f"{name}({a})" for a in args if a.lower() not in declared]
+    assert not missing
