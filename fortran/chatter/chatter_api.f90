@@ -3,9 +3,10 @@ module chatter_api
   use contactsep_kinds, only: wp
   use chatter_moreau_jean, only: moreau_jean
   use chatter_hertz, only: hertz
+  use chatter_event_driven, only: rigid_stop, jacobi_eigen
   implicit none
   private
-  public :: run_moreau_jean, run_hertz
+  public :: run_moreau_jean, run_hertz, run_rigid_stop, symmetric_eigen
 
 contains
 
@@ -45,5 +46,44 @@ contains
     call hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, steps, &
         stride, samples, t_out, g_out, e_out, p_out, first)
   end subroutine run_hertz
+
+  !> Appendix E on a rigid stop (see chatter_event_driven's rigid_stop);
+  !> q0, v0 are copied, not changed.  impacts(:, i) = time, impulse,
+  !> contact velocity before and after, energy after; closure(i) = 0
+  !> flight, 1 a rest began, 2 closed and left at once; rests(:, k) =
+  !> start, end; energies = initial, final; status 0 ok, 1 impact table
+  !> full before t_end, 2 bad input, 3 rest table full, 4 no eigenbasis.
+  subroutine run_rigid_stop(n, p, x, mass, q0, v0, e, t_end, zeno_speed, &
+      max_impacts, max_rests, impacts, n_impacts, closure, rests, &
+      n_rests, q_end, v_end, energies, status)
+    integer, intent(in) :: n, max_impacts, max_rests
+    real(wp), intent(in) :: p(n), x(n), mass, q0(n), v0(n)
+    real(wp), intent(in) :: e, t_end, zeno_speed
+    real(wp), intent(out) :: impacts(5, max_impacts)
+    integer, intent(out) :: n_impacts, closure(max_impacts)
+    real(wp), intent(out) :: rests(2, max_rests)
+    integer, intent(out) :: n_rests
+    real(wp), intent(out) :: q_end(n), v_end(n), energies(2)
+    integer, intent(out) :: status
+
+    q_end = q0
+    v_end = v0
+    call rigid_stop(n, p, x, mass, q_end, v_end, e, t_end, zeno_speed, &
+        max_impacts, max_rests, impacts, n_impacts, closure, rests, &
+        n_rests, energies, status)
+  end subroutine run_rigid_stop
+
+  !> Symmetric eigen-decomposition by cyclic Jacobi (ascending w,
+  !> a = v diag(w) v^T); status 0 ok, 4 not converged.
+  subroutine symmetric_eigen(n, a, w, v, status)
+    integer, intent(in) :: n
+    real(wp), intent(in) :: a(n, n)
+    real(wp), intent(out) :: w(n), v(n, n)
+    integer, intent(out) :: status
+    logical :: ok
+
+    call jacobi_eigen(n, a, w, v, ok)
+    status = merge(0, 4, ok)
+  end subroutine symmetric_eigen
 
 end module chatter_api

@@ -124,10 +124,20 @@ def _first_root(value, slope, bound, scale, horizon):
 
 
 def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
-                        zeno_speed=ZENO_SPEED, max_impacts=1_000_000
-                        ) -> RigidStopResult:
+                        zeno_speed=ZENO_SPEED, max_impacts=1_000_000,
+                        backend="numpy") -> RigidStopResult:
     """Appendix E: the beam (p_j, X_j at the contact, mass M) from state
-    (q0, v0) against a rigid stop at ``stop`` (the beam above it)."""
+    (q0, v0) against a rigid stop at ``stop`` (the beam above it).
+    ``backend="fortran"``: the compiled twin (event_driven_compiled.py)."""
+    if backend == "fortran":
+        from contactsep.chatter.event_driven_compiled import (
+            simulate_rigid_stop_compiled)
+        return simulate_rigid_stop_compiled(
+            p, x, mass, q0, v0, e, t_end, stop=stop, zeno_speed=zeno_speed,
+            max_impacts=max_impacts)
+    if backend != "numpy":
+        raise ValueError(f"backend: found {backend!r}, expected numpy or "
+                         f"fortran")
     p, x = np.asarray(p, float), np.asarray(x, float)
     q, v = np.array(q0, dtype=float), np.array(v0, dtype=float)
     if stop != 0.0:
@@ -230,7 +240,8 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
 
 def rigid_stop_from_design(design, *, t_end=0.060, **options
                            ) -> RigidStopResult:
-    """The upper contact of a Design released onto a rigid separator."""
+    """The upper contact of a Design released onto a rigid separator
+    (options as simulate_rigid_stop's, backend included)."""
     from contactsep.chatter.system import members
 
     upper = members(design)[0]
