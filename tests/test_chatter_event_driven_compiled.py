@@ -97,15 +97,18 @@ def test_compiled_matches_the_numpy_twin(n, restitution):
         assert np.all(r.v_after[~keep] == r.v_before[~keep])
 
 
-@pytest.mark.parametrize("n", [2, 4, 8, 16])
-def test_compiled_never_records_an_event_in_mid_flight(n):
-    """The guarded Newton shortcut: impulse-free events only where the
-    contact is at rest at round-off (|u| tiny), never after a jump over
-    the flight (which the unguarded shortcut did at N = 8)."""
+@pytest.mark.parametrize("n", [2, 4, 8, 16, 32])
+@pytest.mark.parametrize("backend", ["numpy", "fortran"])
+def test_every_recorded_event_is_an_approach(n, backend):
+    """No false re-contacts: every event is an impact with the contact
+    approaching (u- < 0, psi > 0).  Leaving a rest, y and y' are at the
+    modal sum's round-off: before the flight starts clear of it and
+    events with no approach were skipped, the twin recorded 240 such
+    events at N = 4 and killed their separating velocity; an unguarded
+    Newton shortcut jumped over a real impact (N = 8)."""
     design = contactsep.thesis_design(n_modes=n)
-    r = rigid_stop_from_design(design, t_end=T_END, backend="fortran")
-    idle = ~physical(r)
-    assert np.all(np.abs(r.v_before[idle]) < 1e-9 * abs(r.v_before[0]))
+    r = rigid_stop_from_design(design, t_end=T_END, backend=backend)
+    assert np.all(r.v_before < 0.0) and np.all(r.impulse > 0.0)
     energies = np.concatenate([[r.initial_energy], r.energy_after])
     assert np.all(np.diff(energies) <= 1e-14 * energies[0])
 

@@ -113,8 +113,11 @@ def _first_root(value, slope, bound, scale, horizon):
         root = np.sqrt(d * d + 2.0 * bound * f)
         step = (d + root) / bound if d >= 0.0 else 2.0 * f / (root - d)
         small = step <= 1e-15 * max(tau, 1e-9)
-        if d < 0.0 and (small or f <= 1e-15 * scale):
-            return tau - f / d       # converged on a crossing
+        # converged on a crossing; the Newton step -f/d only where the
+        # safe step agrees with it (f and d both at round-off, as at a
+        # release from rest, would otherwise jump over real contacts)
+        if d < 0.0 and (small or f <= 1e-15 * scale) and -f / d <= 2 * step:
+            return tau - f / d
         if small and f <= 1e-12 * scale:
             return tau               # a tangency at the stop: grazing
         tau += step
@@ -151,7 +154,10 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
     segments = [(0.0, "free", q.copy(), v.copy(), None)]
     first_speed = None
     leaving = False
-    while t < t_end and len(impacts) < max_impacts:
+    events = 0
+    while t < t_end and len(impacts) < max_impacts \
+            and events < 4 * max_impacts:
+        events += 1
         bound = _bound("free", q, v, p, None, x)
         q_base, v_base = q.copy(), v.copy()
 
@@ -167,9 +173,14 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
         else:
             if leaving or y(0.0) <= 0.0:
                 # at the stop with (almost) no normal velocity: it leaves
-                # as y ~ tau^2 or tau^3; start where it is clear of it
+                # as y ~ tau^2 or tau^3; start where it is clear of it by
+                # more than the round-off of the modal sum (else that
+                # round-off is found as a contact with no approach)
+                noise = 64.0 * np.finfo(float).eps * float(
+                    np.sum(np.abs(x * q_base) + np.abs(x * v_base) / p))
                 start = 1e-12 * 2.0 * np.pi / p.max()
-                while y(start) <= 0.0 and start < 1e-3 * 2 * np.pi / p.max():
+                while y(start) <= noise and \
+                        start < 1e-3 * 2 * np.pi / p.max():
                     start *= 2.0
             tau = _first_root(lambda s: y(start + s), lambda s: yd(start + s),
                               bound, scale, t_end - t - start)
@@ -182,6 +193,12 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
         q, v = _flow("free", q_base, v_base, p, None, tau)
         t += tau
         u_minus = float(v @ x)
+        if u_minus >= 0.0:
+            # at the stop but not approaching it (leaving a rest, or the
+            # modal sum's round-off near y = 0): no impact; fly on
+            leaving = True
+            segments.append((t, "free", q.copy(), v.copy(), None))
+            continue
         psi = (1.0 + e) * mass * max(-u_minus, 0.0) / sx
         v = v + x * psi / mass
         u_plus = float(v @ x)
