@@ -196,3 +196,70 @@ def test_chatter_command_json(capsys):
         assert key in data
     assert main(["chatter", "--dt", "-1"]) == 2
     assert "dt: found -1.0" in capsys.readouterr().err
+
+
+def _inertia_modulus(design, i):
+    """E I (lb in^2) of member i from the design's own fields."""
+    b, h = float(getattr(design, "b" + i)), float(getattr(design, "h" + i))
+    return float(getattr(design, "E" + i)) * b * h**3 / 12.0
+
+
+def test_modal_flexibilities_converge_to_the_beam_formulas():
+    """The preload's static state uses the N-mode models' flexibility
+    sum X_j^2 / (M p_j^2); it tends to the exact point-load deflections,
+    L^3/(192 EI) at a clamped-clamped mid-span and L^3/(3 EI) at a
+    cantilever tip, from below (each mode adds a positive term)."""
+    from contactsep.chatter.system import flexibility
+    design = contactsep.thesis_design(n_modes=32)
+    _, sep, low = members(design)
+    exact_sep = float(design.L2)**3 / (192 * _inertia_modulus(design, "2"))
+    exact_low = float(design.L3)**3 / (3 * _inertia_modulus(design, "3"))
+    assert 0.999 < flexibility(sep) / exact_sep <= 1.0
+    assert 0.999 < flexibility(low) / exact_low <= 1.0
+
+
+@pytest.mark.parametrize("model", ["newton", "hertz"])
+def test_a_preload_is_a_static_equilibrium(model):
+    """Before the upper contact arrives nothing moves: the lower gap stays
+    at its start value (closed: 0 for Newton, minus the Hertz penetration
+    (F/k)^(2/3) for Hertz), the contact carrying the preload."""
+    design = contactsep.thesis_design(n_modes=8)
+    force = 0.05
+    r = chatter.simulate(design, model=model, preload=force, t_end=0.02)
+    assert r.preload_lb == force
+    if model == "hertz":
+        law = HertzLaw.for_materials(float(design.E1))
+        depth = (force / law.k) ** (2 / 3)
+        assert r.gap_lower[0] == pytest.approx(-depth, rel=1e-9)
+        # Strang splitting's fixed point lies O(dt^2) from the static
+        # state: the gap rocks by that much, a quarter when dt halves
+        wobble = np.ptp(r.gap_lower)
+        coarse = chatter.simulate(design, model=model, preload=force,
+                                  t_end=0.02, dt=2 * r.dt)
+        assert 3.5 < np.ptp(coarse.gap_lower) / wobble < 4.5
+        assert wobble < 1e-6 * depth
+    else:
+        assert -1e-15 < r.gap_lower[0] <= 0.0
+        assert np.ptp(r.gap_lower) < 1e-15
+    # the release height is measured from the preloaded separator
+    plain = chatter.simulate(design, model=model, t_end=0.02)
+    assert r.gap_upper[0] == pytest.approx(plain.gap_upper[0], rel=1e-12)
+    np.testing.assert_allclose(r.gap_upper, plain.gap_upper, rtol=0,
+                               atol=1e-12)
+
+
+def test_preload_holds_the_lower_contact_down():
+    """More preload, less lower-contact separation (newton, N = 8)."""
+    design = contactsep.thesis_design(n_modes=8)
+    gaps = [chatter.simulate(design, model="newton", preload=f,
+                             t_end=0.03).max_lower_gap_in
+            for f in (0.0, 0.1, 1.0)]
+    assert gaps[0] > gaps[1] > gaps[2] > 0
+
+
+@pytest.mark.parametrize("model, preload", [
+    ("newton", -0.1), ("newton", float("nan")), ("appE", 0.1)])
+def test_a_bad_preload_is_refused(model, preload):
+    with pytest.raises(chatter.ChatterError, match="preload"):
+        chatter.simulate(contactsep.thesis_design(n_modes=2), model=model,
+                         preload=preload, t_end=0.01)

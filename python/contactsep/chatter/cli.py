@@ -27,8 +27,13 @@ def register(commands: argparse._SubParsersAction) -> None:
                         help="time step (s); default per model")
     parser.add_argument("--t-end", type=float, default=0.060,
                         help="window from the release (s)")
-    parser.add_argument("--e", type=float, default=None)
-    parser.add_argument("--ys", type=float, default=None)
+    parser.add_argument("--e", type=float, default=None,
+                        help="coefficient of restitution (thesis: 0.375)")
+    parser.add_argument("--ys", type=float, default=None,
+                        help="release height above the separator (in)")
+    parser.add_argument("--preload", type=float, default=0.0,
+                        help="force pressing the lower contact against "
+                             "the separator at the start (lb; default 0)")
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--png", metavar="FILE",
                         help="plot both gaps, open-circuit intervals shaded")
@@ -43,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
                  if getattr(args, k) is not None}
     design = thesis_design(d=args.d, n_modes=args.n_modes, **overrides)
     result = simulate(design, model=args.model, damping=args.damping,
-                      dt=args.dt, t_end=args.t_end)
+                      dt=args.dt, t_end=args.t_end, preload=args.preload)
     summary = result.to_json_dict()
     if args.json:
         json.dump(summary, sys.stdout, indent=2)

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from contactsep.chatter import circuit
+from contactsep.chatter import circuit, system
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.system import members
 from contactsep.errors import InputError
@@ -70,6 +70,9 @@ class ChatterResult:
     energy_ratio: float
     #: The thesis's single-impulse predictions for the same design.
     single_impulse: dict = field(default_factory=dict)
+    #: Force pressing the lower contact on the separator at the start (lb);
+    #: the energies then include the preload's strain energy.
+    preload_lb: float = 0.0
 
     def to_json_dict(self) -> dict:
         """The summary (no sampled arrays), JSON-ready."""
@@ -77,6 +80,7 @@ class ChatterResult:
             return None if isinstance(x, float) and math.isnan(x) else x
         return {
             "model": self.model, "n_modes": self.n_modes, "dt_s": self.dt,
+            "preload_lb": self.preload_lb,
             "first_impact_s": clean(self.first_impact_s),
             "first_impulse_lb_s": clean(self.first_impulse_lb_s),
             "energy_ratio": clean(self.energy_ratio),
@@ -123,8 +127,11 @@ def simulate(design, model="newton", damping="none", dt=None, *,
              ) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
-    ``dt`` defaults per model (DEFAULT_DT); ``preload`` must be 0 (the
-    lower contact touches with zero preload; a preload is not implemented);
+    ``dt`` defaults per model (DEFAULT_DT); ``preload`` (lb, >= 0) presses
+    the lower contact up against the separator at the start (static
+    equilibrium of the N-mode models, :func:`system.preload_state`; the
+    release height stays y_s above the preloaded separator; appE has no
+    lower contact and takes only 0);
     ``nu`` and ``button_radius`` (in) set the Hertz constant;
     ``backend="numpy"`` runs the NumPy twins (slow: tests only).
     """
@@ -134,9 +141,12 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     if damping not in DAMPINGS:
         raise ChatterError(f"damping: found {damping!r}, expected one of "
                            f"{', '.join(DAMPINGS)}")
-    if preload != 0.0:
-        raise ChatterError("preload: only 0 (touching, no force) is "
-                           "implemented")
+    if not (preload >= 0.0 and math.isfinite(preload)):
+        raise ChatterError(f"preload: found {preload!r}, expected a force "
+                           f">= 0 lb")
+    if model == "appE" and preload != 0.0:
+        raise ChatterError("preload: appE has no lower contact (the upper "
+                           "contact against a rigid stop); use 0")
     if not (t_end > 0.0 and math.isfinite(t_end)):
         raise ChatterError(f"t_end: found {t_end!r}, expected a time > 0")
     if design.shape != ():
@@ -153,16 +163,27 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     steps = int(round(t_end / dt))
     stride = max(1, steps // samples)
     m, p, h, q0, v0, parts = _stack(design)
+    law = None
+    if model == "hertz":
+        flores = dict(e=float(design.e), v_ref=single["v_impact_in_s"]) \
+            if damping == "flores" else {}
+        law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
+                                     **flores)
     g0 = np.zeros(2)
+    if preload > 0.0:
+        upper, sep, lower = parts
+        depth = 0.0 if law is None else (preload / law.k) ** (2.0 / 3.0)
+        q_sep, q_low, g0 = system.preload_state(upper, sep, lower, preload,
+                                                depth)
+        n1, n2 = upper.p.size, sep.p.size
+        q0 = q0.copy()
+        q0[n1:n1 + n2] += q_sep
+        q0[n1 + n2:] += q_low
     if model == "newton":
         t, g, energy, impulses, first = _run(
             "moreau_jean", backend, m, p, h, g0, q0, v0, float(design.e),
             dt, theta, steps, stride)
     else:
-        flores = dict(e=float(design.e), v_ref=single["v_impact_in_s"]) \
-            if damping == "flores" else {}
-        law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
-                                     **flores)
         t, g, energy, impulses, first = _run(
             "hertz", backend, m, p, h, g0, q0, v0, law, dt, steps, stride)
     first_t, first_p = (float(first[0]), float(first[1])) \
@@ -172,7 +193,8 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         model=model, n_modes=int(design.n_modes), dt=dt, t=t,
         gap_upper=g[:, 0], gap_lower=g[:, 1], energy=energy, **found,
         first_impact_s=first_t, first_impulse_lb_s=first_p,
-        energy_ratio=float(energy[-1] / energy[0]), single_impulse=single)
+        energy_ratio=float(energy[-1] / energy[0]), single_impulse=single,
+        preload_lb=float(preload))
 
 
 def _run(kind, backend, m, p, h, g0, q0, v0, *args):

@@ -9,9 +9,9 @@ generalised mass is the member's mass) and frequencies p_j:
 F_i the contact force on member i at its contact point (positive up).
 Displacements are positive UP for every member: the upper contact is
 released from +y_s above the separator; the lower contact hangs below the
-separator, touching it with zero preload (option: a preload); gravity is
-not applied (the thesis neglects it; its static sag is a constant offset
-absorbed by the preload).
+separator, touching it with zero preload (option: a preload, see
+:func:`preload_state`); gravity is not applied (the thesis neglects it;
+its static sag is a constant offset absorbed by the preload).
 """
 
 from __future__ import annotations
@@ -87,3 +87,33 @@ def members(design: Design) -> tuple[Member, Member, Member]:
     upper = _member(design, "1", int(n1), release_state(design, int(n1)))
     return upper, _member(design, "2", int(n2)), _member(design, "3",
                                                           int(n3))
+
+
+def flexibility(member: Member) -> float:
+    """Static deflection per unit force at the contact point of the
+    member's N-mode model, sum X_j^2 / (M p_j^2) (in/lb): the truncated
+    model's own, so that the preloaded state is its exact equilibrium."""
+    return float(np.sum(member.x**2 / (member.mass * member.p**2)))
+
+
+def preload_state(upper: Member, separator: Member, lower: Member,
+                  force: float, penetration: float = 0.0):
+    """Initial modal displacements and gap offsets with the lower contact
+    pressed up against the separator by ``force`` (lb, >= 0).
+
+    Static equilibrium of the N-mode models: the separator is pushed up,
+    q_j = F X_j / (M p_j^2), the lower contact down by the same law.
+    The lower gap's offset makes the contact exactly closed (Newton) or
+    closed by ``penetration`` (Hertz: (F/k)^(2/3)); the upper gap's
+    offset keeps the release height y_s measured from the separator as
+    preloaded (the assembled rig), not from its unloaded position.
+    Returns (q_separator, q_lower, g0)."""
+    q_sep = force * separator.x / (separator.mass * separator.p**2)
+    q_low = -force * lower.x / (lower.mass * lower.p**2)
+    lift = float(q_sep @ separator.x)
+    drop = float(q_low @ lower.x)
+    # closed beyond the round-off of h q + g0 (a gap of +1e-19 would leave
+    # a rigid contact open for a step and start a rattle at rest)
+    slack = 8.0 * np.finfo(float).eps * (abs(lift) + abs(drop))
+    g0 = np.array([lift, -max(penetration, slack) - (lift - drop)])
+    return q_sep, q_low, g0
