@@ -328,3 +328,31 @@ def test_fortran_source_keeps_the_project_rules():
                 declared |= {n.strip().lower() for n in names.split(",")}
         missing += [f"{name}({a})" for a in args if a.lower() not in declared]
     assert not missing
+
+
+def test_simulate_appE_runs_the_compiled_solver_by_default(monkeypatch):
+    """simulate(model='appE') takes the Fortran events (backend
+    'compiled', the default) and the twin's with backend='numpy'; both
+    answer alike (N = 8: delta ~ 1e-13, see the tolerances above)."""
+    from contactsep.chatter import event_driven_compiled, simulate
+    calls = []
+    original = event_driven_compiled.simulate_rigid_stop_compiled
+
+    def spy(*args, **kwargs):
+        calls.append(1)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(event_driven_compiled,
+                        "simulate_rigid_stop_compiled", spy)
+    design = contactsep.thesis_design(n_modes=8)
+    fast = simulate(design, model="appE")
+    assert calls
+    twin = simulate(design, model="appE", backend="numpy")
+    assert len(calls) == 1
+    assert fast.first_impact_s == pytest.approx(twin.first_impact_s,
+                                                rel=1e-12)
+    assert fast.first_impulse_lb_s == pytest.approx(
+        twin.first_impulse_lb_s, rel=1e-10)
+    assert fast.energy_ratio == pytest.approx(twin.energy_ratio, rel=1e-9)
+    np.testing.assert_allclose(fast.gap_upper, twin.gap_upper, rtol=0,
+                               atol=1e-10)

@@ -157,7 +157,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     dt = DEFAULT_DT[model] if dt is None else float(dt)
     single = _single_impulse(design)
     if model == "appE":
-        return _appendix_e(design, t_end, single)
+        return _appendix_e(design, t_end, single, backend)
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     steps = int(round(t_end / dt))
@@ -227,10 +227,15 @@ def _run(kind, backend, m, p, h, g0, q0, v0, *args):
     return t, g.T, energy, impulses.T, first
 
 
-def _appendix_e(design, t_end, single) -> ChatterResult:
+def _appendix_e(design, t_end, single, backend) -> ChatterResult:
     from contactsep.chatter.event_driven import rigid_stop_from_design
 
-    r = rigid_stop_from_design(design, t_end=t_end)
+    if backend not in ("compiled", "numpy"):
+        raise ChatterError(f"backend: found {backend!r}, expected "
+                           f"compiled or numpy")
+    r = rigid_stop_from_design(
+        design, t_end=t_end,
+        backend="fortran" if backend == "compiled" else "numpy")
     t = np.linspace(0.0, t_end, DEFAULT_SAMPLES + 1)
     gap_upper = r.displacement(t)
     gap_lower = np.zeros_like(t)
