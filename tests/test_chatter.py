@@ -263,3 +263,25 @@ def test_a_bad_preload_is_refused(model, preload):
     with pytest.raises(chatter.ChatterError, match="preload"):
         chatter.simulate(contactsep.thesis_design(n_modes=2), model=model,
                          preload=preload, t_end=0.01)
+
+
+def test_appE_json_lists_every_impact_and_rest(capsys):
+    """--json of appE carries the event table: the first impact is the
+    summary's, impulses positive, each rebound reversing the approach by
+    e (the Newton law at the contact point, 1e-12), energy never rising,
+    rests inside the window."""
+    assert main(["chatter", "--model", "appE", "--n-modes", "4",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    impacts = out["impacts"]
+    assert impacts[0]["t_s"] == out["first_impact_s"]
+    assert impacts[0]["impulse_lb_s"] == out["first_impulse_lb_s"]
+    for event in impacts:
+        assert event["impulse_lb_s"] > 0 and event["v_before_in_s"] < 0
+        assert event["v_after_in_s"] == pytest.approx(
+            -0.375 * event["v_before_in_s"], rel=1e-12)
+    energies = [e["energy_after_in_lb"] for e in impacts]
+    assert all(b <= a * (1 + 1e-14) for a, b in zip(energies, energies[1:]))
+    rests = np.array(out["rest_intervals"])
+    assert rests.shape[1] == 2 and np.all(np.diff(rests, axis=1) > 0)
+    assert rests.min() > 0 and rests.max() <= 0.060

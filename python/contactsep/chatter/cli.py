@@ -54,11 +54,16 @@ def run(args: argparse.Namespace) -> int:
         json.dump(summary, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
+        lists = ("circuit_open_intervals", "impacts", "rest_intervals")
         for key, value in summary.items():
-            if key != "circuit_open_intervals":
+            if key not in lists:
                 print(f"{key:>22} = {value}")
         print(f"{'open intervals':>22} = "
               f"{len(result.circuit_open_intervals)}")
+        for key in lists[1:]:
+            if key in summary:
+                print(f"{key:>22} = {len(summary[key])} (--json lists "
+                      f"them)")
     if args.png:
         plot(result, args.png)
     return 0

@@ -73,6 +73,10 @@ class ChatterResult:
     #: Force pressing the lower contact on the separator at the start (lb);
     #: the energies then include the preload's strain energy.
     preload_lb: float = 0.0
+    #: appE only: every event (impact times, impulses, velocities before
+    #: and after, energy after each; resting intervals), see
+    #: :class:`contactsep.chatter.event_driven.RigidStopResult`.
+    rigid_stop: object = field(default=None, repr=False)
 
     def to_json_dict(self) -> dict:
         """The summary (no sampled arrays), JSON-ready."""
@@ -92,7 +96,22 @@ class ChatterResult:
             "lower_open_s": circuit.total(self.lower_open_intervals),
             "single_impulse": {k: clean(v)
                                for k, v in self.single_impulse.items()},
+            **self._events(),
         }
+
+    def _events(self) -> dict:
+        """appE: its impacts and rests (times s, impulses lb s, contact
+        velocities in/s, energy after each impact in lb)."""
+        r = self.rigid_stop
+        if r is None:
+            return {}
+        return {"impacts": [
+            {"t_s": float(t), "impulse_lb_s": float(psi),
+             "v_before_in_s": float(a), "v_after_in_s": float(b),
+             "energy_after_in_lb": float(w)}
+            for t, psi, a, b, w in zip(r.impact_t, r.impulse, r.v_before,
+                                       r.v_after, r.energy_after)],
+            "rest_intervals": r.rest_intervals.tolist()}
 
 
 def _stack(design):
@@ -157,7 +176,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     dt = DEFAULT_DT[model] if dt is None else float(dt)
     single = _single_impulse(design)
     if model == "appE":
-        return _appendix_e(design, t_end, single, backend)
+        return _appendix_e(design, t_end, single, backend, open_threshold)
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     steps = int(round(t_end / dt))
@@ -227,7 +246,8 @@ def _run(kind, backend, m, p, h, g0, q0, v0, *args):
     return t, g.T, energy, impulses.T, first
 
 
-def _appendix_e(design, t_end, single, backend) -> ChatterResult:
+def _appendix_e(design, t_end, single, backend,
+                open_threshold) -> ChatterResult:
     from contactsep.chatter.event_driven import rigid_stop_from_design
 
     if backend not in ("compiled", "numpy"):
@@ -239,7 +259,7 @@ def _appendix_e(design, t_end, single, backend) -> ChatterResult:
     t = np.linspace(0.0, t_end, DEFAULT_SAMPLES + 1)
     gap_upper = r.displacement(t)
     gap_lower = np.zeros_like(t)
-    found = circuit.discontinuity(t, gap_upper, gap_lower)
+    found = circuit.discontinuity(t, gap_upper, gap_lower, open_threshold)
     energy = np.full_like(t, np.nan)
     energy[0], energy[-1] = r.initial_energy, r.final_energy
     return ChatterResult(
@@ -250,4 +270,4 @@ def _appendix_e(design, t_end, single, backend) -> ChatterResult:
         first_impulse_lb_s=float(r.impulse[0]) if len(r.impulse)
         else math.nan,
         energy_ratio=r.final_energy / r.initial_energy,
-        single_impulse=single)
+        single_impulse=single, rigid_stop=r)
