@@ -285,3 +285,20 @@ def test_appE_json_lists_every_impact_and_rest(capsys):
     rests = np.array(out["rest_intervals"])
     assert rests.shape[1] == 2 and np.all(np.diff(rests, axis=1) > 0)
     assert rests.min() > 0 and rests.max() <= 0.060
+
+
+@pytest.mark.parametrize("options, match", [
+    (dict(dt=1e-30), "at most 1e\\+09 steps"),
+    (dict(samples=0), "samples"), (dict(theta=0.2), "theta"),
+    (dict(nu=0.7), "nu"), (dict(button_radius=-1.0), "radius"),
+    (dict(n_modes=5000), "at most 1024 modes"),
+    (dict(ys=-0.01), "release height > 0")])
+def test_settings_that_cannot_run_are_refused_at_once(options, match):
+    """Each refused before any work (a dt of 1e-30 s would be 6e28 steps,
+    5000 modes a 15,000-mode system, a negative ys an interpenetrated
+    start): a ChatterError, exit 2 in the command."""
+    design_options = {k: options.pop(k) for k in ("n_modes", "ys")
+                      if k in options}
+    design = contactsep.thesis_design(**{"n_modes": 2, **design_options})
+    with pytest.raises(chatter.ChatterError, match=match):
+        chatter.simulate(design, model="hertz", **options)

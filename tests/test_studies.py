@@ -7,6 +7,12 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
 
 import numpy as np
 import pytest
@@ -250,3 +256,56 @@ def test_progress_bar_only_on_a_terminal(monkeypatch):
     bar = runner._progress(10, True)
     assert bar is not None
     bar.close()
+
+
+@pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130),
+                                            (signal.SIGTERM, 143),
+                                            (signal.SIGKILL, 2)])
+def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
+    """A 1e8-point grid (held as START:STOP:COUNT, never as an array) on
+    two worker processes: Ctrl-C or SIGTERM to the whole process group
+    (as a terminal or a job control sends them) stops it with its exit
+    status; a worker killed outright (SIGKILL, as the OOM killer does) is
+    reported, exit 2.  At most one line on stderr, no traceback, no
+    process and no temporary chunk file left, the CSV whole lines."""
+    csv_path = tmp_path / "out.csv"
+    process = subprocess.Popen(
+        [sys.executable, "-m", "contactsep", "sweep", "--vary",
+         "h2=0.1:0.5:100000000", "--workers", "2", "--progress", "never",
+         "--csv", str(csv_path)],
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+        start_new_session=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 60
+    while (not csv_path.exists() or csv_path.stat().st_size < 10_000) \
+            and time.monotonic() < deadline:
+        time.sleep(0.1)
+    if signum == signal.SIGKILL:
+        worker = subprocess.run(["pgrep", "-P", str(process.pid)],
+                                capture_output=True, text=True)
+        os.kill(int(worker.stdout.split()[0]), signum)
+    else:
+        os.killpg(process.pid, signum)
+    stderr = process.communicate(timeout=30)[1].decode()
+    assert process.returncode == status
+    assert len(stderr.splitlines()) <= 1 and "Traceback" not in stderr
+    time.sleep(0.5)
+    with pytest.raises(ProcessLookupError):
+        os.killpg(process.pid, 0)     # the workers are gone too
+    assert not [p for p in os.listdir(tempfile.gettempdir())
+                if p.startswith("contactsep-sweep-")]
+    if os.path.isdir("/dev/shm"):
+        assert not [p for p in os.listdir("/dev/shm")
+                    if p.startswith("contactsep-sweep-")]
+    assert csv_path.read_text().endswith("\n")
+
+
+def test_a_linear_axis_is_numpys_linspace():
+    from contactsep.studies.sweep import LinearAxis
+    for start, stop, count in [(0.1, 0.5, 19), (0.1, 0.5, 1),
+                               (0.3, 0.3, 5), (-2.0, 7.5, 1000),
+                               (1e-3, 1.0, 99_991)]:
+        axis, expected = LinearAxis(start, stop, count), \
+            np.linspace(start, stop, count)
+        np.testing.assert_array_equal(axis[np.arange(count)], expected)
+        assert axis[-1] == expected[-1] and len(axis) == count

@@ -198,4 +198,7 @@ def _main(argv: Sequence[str] | None) -> int:
         except OSError as late:
             error = error if isinstance(error, OSError) else late
         output.report(parser.prog, error)
-        return EXIT_ERROR
+        # an interrupt that kept what it had (a sweep's written chunks)
+        # still ends as Ctrl-C does
+        return EXIT_INTERRUPTED if getattr(error, "interrupted", False) \
+            else EXIT_ERROR

@@ -26,6 +26,9 @@ from contactsep.chatter.system import members
 from contactsep.errors import InputError
 
 MODELS = ("appE", "newton", "hertz")
+#: Most modes per member, and most time steps, a run may take.
+MAX_MODES = 1024
+MAX_STEPS = 1e9
 DAMPINGS = ("none", "flores")
 #: Default steps: Moreau-Jean 1e-7 s (impulse to 1e-5 against Appendix E);
 #: Hertz 2e-8 s (docs/chatter.md: converged to 1e-3 in the first impulse).
@@ -166,6 +169,17 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     if model == "appE" and preload != 0.0:
         raise ChatterError("preload: appE has no lower contact (the upper "
                            "contact against a rigid stop); use 0")
+    if not (isinstance(samples, (int, np.integer)) and samples >= 1):
+        raise ChatterError(f"samples: found {samples!r}, expected an "
+                           f"integer >= 1")
+    if not 0.5 <= theta <= 1.0:
+        raise ChatterError(f"theta: found {theta!r}, expected 1/2 <= theta "
+                           f"<= 1 (Moreau-Jean's theta-method)")
+    if not (-1.0 < nu <= 0.5 and button_radius > 0.0
+            and math.isfinite(button_radius)):
+        raise ChatterError(f"nu, button_radius: found {nu!r}, "
+                           f"{button_radius!r}, expected -1 < nu <= 0.5 "
+                           f"and a radius > 0 in")
     if not (t_end > 0.0 and math.isfinite(t_end)):
         raise ChatterError(f"t_end: found {t_end!r}, expected a time > 0")
     if design.shape != ():
@@ -173,12 +187,24 @@ def simulate(design, model="newton", damping="none", dt=None, *,
                            "batch")
     if isinstance(design.n_modes, tuple):
         raise ChatterError("n_modes: one N for all members")
+    if int(design.n_modes) > MAX_MODES:
+        raise ChatterError(f"n_modes: found {int(design.n_modes)}, expected "
+                           f"at most {MAX_MODES} modes per member (a run "
+                           f"costs steps x 3N; N = 64 converges the Hertz "
+                           f"answers, docs/chatter.md)")
+    if not float(design.ys) > 0.0:
+        raise ChatterError(f"ys: found {float(design.ys)!r}, expected a "
+                           f"release height > 0 above the separator")
     dt = DEFAULT_DT[model] if dt is None else float(dt)
     single = _single_impulse(design)
     if model == "appE":
         return _appendix_e(design, t_end, single, backend, open_threshold)
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
+    if t_end / dt > MAX_STEPS:
+        raise ChatterError(f"dt: found {dt!r}, expected at least t_end / "
+                           f"{MAX_STEPS:.0e} = {t_end / MAX_STEPS:.3g} s "
+                           f"(at most {MAX_STEPS:.0e} steps a run)")
     steps = int(round(t_end / dt))
     stride = max(1, steps // samples)
     m, p, h, q0, v0, parts = _stack(design)

@@ -3,11 +3,17 @@ to writers, with a progress bar on a terminal."""
 
 from __future__ import annotations
 
+import collections
 import csv
 import os
+import shutil
+import signal
 import sys
+import tempfile
+import threading
 import time
 from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 
@@ -17,7 +23,10 @@ from contactsep.studies.sweep import (CHUNK_SIZE, Summary, SweepSpec, chunks,
 
 
 class SweepInterrupted(InputError):
-    """A sweep stopped by the user; the chunks before it are written."""
+    """A sweep stopped by the user; the chunks before it are written.
+    The command reports it in one line and exits 130, as for Ctrl-C."""
+
+    interrupted = True
 
 
 class CsvWriter:
@@ -45,10 +54,13 @@ class CsvWriter:
         if not self._header:
             self._writer.writerow(list(columns))
             self._header = True
-        formatted = [np.char.mod("%.17g", np.asarray(v, dtype=float))
-                     if k != "status" else np.asarray(v).astype(str)
-                     for k, v in columns.items()]
-        self._writer.writerows(zip(*formatted))
+        # Python's own %-formatting, row by row: numpy.char.mod is slower
+        # (~15 us a row) and swallows a signal raised while it runs, so
+        # Ctrl-C and SIGTERM went unheard during a long write
+        line = ",".join("%d" if k == "status" else "%.17g"
+                        for k in columns) + "\n"
+        rows = zip(*(np.asarray(v).tolist() for v in columns.values()))
+        self._handle.writelines(line % row for row in rows)
         self._handle.flush()
 
     def close(self) -> None:
@@ -97,22 +109,113 @@ def _progress(total: int, enabled: bool | None):
                 file=sys.stderr)
 
 
-def _results_local(spec, bounds, workers):
+class _StopRequests:
+    """SIGINT and SIGTERM during a sweep only note the request; the sweep
+    acts on it between chunks and while it waits for one.  An exception
+    raised by a handler anywhere else (inside the process pool's own
+    code, holding its locks) could deadlock the pool's shutdown."""
+
+    def __init__(self) -> None:
+        self.signum = None
+        self._previous = {}
+
+    def __enter__(self) -> "_StopRequests":
+        if threading.current_thread() is threading.main_thread():
+            for signum in (signal.SIGINT, signal.SIGTERM):
+                previous = signal.getsignal(signum)
+                if previous not in (signal.SIG_IGN, None):
+                    self._previous[signum] = previous
+                    signal.signal(signum, self._note)
+        return self
+
+    def _note(self, signum, frame) -> None:
+        if self.signum is None:
+            self.signum = signum
+
+    def check(self) -> None:
+        """Act on a noted signal: its own handler runs now, here (Ctrl-C
+        raises KeyboardInterrupt; the command's SIGTERM handler raises
+        its exception; a default SIGTERM ends the process)."""
+        if self.signum is not None:
+            self.__exit__()
+            signal.raise_signal(self.signum)
+
+    def __exit__(self, *exc) -> None:
+        for signum, previous in self._previous.items():
+            signal.signal(signum, previous)
+        self._previous = {}
+
+
+def _wait(future, stop: _StopRequests):
+    """A chunk's columns, listening for a stop every quarter second."""
+    while True:
+        stop.check()
+        try:
+            return future.result(timeout=0.25)
+        except TimeoutError:
+            continue
+
+
+def _quiet_worker() -> None:
+    """Ctrl-C reaches the whole process group: the workers leave it to
+    the parent (which stops them between chunks) instead of printing a
+    KeyboardInterrupt each.  SIGTERM ends a worker (as the pool ends the
+    rest when one has died), never with the parent's handler."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _evaluate_to_file(spec, first, last, directory) -> str:
+    """A worker's chunk, saved beside the parent: the message back is a
+    short path, written to the pipe at once (a worker killed while it
+    sent megabytes of columns would leave the pool reading the rest of
+    the message forever), and no pickling of the columns."""
+    columns = evaluate_chunk(spec, first, last)
+    path = os.path.join(directory, f"{first}.npz")
+    np.savez(path, **{k: np.ascontiguousarray(v) for k, v in columns.items()})
+    return path
+
+
+def _load(path: str) -> dict:
+    with np.load(path) as data:
+        columns = {name: data[name] for name in data.files}
+    os.unlink(path)
+    return columns
+
+
+def _results_local(spec, bounds, workers, stop):
     if workers <= 1:
         for first, last in bounds:
+            stop.check()
             yield evaluate_chunk(spec, first, last)
         return
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        window = []
+    shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
+    directory = tempfile.mkdtemp(prefix="contactsep-sweep-", dir=shared)
+    pool = ProcessPoolExecutor(max_workers=workers,
+                               initializer=_quiet_worker)
+    finished = False
+    try:
+        window = collections.deque()
         for first, last in bounds:
-            window.append(pool.submit(evaluate_chunk, spec, first, last))
+            window.append(pool.submit(_evaluate_to_file, spec, first, last,
+                                      directory))
             if len(window) >= 2 * workers:
-                yield window.pop(0).result()
-        for future in window:
-            yield future.result()
+                yield _load(_wait(window.popleft(), stop))
+        while window:
+            yield _load(_wait(window.popleft(), stop))
+        finished = True
+    except BrokenProcessPool:
+        stop.check()   # a SIGTERM to the whole group: the workers went first
+        raise InputError("a worker process died (killed, or out of "
+                         "memory: try a smaller --chunk-size)") from None
+    finally:
+        # stopped early (a signal, a writer's error, a dead worker): the
+        # queued chunks are dropped and the running ones finished
+        pool.shutdown(wait=True, cancel_futures=not finished)
+        shutil.rmtree(directory, ignore_errors=True)
 
 
-def _results_dask(spec, bounds, address):
+def _results_dask(spec, bounds, address, stop):
     try:
         from distributed import Client
     except ImportError:
@@ -120,14 +223,14 @@ def _results_dask(spec, bounds, address):
                          "'contactsep[scale]'") from None
     client = address if hasattr(address, "submit") else Client(address)
     try:
-        window = []
+        window = collections.deque()
         for first, last in bounds:
             window.append(client.submit(evaluate_chunk, spec, first, last,
                                         pure=False))
             if len(window) >= 8:
-                yield window.pop(0).result()
-        for future in window:
-            yield future.result()
+                yield _wait(window.popleft(), stop)
+        while window:
+            yield _wait(window.popleft(), stop)
     finally:
         if client is not address:
             client.close()
@@ -148,16 +251,17 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
         raise InputError("--chunk-size must be at least 1")
     if workers is None:
         workers = os.cpu_count() or 1
-    bounds = list(chunks(spec.size, chunk_size))
-    if len(bounds) == 1:
+    bounds = chunks(spec.size, chunk_size)
+    if spec.size <= chunk_size:
         workers = 1
     summary = Summary(threshold=threshold)
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()
+    stop = _StopRequests().__enter__()
+    results = _results_dask(spec, bounds, scheduler, stop) if scheduler \
+        else _results_local(spec, bounds, workers, stop)
     try:
-        results = _results_dask(spec, bounds, scheduler) if scheduler \
-            else _results_local(spec, bounds, workers)
         for columns in results:
             for writer in writers:
                 writer.write(columns)
@@ -165,11 +269,16 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
             done += len(columns["status"])
             if bar is not None:
                 bar.update(len(columns["status"]))
+            stop.check()
     except KeyboardInterrupt:
         raise SweepInterrupted(
             f"interrupted: {done} of {spec.size} designs were evaluated and "
             f"written") from None
     finally:
+        # stops the workers now (an interrupt raised here, while a chunk
+        # is written, leaves the generator suspended, its pool running)
+        results.close()
+        stop.__exit__()
         for writer in writers:
             writer.close()
         if bar is not None:

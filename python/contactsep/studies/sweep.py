@@ -55,6 +55,32 @@ def _check_name(name: str) -> str:
     return name
 
 
+@dataclass(frozen=True)
+class LinearAxis:
+    """START:STOP:COUNT values, exactly as numpy.linspace gives them
+    (k * step + START, the last one STOP), without holding the array:
+    a grid of a billion points costs nothing until its chunks are made,
+    and the spec that travels to every worker stays small."""
+
+    start: float
+    stop: float
+    count: int
+
+    def __len__(self) -> int:
+        return self.count
+
+    def __getitem__(self, k):
+        k = np.asarray(k, dtype=np.int64)
+        k = np.where(k < 0, k + self.count, k)
+        if np.any((k < 0) | (k >= self.count)):
+            raise IndexError("axis index out of range")
+        if self.count == 1:
+            return np.full(k.shape, self.start)[()]
+        step = (self.stop - self.start) / (self.count - 1)
+        values = k * step + self.start
+        return np.where(k == self.count - 1, self.stop, values)[()]
+
+
 def parse_vary(text: str) -> tuple[str, np.ndarray]:
     """'h2=0.1:1.0:19' (START:STOP:COUNT) or 'h2=0.1,0.25,0.5'."""
     name, _, spec = text.partition("=")
@@ -65,13 +91,13 @@ def parse_vary(text: str) -> tuple[str, np.ndarray]:
             count = int(count)
             if count < 1:
                 raise ValueError
-            values = np.linspace(float(start), float(stop), count)
+            values = LinearAxis(float(start), float(stop), count)
         else:
             values = np.array([float(v) for v in spec.split(",")])
     except ValueError:
         raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
                          f"NAME=V1,V2,...") from None
-    if values.size == 0:
+    if len(values) == 0:
         raise SweepError(f"--vary {text}: no values")
     return name, values
 
