@@ -97,3 +97,12 @@ def test_compiled_backend_error_is_input_error_when_missing():
             evaluate(thesis_design(), backend="compiled")
     with pytest.raises(InputError, match="backend"):
         evaluate(thesis_design(), backend="gpu")
+
+
+@pytest.mark.parametrize("n_modes", [100_001, 10**9, (4, 4, 200_000)])
+def test_more_modes_than_the_limit_are_refused_at_once(n_modes):
+    """A billion modes would run for hours (and a huge N ignored SIGTERM
+    inside one sum): refused when the design is made, with the limit."""
+    with pytest.raises(DesignError, match="at most 100,000"):
+        thesis_design(n_modes=n_modes)
+    assert thesis_design(n_modes=100_000).n_modes == 100_000

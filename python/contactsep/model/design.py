@@ -16,6 +16,11 @@ import numpy as np
 from contactsep.errors import InputError
 from contactsep.model import modes
 
+#: Most modes per member: the sums cost more than N per design (6 s at
+#: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
+#: beam theory anyway.
+MAX_MODES = 100_000
+
 #: Option values (the first is the default), in the order of their codes.
 IMPACT_VELOCITIES = ("exact", "listing")
 LOWER_RESPONSES = ("as-printed", "impulse")
@@ -148,6 +153,10 @@ class Design:
         if not np.all(n >= 1):
             raise DesignError(f"n_modes: found {self.n_modes!r}, expected "
                               f"an integer >= 1 (or three of them)")
+        if not np.all(n <= MAX_MODES):
+            raise DesignError(f"n_modes: found {int(np.max(n))}, expected at "
+                              f"most {MAX_MODES:,} (cost grows faster than "
+                              f"N: 6 s a design at the limit)")
         if self.shape == ():
             problems = self.problems()
             if problems:
