@@ -302,3 +302,31 @@ def test_settings_that_cannot_run_are_refused_at_once(options, match):
     design = contactsep.thesis_design(**{"n_modes": 2, **design_options})
     with pytest.raises(chatter.ChatterError, match=match):
         chatter.simulate(design, model="hertz", **options)
+
+
+@pytest.mark.parametrize("n, order", [(1, 0.8), (4, 0.4)])
+def test_stiff_hertz_tends_to_appendix_e_at_the_predicted_rate(n, order):
+    """The upper contact on a rigid stop through an elastic Hertz contact
+    (the compiled splitting with one contact row): as k grows the contact
+    lasts tau_c ~ k^(-2/5), and the contact episode's impulse tends to
+    Appendix E's elastic Newton impulse (e = 1).  One mode: the error is
+    O((p tau_c)^2) ~ k^(-4/5) (symmetric contact); several modes exchange
+    energy during the contact, O(p_j tau_c) ~ k^(-2/5).  Measured: each
+    100x in k divides the error by 100^order within 10 %."""
+    design = contactsep.thesis_design(n_modes=n, e=1.0)
+    upper = members(design)[0]
+    newton = rigid_stop_from_design(design, t_end=0.0235)
+    law = HertzLaw.for_materials(float(design.E1))
+    errors = []
+    for scale in (1.0, 100.0):
+        dt = 2e-8
+        steps = int(0.0235 / dt)
+        stride = steps // 100
+        *_, first = api.run_hertz(
+            np.full(n, upper.mass), upper.p, upper.x.reshape(1, n),
+            np.zeros(1), upper.q0, upper.v0, law.k * scale, 0.0, dt, steps,
+            stride, steps // stride + 1)
+        assert abs(first[0] - newton.impact_t[0]) < 2 * dt
+        errors.append(abs(first[1] / newton.impulse[0] - 1))
+    assert errors[0] < 1e-2
+    assert errors[0] / errors[1] == pytest.approx(100**order, rel=0.1)
