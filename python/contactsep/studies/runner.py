@@ -258,31 +258,30 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()
-    stop = _StopRequests().__enter__()
-    results = _results_dask(spec, bounds, scheduler, stop) if scheduler \
-        else _results_local(spec, bounds, workers, stop)
-    try:
-        for columns in results:
+    with _StopRequests() as stop:
+        results = _results_dask(spec, bounds, scheduler, stop) \
+            if scheduler else _results_local(spec, bounds, workers, stop)
+        try:
+            for columns in results:
+                for writer in writers:
+                    writer.write(columns)
+                summary.add(columns)
+                done += len(columns["status"])
+                if bar is not None:
+                    bar.update(len(columns["status"]))
+                stop.check()
+        except KeyboardInterrupt:
+            raise SweepInterrupted(
+                f"interrupted: {done} of {spec.size} designs were evaluated "
+                f"and written") from None
+        finally:
+            # stops the workers now (a stop acted on in this loop leaves
+            # the generator suspended, its pool running)
+            results.close()
             for writer in writers:
-                writer.write(columns)
-            summary.add(columns)
-            done += len(columns["status"])
+                writer.close()
             if bar is not None:
-                bar.update(len(columns["status"]))
-            stop.check()
-    except KeyboardInterrupt:
-        raise SweepInterrupted(
-            f"interrupted: {done} of {spec.size} designs were evaluated and "
-            f"written") from None
-    finally:
-        # stops the workers now (an interrupt raised here, while a chunk
-        # is written, leaves the generator suspended, its pool running)
-        results.close()
-        stop.__exit__()
-        for writer in writers:
-            writer.close()
-        if bar is not None:
-            bar.close()
+                bar.close()
     result = summary.as_dict()
     result["seconds"] = time.perf_counter() - start
     return result
