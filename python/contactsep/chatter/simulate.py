@@ -160,6 +160,9 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     if model not in MODELS:
         raise ChatterError(f"model: found {model!r}, expected one of "
                            f"{', '.join(MODELS)}")
+    if backend not in ("compiled", "numpy"):
+        raise ChatterError(f"backend: found {backend!r}, expected "
+                           f"compiled or numpy")
     if damping not in DAMPINGS:
         raise ChatterError(f"damping: found {damping!r}, expected one of "
                            f"{', '.join(DAMPINGS)}")
@@ -218,8 +221,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     if preload > 0.0:
         upper, sep, lower = parts
         depth = 0.0 if law is None else (preload / law.k) ** (2.0 / 3.0)
-        q_sep, q_low, g0 = system.preload_state(upper, sep, lower, preload,
-                                                depth)
+        q_sep, q_low, g0 = system.preload_state(sep, lower, preload, depth)
         n1, n2 = upper.p.size, sep.p.size
         q0 = q0.copy()
         q0[n1:n1 + n2] += q_sep
@@ -253,9 +255,6 @@ def _run(kind, backend, m, p, h, g0, q0, v0, *args):
         law, dt, steps, stride = args
         return steppers.hertz(m, p, h, g0, q0, v0, law=law, dt=dt,
                               steps=steps, stride=stride)
-    if backend != "compiled":
-        raise ChatterError(f"backend: found {backend!r}, expected "
-                           f"compiled or numpy")
     api = importlib.import_module("contactsep._chatter").chatter_api
     if kind == "moreau_jean":
         e, dt, theta, steps, stride = args
@@ -276,9 +275,6 @@ def _appendix_e(design, t_end, single, backend,
                 open_threshold) -> ChatterResult:
     from contactsep.chatter.event_driven import rigid_stop_from_design
 
-    if backend not in ("compiled", "numpy"):
-        raise ChatterError(f"backend: found {backend!r}, expected "
-                           f"compiled or numpy")
     r = rigid_stop_from_design(
         design, t_end=t_end,
         backend="fortran" if backend == "compiled" else "numpy")

@@ -96,8 +96,8 @@ def flexibility(member: Member) -> float:
     return float(np.sum(member.x**2 / (member.mass * member.p**2)))
 
 
-def preload_state(upper: Member, separator: Member, lower: Member,
-                  force: float, penetration: float = 0.0):
+def preload_state(separator: Member, lower: Member, force: float,
+                  penetration: float = 0.0):
     """Initial modal displacements and gap offsets with the lower contact
     pressed up against the separator by ``force`` (lb, >= 0).
 
@@ -110,8 +110,8 @@ def preload_state(upper: Member, separator: Member, lower: Member,
     Returns (q_separator, q_lower, g0)."""
     q_sep = force * separator.x / (separator.mass * separator.p**2)
     q_low = -force * lower.x / (lower.mass * lower.p**2)
-    lift = float(q_sep @ separator.x)
-    drop = float(q_low @ lower.x)
+    lift = force * flexibility(separator)     # = sum X_j q_j, separator
+    drop = -force * flexibility(lower)        # = sum X_j q_j, lower
     # closed beyond the round-off of h q + g0 (a gap of +1e-19 would leave
     # a rigid contact open for a step and start a rattle at rest)
     slack = 8.0 * np.finfo(float).eps * (abs(lift) + abs(drop))
