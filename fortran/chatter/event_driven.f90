@@ -348,7 +348,7 @@ contains
         leaving = .true.
         cycle
       end if
-      psi = (1.0_wp + e) * mass * max(-u_minus, 0.0_wp) / sx
+      psi = -(1.0_wp + e) * mass * u_minus / sx
       v = v + x * psi / mass
       u_plus = sum(v * x)
       if (first_speed == 0.0_wp) first_speed = abs(u_minus)

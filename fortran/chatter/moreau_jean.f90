@@ -55,10 +55,10 @@ contains
       na = 0
       do i = 1, k
         ! closed and not separating: the impulse's work, P (1-e) u_k / 2,
-        ! is then never positive (energy never grows)
-        ! not separating beyond round-off: a closed contact at rest has
-        ! u = 0 +- the round-off of v_free + impulse, which cancel (a
-        ! contact skipped for a step sinks by dt^2 F / M)
+        ! is then never positive (energy never grows).  "Separating" is
+        ! beyond round-off: a closed contact at rest has u = 0 +- the
+        ! round-off of v_free + impulse, which cancel (a contact skipped
+        ! for a step sinks by dt^2 F / M)
         if (gap(i) + 0.5_wp * dt * u(i) <= 0.0_wp .and. u(i) <= 64.0_wp &
             * epsilon(1.0_wp) * sum(abs(h(i, :) * v_free))) then
           na = na + 1

@@ -199,7 +199,7 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
             leaving = True
             segments.append((t, "free", q.copy(), v.copy(), None))
             continue
-        psi = (1.0 + e) * mass * max(-u_minus, 0.0) / sx
+        psi = -(1.0 + e) * mass * u_minus / sx
         v = v + x * psi / mass
         u_plus = float(v @ x)
         first_speed = first_speed or abs(u_minus)

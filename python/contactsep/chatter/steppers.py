@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-EPS = float(np.finfo(float).eps)
-
 from contactsep.chatter.contacts import HertzLaw, solve_lcp
+
+EPS = float(np.finfo(float).eps)
 
 
 def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
@@ -47,10 +47,10 @@ def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
         v_free = w * (m * v - dt * k * q - dt**2 * theta * (1 - theta)
                       * k * v)
         # closed and not separating: the impulse's work, P (1-e) u_k / 2,
-        # is then never positive (energy never grows)
-        # not separating beyond round-off: a closed contact at rest has
-        # u = 0 +- the round-off of v_free + impulse, which cancel (a
-        # contact skipped for a step sinks by dt^2 F / M)
+        # is then never positive (energy never grows).  "Separating" is
+        # beyond round-off: a closed contact at rest has u = 0 +- the
+        # round-off of v_free + impulse, which cancel (a contact skipped
+        # for a step sinks by dt^2 F / M)
         noise = 64.0 * EPS * (np.abs(h_matrix) @ np.abs(v_free))
         active = np.flatnonzero((gap + 0.5 * dt * u <= 0.0) & (u <= noise))
         v_new = v_free
