@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import argparse
 import timeit
-
-import numpy as np
 from pathlib import Path
 
-from contactsep import core, legacy, reference
+import numpy as np
+
+from contactsep.restored import core, legacy, reference
 
 DECKS = Path(__file__).resolve().parent.parent / "data" / "decks"
 

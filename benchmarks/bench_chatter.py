@@ -2,7 +2,7 @@
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_chatter.py
 
-Compiled steppers (contactsep._chatter) over the whole 0.06 s window
+Compiled steppers (contactsep.chatter._chatter) over the whole 0.06 s window
 against their NumPy twins timed on 1/50 of the steps (per-step cost is
 constant, so the ratio is per step), and Appendix E's event-driven
 solver on the rigid stop, compiled against NumPy (best of 5 each).
@@ -15,15 +15,15 @@ import time
 import numpy as np
 
 import contactsep
+import contactsep.chatter._chatter as compiled_module
 from contactsep.chatter import steppers
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.event_driven import rigid_stop_from_design
 from contactsep.chatter.event_driven_compiled import (
-    simulate_rigid_stop_compiled)
+    simulate_rigid_stop_compiled,
+)
 from contactsep.chatter.simulate import _stack
 from contactsep.chatter.system import members
-
-import contactsep._chatter as compiled_module
 
 API = compiled_module.chatter_api
 

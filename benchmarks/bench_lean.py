@@ -31,7 +31,10 @@ TIMER = r"""
 import json, sys, timeit, warnings
 import numpy as np
 warnings.simplefilter("ignore")
-from contactsep import core
+try:                    # the layout since issue 20
+    from contactsep.restored import core
+except ImportError:     # the 2027d9f build
+    from contactsep import core
 ds = core.replay(sys.argv[1], "double")[0].inputs
 repeat = int(sys.argv[2])
 def best(case, number=200):

@@ -63,8 +63,8 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=60.0)
     args = parser.parse_args()
     base, _, _ = peak([sys.executable, "-c",
-                       "import contactsep.cli, contactsep.compare, "
-                       "contactsep.core as c; c._api('single'); "
+                       "import contactsep.cli, contactsep.restored.compare, "
+                       "contactsep.restored.core as c; c._api('single'); "
                        "c._api('double')"])
     print(f"baseline (interpreter, NumPy, extensions): {base:.0f} MB")
     with tempfile.TemporaryDirectory() as tmp:

@@ -21,8 +21,8 @@ import warnings
 import numpy as np
 
 import contactsep
-from contactsep import thesis
 from contactsep.model import compiled, pack, twin
+from contactsep.restored import thesis_decks
 
 #: Transcendental calls per thesis design (N = 4) in the compiled kernel
 #: when nothing is shared with the previous design: mode values at 4
@@ -71,7 +71,7 @@ def main() -> None:
     t_unshared = best_of(lambda: compiled.evaluate_packed(unshared)) / m
     small = pack(contactsep.thesis_design(d=np.linspace(0.1, 1.0, 5_000)))
     t_twin = best_of(lambda: twin.evaluate_packed(small), 3) / 5_000
-    data_sets = [thesis.thesis_data_set(d, equivalent_length=3.6)
+    data_sets = [thesis_decks.thesis_data_set(d, equivalent_length=3.6)
                  for d in np.linspace(0.1, 1.0, 200)]
 
     def loop():
@@ -83,7 +83,7 @@ def main() -> None:
     t_sin = best_of(lambda: np.sin(x)) / x.size
     rss = memory_of_a_million()
     print(f"{'what':44} {'us/design':>10} {'designs/s':>11} {'ratio':>8}")
-    rows = [("compiled batch, d sweep (contactsep._model)", t_compiled),
+    rows = [("compiled batch, d sweep (contactsep.model._model)", t_compiled),
             ("compiled batch, nothing shared", t_unshared),
             ("NumPy twin (contactsep.model.twin), d sweep", t_twin),
             ("Python loop of contactsep.solve(double)", t_solve),

@@ -2,9 +2,15 @@
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/chatter_convergence.py
 """
-import numpy as np, contactsep, time, json
+import json
+import time
+
+import numpy as np
+
+import contactsep
 from contactsep import chatter
 from contactsep.chatter.event_driven import rigid_stop_from_design
+
 out=[]
 def row(model, N, dt, damping='none', d=0.25):
     t0=time.time()

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from contactsep import cards, thesis
-from contactsep.dataset import DataSet
+from contactsep.restored import cards, thesis_decks
+from contactsep.restored.dataset import DataSet
 
 ROOT = Path(__file__).resolve().parent.parent
 DECK_DIR = ROOT / "data" / "decks"
@@ -22,12 +22,12 @@ def deck_id(path: Path) -> str:
 
 def with_modes(data_set: DataSet, n: int) -> DataSet:
     """The data set with N modes, constants from the project's beam code."""
-    return data_set.replace(**thesis.mode_constants(n))
+    return data_set.replace(**thesis_decks.mode_constants(n))
 
 
 def variant_data_sets() -> dict[str, list[DataSet]]:
     """Decks beyond the thesis's: other materials, sizes, N, DELY."""
-    base = thesis.thesis_data_set(0.250)
+    base = thesis_decks.thesis_data_set(0.250)
     steel = base.replace(e=30.0e6, rho=490.0, rho2=490.0, rho3=490.0)
     brass_thin = base.replace(
         e=15.0e6, rho=532.0, rho2=532.0, rho3=532.0, h=0.0625, h3=0.0625,

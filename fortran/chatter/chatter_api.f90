@@ -4,6 +4,7 @@ module chatter_api
   use chatter_moreau_jean, only: moreau_jean
   use chatter_hertz, only: hertz
   use chatter_event_driven, only: rigid_stop, jacobi_eigen
+  use chatter_status, only: status_ok, status_no_eigenbasis
   implicit none
   private
   public :: run_moreau_jean, run_hertz, run_rigid_stop, symmetric_eigen
@@ -51,8 +52,7 @@ contains
   !> q0, v0 are copied, not changed.  impacts(:, i) = time, impulse,
   !> contact velocity before and after, energy after; closure(i) = 0
   !> flight, 1 a rest began, 2 closed and left at once; rests(:, k) =
-  !> start, end; energies = initial, final; status 0 ok, 1 impact table
-  !> full before t_end, 2 bad input, 3 rest table full, 4 no eigenbasis.
+  !> start, end; energies = initial, final; status: chatter_status.
   subroutine run_rigid_stop(n, p, x, mass, q0, v0, e, t_end, zeno_speed, &
       max_impacts, max_rests, impacts, n_impacts, closure, rests, &
       n_rests, q_end, v_end, energies, status)
@@ -74,7 +74,7 @@ contains
   end subroutine run_rigid_stop
 
   !> Symmetric eigen-decomposition by cyclic Jacobi (ascending w,
-  !> a = v diag(w) v^T); status 0 ok, 4 not converged.
+  !> a = v diag(w) v^T); status ok or no_eigenbasis (chatter_status).
   subroutine symmetric_eigen(n, a, w, v, status)
     integer, intent(in) :: n
     real(wp), intent(in) :: a(n, n)
@@ -83,7 +83,7 @@ contains
     logical :: ok
 
     call jacobi_eigen(n, a, w, v, ok)
-    status = merge(0, 4, ok)
+    status = merge(status_ok, status_no_eigenbasis, ok)
   end subroutine symmetric_eigen
 
 end module chatter_api

@@ -12,23 +12,14 @@
 module chatter_event_driven
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use contactsep_kinds, only: wp
+  use chatter_status, only: st_ok => status_ok, &
+      st_impacts_full => status_impacts_full, &
+      st_bad_input => status_bad_input, st_rests_full => status_rests_full, &
+      st_no_eigen => status_no_eigenbasis
   implicit none
   private
-  public :: rigid_stop, jacobi_eigen
-  public :: st_ok, st_impacts_full, st_bad_input, st_rests_full
-  public :: st_no_eigen, max_steps
+  public :: rigid_stop, jacobi_eigen, max_steps
 
-  !> Status: the run reached t_end.
-  integer, parameter :: st_ok = 0
-  !> Status: stopped at max_impacts impacts before t_end (the twin's cap).
-  integer, parameter :: st_impacts_full = 1
-  !> Status: bad input (n < 1, p <= 0, mass <= 0, X = 0, e outside
-  !> [0, 1], t_end or zeno_speed < 0, a table size < 1, non-finite).
-  integer, parameter :: st_bad_input = 2
-  !> Status: stopped at an impact that would start rest max_rests + 1.
-  integer, parameter :: st_rests_full = 3
-  !> Status: the Jacobi eigensolver did not converge.
-  integer, parameter :: st_no_eigen = 4
   !> Safe steps allowed per search before a grazing approach is taken as
   !> a contact (the twin's MAX_STEPS).
   integer, parameter :: max_steps = 200000
@@ -224,7 +215,7 @@ contains
     en = 0.5_wp * mass * sum(v**2 + (p * q)**2)
   end function energy
 
-  !> True if the arguments make a run (see st_bad_input).
+  !> True if the arguments make a run (see status_bad_input).
   pure function good_input(n, p, x, mass, q, v, e, t_end, zeno_speed, &
       max_impacts, max_rests) result(good)
     integer, intent(in) :: n, max_impacts, max_rests
@@ -265,8 +256,8 @@ contains
     integer, intent(out) :: n_rests
     !> Energy at release and at the end (in lb).
     real(wp), intent(out) :: energies(2)
-    !> See st_ok, st_impacts_full, st_bad_input, st_rests_full,
-    !> st_no_eigen.
+    !> A code of chatter_status (ok, impacts_full, bad_input, rests_full,
+    !> no_eigenbasis).
     integer, intent(out) :: status
     real(wp) :: sx, scale, t, tau, start, bound, y0, yd0, pmax
     real(wp) :: u_minus, u_plus, psi, first_speed, f0, fd0, release

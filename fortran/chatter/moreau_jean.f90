@@ -4,6 +4,7 @@
 module chatter_moreau_jean
   use contactsep_kinds, only: wp
   use chatter_lcp, only: solve_lcp
+  use chatter_status, only: status_ok, status_lcp_unsolved
   implicit none
   private
   public :: moreau_jean
@@ -35,7 +36,7 @@ contains
     logical :: ok, touched
     integer :: episode
 
-    status = 0
+    status = status_ok
     first = -1.0_wp
     episode = 0
     stiff = m * p**2
@@ -77,7 +78,7 @@ contains
         end do
         call solve_lcp(na, d, b, z, ok)
         if (.not. ok) then
-          status = 1
+          status = status_lcp_unsolved
           return
         end if
         touched = .false.

@@ -1,12 +1,10 @@
 !> Masses, flexural constants and frequencies of the three members.
 module model_members
   use contactsep_kinds, only: wp
+  use contactsep_constants, only: gravity
   implicit none
   private
   public :: member_constants, frequency
-
-  !> Acceleration of gravity (in/s^2): weight to mass (Appendix B).
-  real(wp), parameter, public :: gravity = 386.4_wp
 
 contains
 

@@ -7,6 +7,7 @@
 !> listing's: inches, lb/ft^3, psi; 386.4 in/s^2 turns weight into mass.
 module contactsep_beam_properties
   use contactsep_kinds, only: wp
+  use contactsep_constants, only: gravity, cubic_inches_per_cubic_foot
   implicit none
   private
   public :: beam, beam_properties
@@ -33,11 +34,11 @@ contains
     real(wp), intent(in) :: xl, b, h, rho, e
     type(beam) :: this
 
-    this%density = rho / 1728.0_wp
+    this%density = rho / cubic_inches_per_cubic_foot
     this%area = b * h
-    this%mass = (this%density * this%area * xl) / 386.4_wp
+    this%mass = (this%density * this%area * xl) / gravity
     this%inertia = (b * (h**3)) / 12.0_wp
-    this%w = sqrt((e * (this%inertia * 386.4_wp)) &
+    this%w = sqrt((e * (this%inertia * gravity)) &
         / (this%area * this%density))
   end function beam_properties
 

@@ -7,6 +7,7 @@
 !> tip then moves as TY3(T) = sum TY2DT*C3(I)**2*SIN(P3(I)*T)/(XL3*P3(I)).
 module contactsep_lower_contact
   use contactsep_kinds, only: wp
+  use contactsep_constants, only: listing_tau
   use contactsep_status, only: message_length, status_ok, &
       status_history_stalled, status_history_full, real_text, integer_text
   implicit none
@@ -15,7 +16,7 @@ module contactsep_lower_contact
   public :: lower_contact_tip, lower_contact_history, closing_ratios
 
   !> End of the history: the listing's TAU = 0.060 s.
-  real(wp), parameter, public :: tau = 0.060_wp
+  real(wp), parameter, public :: tau = listing_tau
 
 contains
 

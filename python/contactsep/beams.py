@@ -1,82 +1,207 @@
-"""Bernoulli-Euler characteristic beam functions for any number of modes.
+"""Normal modes of a uniform Bernoulli-Euler beam for the four orthodox
+end conditions, any number of modes: shared by every layer (the restored
+core's mode cards, the general model, the contact dynamics).
 
-The thesis uses two supports (Chapter III; Appendices A and C):
+End conditions (x = 0 is always the first-named end):
 
-* ``"cantilever"`` (the contacts): X(0) = X'(0) = 0, X''(L) = X'''(L) = 0,
-  frequency equation cos kL cosh kL = -1 (Appendix A, eq. 5);
-* ``"clamped-clamped"`` (the separator): X(0) = X'(0) = X(L) = X'(L) = 0,
-  frequency equation cos kL cosh kL = +1 (Appendix C, eq. 3).
+* ``"clamped-free"`` (cantilever, the contacts; also called
+  ``"cantilever"``): cos kL cosh kL = -1 (Appendix A, eq. 5);
+* ``"clamped-clamped"`` (the separator): cos kL cosh kL = +1 (Appendix C,
+  eq. 3);
+* ``"clamped-pinned"`` (propped cantilever): tan kL = tanh kL;
+* ``"pinned-pinned"``: sin kL = 0, k_jL = j pi, X_j = sqrt(2) sin(j pi x/L).
 
-Both use the mode function (Appendix C, eq. 4)
-
-    X_j(x) = cosh k_j x - cos k_j x - alpha_j (sinh k_j x - sin k_j x),
-
-normalised so that the integral of X_j^2 over [0, L] is L (Appendix A,
-orthogonality condition).  The listing calls k_jL ``V``, alpha_j ``ALPHA``
-and reads them, with X_j(L) or X_j(L/2), from the deck.
+The first three share the mode function (Appendix C, eq. 4)
+X_j(x) = cosh k_j x - cos k_j x - sigma_j (sinh k_j x - sin k_j x), with
+sigma_j = (sinh - sin)/(cosh + cos) of k_jL for the cantilever and
+(cosh - cos)/(sinh - sin) for the other two.  Every mode is normalised so
+that the integral of X_j^2 over [0, L] is L (Appendix A).  The listing
+calls k_jL ``V``, sigma_j ``ALPHA`` and reads them, with X_j(L) or
+X_j(L/2), from the deck.
 
 The textbook form subtracts numbers of size e^{kL}/2 to get a result of
 size 1 and has no correct digit left by j ~ 10 in double precision.  Here
-every hyperbolic term is rewritten with e^{-kL} factored out, using
-g_j = (1 - alpha_j) e^{k_jL}, which has a cancellation-free closed form.
+every hyperbolic term is evaluated with e^{-kL} factored out through
+g_j = (1 - sigma_j) e^{k_jL}, which has a cancellation-free closed form,
+so that no term is larger than a few units and the modes are accurate to
+a few ulps for any j.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import modes
+#: The end conditions, in the order of their integer codes 1..4.
+END_CONDITIONS = ("clamped-free", "clamped-clamped", "clamped-pinned",
+                  "pinned-pinned")
 
-#: The two supports of the thesis.
+
+#: Other names of an end condition.
+ALIASES = {"cantilever": "clamped-free"}
+
+#: The thesis's two supports (the restored core's members).
 SUPPORTS = ("cantilever", "clamped-clamped")
 
 
-def _check(support: str, n: int) -> None:
-    if support not in SUPPORTS:
-        raise ValueError(f"support must be one of {SUPPORTS}, got {support!r}")
+def end_code(end: str) -> int:
+    """Integer code 1..4 of an end condition name."""
+    try:
+        return END_CONDITIONS.index(ALIASES.get(end, end)) + 1
+    except ValueError:
+        raise ValueError(f"end condition must be one of {END_CONDITIONS}, "
+                         f"got {end!r}") from None
+
+
+def _canonical(end: str) -> str:
+    return END_CONDITIONS[end_code(end) - 1]
+
+
+def _check(end: str, n: int) -> str:
+    end = _canonical(end)
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
+    return end
 
 
-_END = {"cantilever": "clamped-free", "clamped-clamped": "clamped-clamped"}
+def _sech(x):
+    q = np.exp(-x)
+    return 2.0 * q / (1.0 + q * q)
 
 
-def eigenvalues(support: str, n: int) -> np.ndarray:
-    """k_jL, j = 1..n: the roots of cos kL cosh kL = -1 (cantilever) or
-    +1 (clamped-clamped), to the nearest double or its neighbour
-    (bisection of the bounded form, contactsep.model.modes)."""
-    _check(support, n)
-    return modes.eigenvalues(_END[support], n)
+def _frequency_function(end: str, x):
+    """The frequency equation divided by cosh x: bounded, same roots."""
+    if end == "clamped-free":
+        return np.cos(x) + _sech(x)
+    if end == "clamped-clamped":
+        return np.cos(x) - _sech(x)
+    # tan x = tanh x  <=>  cos x tanh x - sin x = 0
+    q = np.exp(-2.0 * x)
+    return np.cos(x) * (1.0 - q) / (1.0 + q) - np.sin(x)
 
 
-def _alpha_parts(support: str, kl: np.ndarray):
-    """alpha_j and g_j = (1 - alpha_j) e^{k_jL}, both without cancellation."""
-    return modes._sigma_parts(_END[support], kl)
+def _brackets(end: str, j):
+    """Intervals [lo, hi] holding exactly root j of the frequency equation."""
+    if end == "clamped-free":
+        return (j - 1.0) * np.pi, j * np.pi
+    if end == "clamped-clamped":
+        return j * np.pi, (j + 1.0) * np.pi
+    # clamped-pinned: f(j pi) = (-1)^j tanh(j pi), f(j pi + pi/2) = -(-1)^j
+    return j * np.pi, (j + 0.5) * np.pi
 
 
-def alphas(support: str, n: int) -> np.ndarray:
-    """alpha_j (sigma_j), j = 1..n: (sinh - sin)/(cosh + cos) of k_jL for
-    the cantilever, (cosh - cos)/(sinh - sin) for clamped-clamped,
-    computed without cancellation (alpha_j rounds to 1.0 from j ~ 12)."""
-    _check(support, n)
-    return modes.sigmas(_END[support], n)
+def eigenvalues(end: str, n: int) -> np.ndarray:
+    """k_jL, j = 1..n, to the nearest double or its neighbour.
 
-
-def mode_shapes(support: str, n: int, xi, derivative: int = 0) -> np.ndarray:
-    """X_j(xi L) for j = 1..n, as an array of shape (n, len(xi)).
-
-    ``xi`` = x/L in [0, 1].  ``derivative`` m = 0..3 gives d^m X_j / d xi^m
-    (divide by L^m for d/dx).  Accurate to a few ulps of their unit size
-    for any j (the hyperbolic terms are evaluated with e^{-kL} factored
-    out; contactsep.model.modes).
+    Bisection of the bounded form of the frequency equation until the
+    bracket ends are adjacent doubles; pinned-pinned is j pi exactly.
     """
-    _check(support, n)
-    return modes.mode_shapes(_END[support], n, xi, derivative)
+    end = _check(end, n)
+    j = np.arange(1, n + 1, dtype=np.float64)
+    if end == "pinned-pinned":
+        return j * np.pi
+    lo, hi = _brackets(end, j)
+    lo_sign = np.sign(_frequency_function(end, lo))
+    while True:
+        mid = 0.5 * (lo + hi)
+        if np.all((mid == lo) | (mid == hi)):
+            break
+        same = np.sign(_frequency_function(end, mid)) == lo_sign
+        lo = np.where(same, mid, lo)
+        hi = np.where(same, hi, mid)
+    f_lo = np.abs(_frequency_function(end, lo))
+    f_hi = np.abs(_frequency_function(end, hi))
+    return np.where(f_lo <= f_hi, lo, hi)
+
+
+def _sigma_parts(end: str, kl):
+    """sigma_j and g_j = (1 - sigma_j) e^{k_jL}, without cancellation."""
+    q = np.exp(-kl)
+    c, s = np.cos(kl), np.sin(kl)
+    if end == "clamped-free":
+        den = 1.0 + q * q + 2.0 * q * c
+        sigma = (1.0 - q * q - 2.0 * q * s) / den
+        g = 2.0 * (q + c + s) / den
+    else:
+        den = 1.0 - q * q - 2.0 * q * s
+        sigma = (1.0 + q * q - 2.0 * q * c) / den
+        g = 2.0 * (c - s - q) / den
+    return sigma, g
+
+
+def sigmas(end: str, n: int) -> np.ndarray:
+    """sigma_j (the listing's ALPHA), j = 1..n; 0 for pinned-pinned."""
+    end = _check(end, n)
+    kl = eigenvalues(end, n)
+    if end == "pinned-pinned":
+        return np.zeros(n)
+    return _sigma_parts(end, kl)[0]
+
+
+def mode_shapes(end: str, n: int, xi, derivative: int = 0) -> np.ndarray:
+    """X_j(xi L), j = 1..n, shape (n, len(xi)); ``derivative`` m = 0..3
+    gives d^m X_j/d xi^m (divide by L^m for d/dx)."""
+    end = _check(end, n)
+    if derivative not in (0, 1, 2, 3):
+        raise ValueError(
+            f"derivative must be 0, 1, 2 or 3, got {derivative!r}")
+    xi = np.atleast_1d(np.asarray(xi, dtype=np.float64))
+    if xi.ndim != 1:
+        raise ValueError("xi must be a scalar or a 1-D array")
+    if np.any(~np.isfinite(xi)) or np.any((xi < 0.0) | (xi > 1.0)):
+        raise ValueError("xi must lie in [0, 1]")
+    kl = eigenvalues(end, n)[:, None]
+    z = kl * xi[None, :]
+    if end == "pinned-pinned":
+        # d^m/dxi^m sin z = kl^m sin(z + m pi/2)
+        phase = [np.sin, np.cos, lambda a: -np.sin(a),
+                 lambda a: -np.cos(a)][derivative]
+        return np.sqrt(2.0) * phase(z) * kl**derivative
+    sigma, g = _sigma_parts(end, kl)
+    grow = 0.5 * g * np.exp(z - kl)
+    decay = 0.5 * (1.0 + sigma) * np.exp(-z)
+    cos, sin = np.cos(z), np.sin(z)
+    if derivative == 0:
+        shape = grow + decay - cos + sigma * sin
+    elif derivative == 1:
+        shape = grow - decay + sin + sigma * cos
+    elif derivative == 2:
+        shape = grow + decay + cos - sigma * sin
+    else:
+        shape = grow - decay - sin - sigma * cos
+    return shape * kl**derivative
+
+
+def static_flexibility(end: str, xi) -> np.ndarray:
+    """G(xi) = y(a) EI / (F L^3): deflection under a point load F at
+    a = xi L, exact (strength of materials, not a truncated mode sum).
+
+    Equal to sum over all j of X_j(xi)^2 / (k_jL)^4 (the modal expansion
+    of the static influence function), which the tests check.
+    """
+    end = _canonical(end)
+    xi = np.asarray(xi, dtype=np.float64)
+    b = 1.0 - xi
+    if end == "clamped-free":
+        return xi**3 / 3.0
+    if end == "clamped-clamped":
+        return xi**3 * b**3 / 3.0
+    if end == "clamped-pinned":
+        return xi**3 * b**2 * (3.0 + b) / 12.0
+    return xi**2 * b**2 / 3.0
+
+
+#: The thesis's name for sigma_j (the listing's ALPHA).
+alphas = sigmas
+
+
+def _alpha_parts(end: str, kl):
+    """sigma_j and g_j of ``end`` (either naming), without cancellation."""
+    return _sigma_parts(_canonical(end), kl)
 
 
 def tip_values(n: int) -> np.ndarray:
     """Cantilever X_j(L), j = 1..n (the listing's C and C3); 2(-1)^(j+1)."""
-    return mode_shapes("cantilever", n, [1.0])[:, 0]
+    return mode_shapes("clamped-free", n, [1.0])[:, 0]
 
 
 def midspan_values(n: int) -> np.ndarray:

@@ -1,5 +1,5 @@
 """Appendix E, compiled: the rigid-stop solver of ``event_driven.py`` in
-Fortran (fortran/chatter/event_driven.f90, module contactsep._chatter).
+Fortran (fortran/chatter/event_driven.f90, module contactsep.chatter._chatter).
 
 The Fortran runs the twin's algorithm (same flow, bound, root finder,
 thresholds, Zeno closure, release, ``leaving`` nudge and caps) with two
@@ -10,7 +10,7 @@ shortcut tau - f/d is taken only when it is at most twice the safe step.
 Without it, at a release from rest (f and f' both at round-off) the
 shortcut can jump milliseconds ahead over real contacts; the NumPy twin
 keeps the unguarded shortcut (there it only adds impulse-free events,
-psi = 0, on the thesis designs; see tests/test_chatter_event_driven_
+psi = 0, on the thesis designs; see tests/chatter/test_chatter_event_driven_
 compiled.py).
 
 Events come from Fortran; the exact motion between them (``segments``, for
@@ -28,18 +28,21 @@ import importlib
 
 import numpy as np
 
-from contactsep.chatter.event_driven import (ZENO_SPEED, RigidStopResult,
-                                             _flow)
+from contactsep.chatter.rigid_stop import ZENO_SPEED, RigidStopResult, _flow
+from contactsep.chatter.status import (
+    BAD_INPUT,
+    IMPACTS_FULL,
+    NO_EIGENBASIS,
+    RESTS_FULL,
+)
 
-#: Status codes of chatter_api.run_rigid_stop.
-OK, IMPACTS_FULL, BAD_INPUT, RESTS_FULL, NO_EIGENBASIS = 0, 1, 2, 3, 4
 #: First size of the event tables; they grow by 4x while a run fills them
 #: before t_end (the run is repeated: it is deterministic).
 FIRST_TABLE = 1024
 
 
 def _api():
-    return importlib.import_module("contactsep._chatter").chatter_api
+    return importlib.import_module("contactsep.chatter._chatter").chatter_api
 
 
 def simulate_rigid_stop_compiled(p, x, mass, q0, v0, e, t_end, *,

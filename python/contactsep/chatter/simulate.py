@@ -21,8 +21,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep.chatter import circuit, system
+from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.system import members
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 
 MODELS = ("appE", "newton", "hertz")
@@ -143,7 +145,7 @@ def _single_impulse(design) -> dict:
 
 
 def simulate(design, model="newton", damping="none", dt=None, *,
-             t_end=0.060, open_threshold=circuit.OPEN_THRESHOLD,
+             t_end=LISTING_TAU_S, open_threshold=circuit.OPEN_THRESHOLD,
              preload=0.0, nu=0.33, button_radius=0.125,
              backend="compiled", samples=DEFAULT_SAMPLES, theta=0.5
              ) -> ChatterResult:
@@ -255,13 +257,13 @@ def _run(kind, backend, m, p, h, g0, q0, v0, *args):
         law, dt, steps, stride = args
         return steppers.hertz(m, p, h, g0, q0, v0, law=law, dt=dt,
                               steps=steps, stride=stride)
-    api = importlib.import_module("contactsep._chatter").chatter_api
+    api = importlib.import_module("contactsep.chatter._chatter").chatter_api
     if kind == "moreau_jean":
         e, dt, theta, steps, stride = args
         samples = steps // stride + 1
         t, g, energy, impulses, first, status = api.run_moreau_jean(
             m, p, h, g0, q0, v0, e, dt, theta, steps, stride, samples)
-        if status != 0:
+        if status != chatter_status.OK:
             raise ChatterError("the contact LCP had no solution")
     else:
         law, dt, steps, stride = args

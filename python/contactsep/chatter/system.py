@@ -20,7 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contactsep.model import Design, modes
+from contactsep import beams
+from contactsep.model import Design
 from contactsep.model.twin import member_constants
 
 
@@ -58,8 +59,8 @@ def _member(design: Design, i: str, n: int, q0=None) -> Member:
     if x is None:
         x = length / 2.0 if i == "2" else length
     mass, a = member_constants(length, width, thick, gamma, modulus)
-    kl = modes.eigenvalues(end, n)
-    values = modes.mode_shapes(end, n, [float(x) / length])[:, 0]
+    kl = beams.eigenvalues(end, n)
+    values = beams.mode_shapes(end, n, [float(x) / length])[:, 0]
     p = kl**2 * a / length**2
     q = np.zeros(n) if q0 is None else q0
     return Member(p=p, x=values, mass=mass, q0=q, v0=np.zeros(n))
@@ -72,10 +73,10 @@ def release_state(design: Design, n: int) -> np.ndarray:
     x1 = length if design.x1 is None else float(design.x1)
     xi = 1.0 if (design.release == "tip" and end == "clamped-free") \
         else x1 / length
-    kl = modes.eigenvalues(end, n)
-    load = modes.mode_shapes(end, n, [xi])[:, 0]
+    kl = beams.eigenvalues(end, n)
+    load = beams.mode_shapes(end, n, [xi])[:, 0]
     return float(design.ys) * load / (kl**4
-                                      * modes.static_flexibility(end, xi))
+                                      * beams.static_flexibility(end, xi))
 
 
 def members(design: Design) -> tuple[Member, Member, Member]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep import _model
+from contactsep.model import _model
 from contactsep.model.design import Packed
 
 _KERNEL = _model.model_api

@@ -12,15 +12,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.dataset import DataSet
+from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT as IN3_PER_FT3
+from contactsep.constants import LISTING_TAU_S
 from contactsep.model.design import Design, DesignError
+from contactsep.restored.dataset import computed_data_set
 
 #: The listing's time step (s), used when a design becomes a deck.
 DECK_TIME_STEP = 0.0005
 _ENDS = ("clamped-free", "clamped-clamped", "clamped-free")
 
 
-def design_from_data_set(data_set: DataSet, *, listing: bool = True
+def design_from_data_set(data_set: "DataSet", *, listing: bool = True
                          ) -> Design:
     """The design of a deck data set.  ``listing=True`` also takes the
     listing's readings (ACT without sin, the hybrid L_c mass), so the
@@ -29,19 +31,18 @@ def design_from_data_set(data_set: DataSet, *, listing: bool = True
     options = dict(impact_velocity="listing", lc_reading="listing") \
         if listing else {}
     return Design(
-        L1=ds.xl, b1=ds.b, h1=ds.h, gamma1=ds.rho / 1728.0, E1=ds.e,
-        L2=ds.xl2, b2=ds.b2, h2=ds.h2, gamma2=ds.rho2 / 1728.0, E2=ds.e,
-        Lc=ds.xl2c, L3=ds.xl3, b3=ds.b3, h3=ds.h3, gamma3=ds.rho3 / 1728.0,
-        E3=ds.e, ys=ds.ystat, e=ds.er, n_modes=ds.n, gap=ds.dely, **options)
+        L1=ds.xl, b1=ds.b, h1=ds.h, gamma1=ds.rho / IN3_PER_FT3, E1=ds.e,
+        L2=ds.xl2, b2=ds.b2, h2=ds.h2, gamma2=ds.rho2 / IN3_PER_FT3, E2=ds.e,
+        Lc=ds.xl2c, L3=ds.xl3, b3=ds.b3, h3=ds.h3,
+        gamma3=ds.rho3 / IN3_PER_FT3, E3=ds.e, ys=ds.ystat, e=ds.er, n_modes=ds.n, gap=ds.dely, **options)
 
 
 def data_set_from_design(design: Design, *,
-                         time_step: float = DECK_TIME_STEP) -> DataSet:
+                         time_step: float = DECK_TIME_STEP) -> "DataSet":
     """The deck data set of a single design that the listing can run:
     one E, the thesis's end conditions, tip and mid-span contacts, one N,
-    tau = 0.060 s.  Mode cards are computed (contactsep.thesis)."""
-    from contactsep import thesis
-
+    tau = 0.060 s.  Mode cards are computed
+    (:func:`contactsep.restored.dataset.computed_data_set`)."""
     if design.shape != ():
         raise DesignError("a deck holds one design: this one is a batch")
     d = design
@@ -57,15 +58,15 @@ def data_set_from_design(design: Design, *,
                               f"and mid-span")
     if not isinstance(d.n_modes, (int, np.integer)):
         raise DesignError("n_modes: a deck has one N for all members")
-    if d.tau != 0.060:
+    if d.tau != LISTING_TAU_S:
         raise DesignError("tau: the listing's window is 0.060 s")
-    return DataSet(
+    return computed_data_set(
+        int(d.n_modes),
         xl=float(d.L1), b=float(d.b1), h=float(d.h1),
-        rho=float(d.gamma1) * 1728.0, ystat=float(d.ys),
+        rho=float(d.gamma1) * IN3_PER_FT3, ystat=float(d.ys),
         xl2=float(d.L2), b2=float(d.b2), h2=float(d.h2),
-        rho2=float(d.gamma2) * 1728.0,
+        rho2=float(d.gamma2) * IN3_PER_FT3,
         xl3=float(d.L3), b3=float(d.b3), h3=float(d.h3),
-        rho3=float(d.gamma3) * 1728.0,
+        rho3=float(d.gamma3) * IN3_PER_FT3,
         delt=time_step, er=float(d.e), dely=float(d.gap), e=float(d.E1),
-        xl2c=float(d.L2 if d.Lc is None else d.Lc),
-        **thesis.mode_constants(int(d.n_modes)))
+        xl2c=float(d.L2 if d.Lc is None else d.Lc))

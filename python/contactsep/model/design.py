@@ -13,8 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactsep import beams
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
-from contactsep.model import modes
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
@@ -110,7 +111,7 @@ class Design:
     #: Modes per member: an int (shared) or a tuple (n1, n2, n3).
     n_modes: object = 4
     #: Time window of the lower-contact response, from the impact (s).
-    tau: object = 0.060
+    tau: object = LISTING_TAU_S
     #: Position of the separator surface seen by the upper contact (in).
     gap: object = 0.0
     #: "exact": |dy1/dt(x1, t1)|; "listing": Appendix G's ACT (no sin).
@@ -131,10 +132,10 @@ class Design:
         for name in _ENDS:
             value = np.asarray(getattr(self, name))
             if value.dtype.kind not in "UO" or not np.all(
-                    np.isin(value, modes.END_CONDITIONS)):
+                    np.isin(value, beams.END_CONDITIONS)):
                 raise DesignError(
                     f"{name}: found {getattr(self, name)!r}, expected "
-                    f"one of {', '.join(modes.END_CONDITIONS)}")
+                    f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
             value = getattr(self, name)
             if value is None and name in _OPTIONAL:
@@ -266,7 +267,7 @@ def pack(design: Design) -> Packed:
             np.asarray(value, dtype=np.float64), shape).ravel()
     real = np.ascontiguousarray(np.stack([columns[n] for n in REAL_COLUMNS],
                                          axis=1))
-    ends = [np.broadcast_to(np.vectorize(modes.end_code, otypes=[np.int32])(
+    ends = [np.broadcast_to(np.vectorize(beams.end_code, otypes=[np.int32])(
         np.asarray(getattr(design, name))), shape).ravel() for name in _ENDS]
     n = design._n_array()
     if isinstance(design.n_modes, tuple):

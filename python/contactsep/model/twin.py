@@ -17,11 +17,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import modes, status
+from contactsep import beams
+from contactsep.constants import GRAVITY_IN_PER_S2
+from contactsep.model import status
 from contactsep.model.design import REAL_COLUMNS, Packed, invalid_rows
 
 #: Acceleration of gravity (in/s^2): weight to mass (Appendix B).
-GRAVITY = 386.4
+GRAVITY = GRAVITY_IN_PER_S2
 #: Grid points per shortest period in the extreme search (Nyquist x 4).
 SAMPLES_PER_PERIOD = 8
 #: Most grid points per search level; more modes are handled by levels.
@@ -48,15 +50,15 @@ def mode_table(end_codes, xi, counts, n_max):
     m = len(end_codes)
     kl = np.full((m, n_max), np.nan)
     values = np.zeros((m, n_max))
-    for code, end in enumerate(modes.END_CONDITIONS, 1):
+    for code, end in enumerate(beams.END_CONDITIONS, 1):
         rows = np.flatnonzero(end_codes == code)
         if rows.size == 0:
             continue
-        table = modes.eigenvalues(end, n_max)
+        table = beams.eigenvalues(end, n_max)
         kl[rows] = table
         xs = np.clip(xi[rows], 0.0, 1.0)
         unique, inverse = np.unique(xs, return_inverse=True)
-        values[rows] = modes.mode_shapes(end, n_max, unique).T[inverse]
+        values[rows] = beams.mode_shapes(end, n_max, unique).T[inverse]
     live = np.arange(n_max)[None, :] < counts[:, None]
     return np.where(live, kl, np.nan), np.where(live, values, 0.0)
 
@@ -317,9 +319,9 @@ def evaluate_packed(packed: Packed) -> dict:
     tip_release = (release_option == 0) & (ends[0] == 1)
     xi_load = np.where(tip_release, 1.0, xi[0])
     flex = np.zeros(m)
-    for c, end in enumerate(modes.END_CONDITIONS, 1):
+    for c, end in enumerate(beams.END_CONDITIONS, 1):
         rows = ends[0] == c
-        flex[rows] = modes.static_flexibility(end, xi_load[rows])
+        flex[rows] = beams.static_flexibility(end, xi_load[rows])
     _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
     zero_flex = ~(flex > 0.0)
     code[zero_flex & (code == status.OK)] = status.INVALID_INPUT

@@ -6,8 +6,14 @@ sweeps and tolerance studies, on the general model (contactsep.model).
 >>> s["y3_max_in"], s.to_pandas()      # (pandas optional)
 """
 
-from contactsep.studies.figures import (convergence, fig5, fig6, fig7, fig8,
-                                        fig23)
+from contactsep.studies.figures import (
+                                        convergence,
+                                        fig5,
+                                        fig6,
+                                        fig7,
+                                        fig8,
+                                        fig23,
+)
 from contactsep.studies.study import Study
 from contactsep.studies.tables import table1, table2, table3
 

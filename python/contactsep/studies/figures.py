@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep import thesis as deck_thesis
 from contactsep.model import evaluate, thesis_design
+from contactsep.restored import thesis_decks
 from contactsep.studies.study import Study
 
 #: Figure 5's grids.
@@ -29,7 +29,7 @@ FIG8_CONTACT = 0.98
 #: The convergence study's mode counts.
 CONVERGENCE_MODES = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 50)
 #: Table III: the five separators and their equivalent lengths (in).
-TABLE_III = dict(sorted(deck_thesis.EQUIVALENT_LENGTHS.items()))
+TABLE_III = dict(sorted(thesis_decks.EQUIVALENT_LENGTHS.items()))
 
 
 def _notes(design, *extra) -> tuple:

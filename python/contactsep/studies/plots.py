@@ -75,3 +75,21 @@ def save_png(study: Study, path: str) -> None:
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def save_chatter_png(result, path) -> None:
+    """Both gaps against time, the open-circuit intervals shaded."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7.0, 4.0), dpi=80)
+    ax.plot(result.t, result.gap_upper, lw=0.8, label="upper gap")
+    ax.plot(result.t, result.gap_lower, lw=0.8, label="lower gap")
+    for start, end in result.circuit_open_intervals:
+        ax.axvspan(start, end, color="red", alpha=0.15, lw=0)
+    ax.set(xlabel="time from release (s)", ylabel="gap (in)",
+           title=f"{result.model}, N = {result.n_modes}: circuit open "
+                 f"{result.circuit_open_s * 1e3:.2f} ms (shaded)")
+    ax.legend(fontsize=8)
+    ax.grid(True, lw=0.3)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)

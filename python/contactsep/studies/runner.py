@@ -18,8 +18,13 @@ from concurrent.futures.process import BrokenProcessPool
 import numpy as np
 
 from contactsep.errors import InputError
-from contactsep.studies.sweep import (CHUNK_SIZE, Summary, SweepSpec, chunks,
-                                      evaluate_chunk)
+from contactsep.studies.sweep import (
+    CHUNK_SIZE,
+    Summary,
+    SweepSpec,
+    chunks,
+    evaluate_chunk,
+)
 
 
 class SweepInterrupted(InputError):

@@ -1,0 +1,110 @@
+"""The ``contactsep`` command: the top layer, above the restoration, the
+model, the contact dynamics and the studies.  Each layer's subcommands are
+registered by a module of this package (``contactsep.cli.restored``:
+legacy, replay, compare; ``.model``: model; ``.studies``: study, sweep;
+``.chatter``: chatter).
+
+Errors are reported as ``contactsep: error: <message>`` on stderr with exit
+status 2; listings of the data sets before a bad one are printed first.
+A write error (closed standard output, full disk) is such an error too;
+Ctrl-C (SIGINT) ends any command with status 130 and SIGTERM with 143,
+quietly.  ``-o FILE``: module :mod:`contactsep.output`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import signal
+import sys
+import warnings
+from typing import Sequence
+
+from contactsep import output
+from contactsep.errors import DeckError, InputError
+from contactsep.restored.legacy import LegacyError
+
+EXIT_OK, EXIT_TOLERANCE, EXIT_ERROR = 0, 1, 2
+#: Exit status when whoever reads the listing stops reading (| head): the
+#: shell's status for a process ended by SIGPIPE.
+EXIT_BROKEN_PIPE = 128 + 13
+#: Exit statuses after SIGINT (Ctrl-C) and SIGTERM, as the shell reports
+#: a process they end.
+EXIT_INTERRUPTED = 128 + signal.SIGINT
+EXIT_TERMINATED = 128 + signal.SIGTERM
+
+
+def _version() -> str:
+    from contactsep import __version__
+    return __version__
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="contactsep",
+        description="Contact separation due to impact in a redundant "
+                    "contact system: the thesis program of Appendix G.")
+    parser.add_argument("--version", action="version",
+                        version=f"%(prog)s {_version()}")
+    commands = parser.add_subparsers(dest="command", required=True,
+                                     metavar="COMMAND")
+
+    for layer in _LAYERS:
+        importlib.import_module(f"contactsep.cli.{layer}").register(commands)
+    return parser
+
+
+#: The commands of each layer; module ``contactsep.cli.<layer>`` registers
+#: its own subcommands.
+_LAYERS = ("restored", "model", "studies", "chatter")
+
+
+def _one_line_warning(message, category, filename, lineno, file=None,
+                      line=None) -> None:
+    """Warnings as one line on stderr: ``contactsep: warning: ...``."""
+    print(f"contactsep: warning: {message}", file=sys.stderr)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``contactsep`` command; returns the exit status."""
+    output.guard_closed_streams()
+    previous = signal.getsignal(signal.SIGTERM)
+    if previous in (signal.SIG_DFL, None):
+        signal.signal(signal.SIGTERM, output.raise_terminated)
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        return output.stop_quietly(EXIT_INTERRUPTED)
+    except output.Terminated:
+        return output.stop_quietly(EXIT_TERMINATED)
+    finally:
+        if previous in (signal.SIG_DFL, None):
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _main(argv: Sequence[str] | None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    warnings.showwarning = _one_line_warning
+    handler = args.handler
+    try:
+        status = handler(args)
+        sys.stdout.flush()
+        return status
+    except BrokenPipeError:
+        # Python's recipe: point stdout at devnull so the interpreter's
+        # final flush does not fail again, and stop quietly.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
+    except (DeckError, LegacyError, InputError, OSError) as error:
+        try:
+            sys.stdout.flush()
+        except OSError as late:
+            error = error if isinstance(error, OSError) else late
+        output.report(parser.prog, error)
+        # an interrupt that kept what it had (a sweep's written chunks)
+        # still ends as Ctrl-C does
+        return EXIT_INTERRUPTED if getattr(error, "interrupted", False) \
+            else EXIT_ERROR
