@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from contactsep import beams
 from contactsep.errors import InputError
 from contactsep.model.design import (
@@ -76,8 +78,8 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
            "release": RELEASES}
 #: Fields that may be None, and what None means.
-OPTIONAL = {"x1": "its tip, L1", "x2": "mid-span, L2/2",
-            "x3": "its tip, L3", "Lc": "none"}
+OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
+            "x3": "its tip (L3)", "Lc": "none"}
 #: Fields a sweep may vary (--vary) and sample (--sample).
 VARIABLE = REAL_COLUMNS + ("end1", "end2", "end3", "n_modes")
 SAMPLED = REAL_COLUMNS
@@ -174,3 +176,45 @@ def describe(design_fields: dict) -> dict:
             value = list(value)
         out[column_name(field)] = value
     return out
+
+
+#: Field groups of :func:`design_lines`, one line each.
+_LINES = (("upper contact", ("L1", "b1", "h1", "gamma1", "E1", "end1", "x1",
+                             "ys")),
+          ("separator", ("L2", "b2", "h2", "gamma2", "E2", "end2", "x2",
+                         "Lc")),
+          ("lower contact", ("L3", "b3", "h3", "gamma3", "E3", "end3",
+                             "x3")),
+          ("impact and model", ("e", "n_modes", "tau", "gap",
+                                "impact_velocity", "lower_response",
+                                "lc_reading", "release")))
+
+
+def _value_text(design, field: str, per_row) -> str:
+    value = getattr(design, field)
+    if field in per_row:
+        return "per row"
+    if value is None:
+        return OPTIONAL[field]
+    if isinstance(value, tuple):
+        return ",".join(str(v) for v in value)
+    values = np.unique(np.asarray(value))
+    if values.size > 1:
+        return "per row"
+    value = values.item()
+    text = f"{value:.12g}" if isinstance(value, float) else str(value)
+    return f"{text} {unit(field)}".rstrip()
+
+
+def design_lines(design, per_row=()) -> list[str]:
+    """The design a study or output was computed for, in four lines
+    (upper contact, separator, lower contact, impact and model), each
+    field under its output name with its unit; a field that varies
+    across the batch, or is named in ``per_row``, reads 'per row' (the
+    study's columns and notes give it)."""
+    lines = []
+    for title, names in _LINES:
+        parts = [f"{OUTPUT_NAMES.get(name, name)} = "
+                 f"{_value_text(design, name, per_row)}" for name in names]
+        lines.append(f"{title}: " + ", ".join(parts))
+    return lines
