@@ -174,7 +174,7 @@ class SweepSpec:
 
     def describe(self) -> list[str]:
         """The inputs in words, one line each (the CSV's comments)."""
-        lines = []
+        lines = [f"designs: {self.size}"]
         for name, values in self.vary:
             if isinstance(values, LinearAxis):
                 lines.append(f"vary {column_name(name)}: {len(values)} "
@@ -183,11 +183,13 @@ class SweepSpec:
             else:
                 lines.append(f"vary {column_name(name)}: " + ", ".join(
                     _text(v) for v in np.asarray(values).tolist()))
+        if self.sample:
+            lines.append(f"samples: {self.samples} per grid point, seed "
+                         f"{self.seed}")
         for name, kind, a, b in self.sample:
             p, q = _PARAMETERS[kind]
             lines.append(f"sample {column_name(name)} ~ {kind}({p} "
-                         f"{a:.12g}, {q} {b:.12g}), seed {self.seed}, "
-                         f"{self.samples} per grid point")
+                         f"{a:.12g}, {q} {b:.12g})")
         for key, value in design_fields.describe(self.base).items():
             lines.append(f"fixed {key} = {value}")
         return lines
