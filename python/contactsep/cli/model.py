@@ -30,9 +30,9 @@ RESULTS = (
     ("M2", "M2_lb_s2_in", "lb s^2/in", "separator mass"),
     ("M3", "M3_lb_s2_in", "lb s^2/in", "lower contact mass"),
 )
-#: Per-mode results: (attribute, key with its unit).
-PER_MODE = (("p1", "p1_rad_s"), ("p2", "p2_rad_s"), ("p3", "p3_rad_s"),
-            ("c3", "c3_in"))
+#: Per-mode results: (attribute, key with its unit, member).
+PER_MODE = (("p1", "p1_rad_s", 0), ("p2", "p2_rad_s", 1),
+            ("p3", "p3_rad_s", 2), ("c3", "c3_in", 2))
 
 EXAMPLES = examples(
     "contactsep model --x3 14.82 --n-modes 20           # contact at 0.78 L3",
@@ -73,8 +73,12 @@ def results_dict(design, result) -> dict:
         data[key] = float(getattr(result, name))
     data["at_window_end"] = bool(result.at_window_end)
     data["status"] = int(result.status)
-    for name, key in PER_MODE:
-        data[key] = np.asarray(getattr(result, name)).tolist()
+    counts = design.n_modes if isinstance(design.n_modes, tuple) \
+        else (design.n_modes,) * 3
+    for name, key, member in PER_MODE:
+        # the batch pads every member to the largest N: its own N only
+        data[key] = np.asarray(getattr(result, name))[
+            :int(counts[member])].tolist()
     return data
 
 
