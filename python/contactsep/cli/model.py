@@ -9,8 +9,7 @@ import warnings
 import numpy as np
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, \
-    design_overrides
+from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
 

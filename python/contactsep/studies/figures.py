@@ -72,7 +72,8 @@ def fig6(*, backend="compiled", **overrides) -> Study:
     base = thesis_design(**overrides)
     length = float(base.L3)
     one = check_status(evaluate(base.replace(x3=r * length), backend=backend))
-    two = check_status(evaluate(base.replace(L3=length / r, x3=np.full_like(r, length)),
+    two = check_status(evaluate(base.replace(L3=length / r,
+                                             x3=np.full_like(r, length)),
                        backend=backend))
     return Study("fig6", "Figure 6: maximum lower-contact displacement vs "
                  "x3/L3", {
@@ -93,7 +94,8 @@ def fig7(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("fig7", overrides, {"x3": "x3/L3 = 0.98 and 0.78"})
     r = np.array(FIG7_RATIOS)
     base = thesis_design(**overrides)
-    ev = check_status(evaluate(base.replace(x3=r * float(base.L3)), backend=backend))
+    ev = check_status(evaluate(base.replace(x3=r * float(base.L3)),
+                               backend=backend))
     y = ev.y3(FIG7_TIMES)
     notes = [f"r = {ri}: mode coefficients c3_j (in) = "
              + ", ".join(f"{c:.4g}" for c in ev.c3[i])

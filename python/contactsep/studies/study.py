@@ -82,10 +82,10 @@ def check_status(evaluation):
 def refuse_fixed(study: str, overrides: dict, fixed: dict) -> None:
     """A study sets some fields itself (``fixed``: field -> why); an
     override of one is refused with an InputError naming it."""
-    for field, why in fixed.items():
-        if field in overrides:
-            name = OUTPUT_NAMES.get(field)
-            label = f"{name}/{field}" if name else field
+    for name, why in fixed.items():
+        if name in overrides:
+            label = f"{OUTPUT_NAMES[name]}/{name}" if name in OUTPUT_NAMES \
+                else name
             raise InputError(f"study {study} sets {label} itself ({why}); "
                              f"leave it out")
 

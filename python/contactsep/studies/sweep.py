@@ -302,10 +302,11 @@ class Summary:
 
     def as_dict(self) -> dict:
         """n (designs with status 0: the statistics are theirs),
-        n_failed and n_failed_by_status (status code -> count), the mean, sample sd, min and max of max y3 (None
-        where there is nothing to compute them from), and with a
-        threshold p_exceed = P(max y3 > threshold) and its 95 % Wilson
-        interval p_exceed_ci95."""
+        n_failed and n_failed_by_status (status code -> count), the
+        mean, sample sd, min and max of max y3 (None where there is
+        nothing to compute them from), and with a threshold p_exceed =
+        P(max y3 > threshold) and its 95 % Wilson interval
+        p_exceed_ci95."""
         n = self.n
         mean = self._shift + self.total / n if n else None
         var = (self.total_sq - self.total**2 / n) / (n - 1) \
