@@ -38,19 +38,6 @@ _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
               "lower_response": ("--lower-response",),
               "lc_reading": ("--lc-reading",), "release": ("--release",)}
 
-_GROUPS = (
-    ("upper contact (member 1)",
-     ("L1", "b1", "h1", "gamma1", "E1", "end1", "x1", "ys")),
-    ("separator (member 2)",
-     ("L2", "b2", "h2", "gamma2", "E2", "end2", "x2", "Lc")),
-    ("lower contact (member 3)",
-     ("L3", "b3", "h3", "gamma3", "E3", "end3", "x3")),
-    ("impact and model",
-     ("e", "n_modes", "tau", "gap", "impact_velocity", "lower_response",
-      "lc_reading", "release")),
-)
-
-
 class _Given(argparse.Action):
     """Keeps the text and the option as typed; design_overrides reads
     them (so that every error is one line naming the option)."""
@@ -78,7 +65,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
     """One option per Design field, and --set and --design (module
     docstring); design_overrides(args) reads them."""
     parser.set_defaults(**{_GIVEN: None})
-    for title, names in _GROUPS:
+    for title, names in F.GROUPS:
         group = parser.add_argument_group(f"design: {title}")
         for field in names:
             options = _SPELLINGS.get(field, (f"--{field}",))

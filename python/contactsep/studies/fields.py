@@ -178,13 +178,13 @@ def describe(design_fields: dict) -> dict:
     return out
 
 
-#: Field groups of :func:`design_lines`, one line each.
-_LINES = (("upper contact", ("L1", "b1", "h1", "gamma1", "E1", "end1", "x1",
-                             "ys")),
-          ("separator", ("L2", "b2", "h2", "gamma2", "E2", "end2", "x2",
-                         "Lc")),
-          ("lower contact", ("L3", "b3", "h3", "gamma3", "E3", "end3",
-                             "x3")),
+#: The fields by member, as help and notes group them.
+GROUPS = (("upper contact (member 1)", ("L1", "b1", "h1", "gamma1", "E1",
+                                        "end1", "x1", "ys")),
+          ("separator (member 2)", ("L2", "b2", "h2", "gamma2", "E2",
+                                    "end2", "x2", "Lc")),
+          ("lower contact (member 3)", ("L3", "b3", "h3", "gamma3", "E3",
+                                        "end3", "x3")),
           ("impact and model", ("e", "n_modes", "tau", "gap",
                                 "impact_velocity", "lower_response",
                                 "lc_reading", "release")))
@@ -213,7 +213,7 @@ def design_lines(design, per_row=()) -> list[str]:
     across the batch, or is named in ``per_row``, reads 'per row' (the
     study's columns and notes give it)."""
     lines = []
-    for title, names in _LINES:
+    for title, names in GROUPS:
         parts = [f"{OUTPUT_NAMES.get(name, name)} = "
                  f"{_value_text(design, name, per_row)}" for name in names]
         lines.append(f"{title}: " + ", ".join(parts))

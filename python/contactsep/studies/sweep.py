@@ -97,8 +97,6 @@ def parse_vary(text: str) -> tuple[str, object]:
         items = [design_fields.parse_value(field, item, label)
                  for item in values_text.split(",")]
         values = np.array(items)
-    if len(values) == 0:
-        raise SweepError(f"--vary {text}: no values")
     return field, values
 
 
