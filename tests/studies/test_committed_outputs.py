@@ -77,6 +77,21 @@ def test_every_csv_the_project_writes_parses(tmp_path):
     assert status.count("2") == 8 and len(rows) == 24
 
 
+def test_the_chatter_commands_csv_parses(tmp_path):
+    """`contactsep chatter --csv` (the chatter layer's gap histories)."""
+    from contactsep.cli import build_parser
+    chatter = build_parser()._subparsers._group_actions[0].choices[
+        "chatter"]
+    if not any("--csv" in a.option_strings for a in chatter._actions):
+        pytest.skip("contactsep chatter has no --csv yet (issue 16)")
+    path = tmp_path / "gaps.csv"
+    subprocess.run([sys.executable, "-m", "contactsep", "chatter",
+                    "--model", "appE", "--n-modes", "4", "--csv",
+                    str(path)], check=True, capture_output=True)
+    _, header, rows = parse(path.read_text())
+    assert header[0] == "t_s" and len(rows) > 100
+
+
 def test_pandas_reads_them_with_comment_hash(tmp_path):
     pandas = pytest.importorskip("pandas")
     for path in sorted(COMMITTED.glob("*.csv")):
