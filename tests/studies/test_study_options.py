@@ -140,3 +140,20 @@ def test_notes_give_the_design_that_was_evaluated():
     assert any("L1 = 18 in" in line for line in comments)
     assert any("gamma2 = per row" in line for line in comments)
     assert all(line.startswith("# ") for line in comments)
+
+
+def test_a_design_file_gives_way_to_the_studys_own_fields(tmp_path,
+                                                          capsys):
+    saved = tmp_path / "saved.json"
+    assert main(["model", "--d", "0.3", "--restitution", "0.25",
+                 "--json"]) == 0
+    saved.write_text(capsys.readouterr().out)
+    csv_path = tmp_path / "f.csv"
+    assert main(["study", "fig5", "--design", str(saved), "--csv",
+                 str(csv_path)]) == 0
+    capsys.readouterr()
+    expected = studies.fig5(e=0.25).csv_text()
+    assert csv_path.read_text() == expected
+    assert main(["study", "fig5", "--design", str(saved), "--d",
+                 "0.2"]) == 2
+    assert "sets d/h2 itself" in capsys.readouterr().err

@@ -249,3 +249,28 @@ def test_comments_say_what_the_sweep_was(tmp_path):
     assert "# sample d_in ~ normal(mean 0.25, sd 0.01)" in comments
     assert "# fixed n_modes = 5" in comments
     assert len(rows) == 6 and math.isfinite(float(rows[0]["y3_max_in"]))
+
+
+def test_a_design_file_is_where_the_sweep_starts(tmp_path, capsys):
+    saved = tmp_path / "saved.json"
+    assert main(["model", "--d", "0.3", "--restitution", "0.25",
+                 "--json"]) == 0
+    saved.write_text(capsys.readouterr().out)
+    path = tmp_path / "s.csv"
+    # the file's d gives way to the sweep's; the rest of it stays
+    assert main(["sweep", "--design", str(saved), "--vary", "d=0.2,0.4",
+                 "--vary", "end2=clamped-clamped,pinned-pinned", "--csv",
+                 str(path), "--json", "--workers", "1"]) == 0
+    inputs = json.loads(capsys.readouterr().out)["inputs"]
+    assert inputs["fixed"]["e"] == 0.25 and "d_in" not in inputs["fixed"]
+    _, rows = read_csv(path)
+    assert len(rows) == 4
+    for row in rows:
+        one = evaluate(thesis_design(d=float(row["d_in"]), e=0.25,
+                                     end2=row["end2"]))
+        assert float(row["v0_in_s"]) == pytest.approx(float(one.v0),
+                                                      rel=6e-12, abs=0)
+    # typed on the command line, a field cannot also be swept
+    assert main(["sweep", "--design", str(saved), "--d", "0.3", "--vary",
+                 "d=0.2,0.4"]) == 2
+    assert "fixed by a design option and varied" in capsys.readouterr().err

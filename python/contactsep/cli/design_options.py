@@ -12,10 +12,13 @@ sweep, study, chatter): one option per field of
   as typed (``--d: found -0.1, expected a finite number > 0``).
 
 Precedence: ``--design FILE`` (a JSON object of fields, or the output of
-``contactsep model --json`` whose ``design`` it reads), then the command
-line; a field given twice on the command line is refused.  Values are
-read by :func:`contactsep.studies.fields.parse_value`, the one place
-that reads a field from text.
+``contactsep model --json`` whose ``design`` it reads) is the starting
+design; the command line overrides it, and so do a study's own axes and
+a sweep's --vary and --sample (``fields_from_file(args)`` names the
+fields only the file gave).  A field given twice on the command line is
+refused.  Values are read by
+:func:`contactsep.studies.fields.parse_value`, the one place that reads
+a field from text.
 """
 
 from __future__ import annotations
@@ -30,6 +33,8 @@ from contactsep.studies import fields as F
 #: Where the command line's design values are kept: (field or name,
 #: option as typed, text), in command-line order.
 _GIVEN = "design_given"
+#: Where design_overrides notes the fields only the --design file gave.
+_FROM_FILE = "design_from_file"
 
 #: Option spellings of the fields whose option is not ``--FIELD``.
 _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
@@ -117,7 +122,14 @@ def design_overrides(args: argparse.Namespace) -> dict:
         values[field] = F.parse_value(field, text, option)
         labels[field] = option
     _check(values, labels)
+    setattr(args, _FROM_FILE, set(values) - set(typed))
     return values
+
+
+def fields_from_file(args: argparse.Namespace) -> set:
+    """The fields of design_overrides(args) that only --design gave: a
+    study's own axes and a sweep's varied fields take their place."""
+    return set(getattr(args, _FROM_FILE, ()))
 
 
 def _read_design_file(path: str) -> dict:

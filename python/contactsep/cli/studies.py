@@ -8,7 +8,11 @@ import warnings
 from pathlib import Path
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    fields_from_file,
+)
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
 
@@ -118,7 +122,11 @@ def _need_matplotlib() -> None:
 
 
 def _compute(name: str, args, overrides: dict):
-    from contactsep.studies import STUDIES
+    from contactsep.studies import OWN_FIELDS, STUDIES
+
+    # a --design file's value of a study's own field gives way to it
+    overrides = {k: v for k, v in overrides.items() if not (
+        k in fields_from_file(args) and k in OWN_FIELDS.get(name, ()))}
 
     if name == "chatter":
         if overrides or args.backend:
@@ -205,11 +213,21 @@ def _print_summary(summary: dict, spec) -> None:
 def run_sweep(args: argparse.Namespace) -> int:
     from contactsep.studies.runner import CsvWriter, ParquetWriter
     from contactsep.studies.runner import run_sweep as run
-    from contactsep.studies.sweep import CHUNK_SIZE, make_spec
+    from contactsep.studies.sweep import (
+        CHUNK_SIZE,
+        make_spec,
+        parse_sample,
+        parse_vary,
+    )
 
-    spec = make_spec(vary=args.vary, sample=args.sample,
-                     samples=args.samples, seed=args.seed,
-                     base=design_overrides(args),
+    vary = [parse_vary(text) for text in args.vary]
+    sample = [parse_sample(text) for text in args.sample]
+    swept = {name for name, _ in vary} | {s[0] for s in sample}
+    # a --design file's value of a swept field gives way to the sweep
+    base = {k: v for k, v in design_overrides(args).items()
+            if not (k in swept and k in fields_from_file(args))}
+    spec = make_spec(vary=vary, sample=sample, samples=args.samples,
+                     seed=args.seed, base=base,
                      backend=args.backend or "compiled")
     writers = []
     if args.parquet:

@@ -31,6 +31,20 @@ FIG8_CONTACT = 0.98
 CONVERGENCE_MODES = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 50)
 #: Table III: the five separators and their equivalent lengths (in).
 TABLE_III = dict(sorted(thesis_decks.EQUIVALENT_LENGTHS.items()))
+#: The fields each study sets itself (field -> why): an override of one
+#: is refused.
+FIXED = {
+    "fig5": {"h2": "its x axis, 0.10-1.00 in"},
+    "fig6": {"x3": "x3 = r L3 on curve I, L3 on curve II",
+             "L3": "19 in on curve I, 19/r on curve II"},
+    "fig7": {"x3": "x3/L3 = 0.98 and 0.78"},
+    "fig8": {"x1": "symmetric contacts at 0.98 L",
+             "x3": "symmetric contacts at 0.98 L",
+             "gamma2": "R is changed through it"},
+    "fig23": {"h2": "the five thesis separators",
+              "Lc": "Table III's values"},
+    "convergence": {"n_modes": "its x axis"},
+}
 
 
 def _notes(design, *extra, per_row=()) -> tuple:
@@ -46,7 +60,7 @@ def _notes(design, *extra, per_row=()) -> tuple:
 def fig5(*, backend="compiled", **overrides) -> Study:
     """Figure 5: max y3 against separator thickness d = 0.10..1.00 in, for
     y_s = 0.25, 0.5, 0.75 in (``ys=`` given: that one curve)."""
-    refuse_fixed("fig5", overrides, {"h2": "its x axis, 0.10-1.00 in"})
+    refuse_fixed("fig5", overrides, FIXED["fig5"])
     ys = np.atleast_1d(overrides.pop("ys", FIG5_DEFLECTIONS))[:, None]
     d = FIG5_THICKNESSES[None, :]
     design = thesis_design(d=d, ys=ys, **overrides)
@@ -64,9 +78,7 @@ def fig6(*, backend="compiled", **overrides) -> Study:
     """Figure 6: max y3 against r = x3/L3 = 0.70..1.00 at d = 0.25 in.
     Curve I keeps L3 = 19 in (x3 = r L3); curve II keeps the contact point
     19 in from the support and lengthens the contact, L3 = 19/r."""
-    refuse_fixed("fig6", overrides, {
-        "x3": "x3 = r L3 on curve I, L3 on curve II",
-        "L3": "19 in on curve I, 19/r on curve II"})
+    refuse_fixed("fig6", overrides, FIXED["fig6"])
     r = FIG6_RATIOS
     overrides.setdefault("h2", FIG6_THICKNESS)
     base = thesis_design(**overrides)
@@ -91,7 +103,7 @@ def fig6(*, backend="compiled", **overrides) -> Study:
 def fig7(*, backend="compiled", **overrides) -> Study:
     """Figure 7: y3(x3, t) for t = 0..0.06 s at r = 0.98 and 0.78 (curve
     I), with each mode's coefficient in the notes."""
-    refuse_fixed("fig7", overrides, {"x3": "x3/L3 = 0.98 and 0.78"})
+    refuse_fixed("fig7", overrides, FIXED["fig7"])
     r = np.array(FIG7_RATIOS)
     base = thesis_design(**overrides)
     ev = check_status(evaluate(base.replace(x3=r * float(base.L3)),
@@ -110,9 +122,7 @@ def fig8(*, backend="compiled", **overrides) -> Study:
     """Figure 8: max y3 against the mass ratio R of eq. 24, changed through
     the separator's density only, symmetric contacts x1/L1 = x3/L3 = 0.98;
     beside it the thesis's law y3_max ~ 1/(1 + 2R)."""
-    refuse_fixed("fig8", overrides, {
-        "x1": "symmetric contacts at 0.98 L", "x3": "symmetric contacts "
-        "at 0.98 L", "gamma2": "R is changed through it"})
+    refuse_fixed("fig8", overrides, FIXED["fig8"])
     base = thesis_design(**overrides)
     base = base.replace(x1=FIG8_CONTACT * float(base.L1),
                         x3=FIG8_CONTACT * float(base.L3))
@@ -134,8 +144,7 @@ def fig23(*, backend="compiled", lc_reading="listing", **overrides) -> Study:
     """Figures 21 and 23 (the "corrected" theory): the five thesis
     separators with Table III's equivalent lengths L_c; lc_reading as in
     the model ("listing" hybrid by default)."""
-    refuse_fixed("fig23", overrides, {
-        "h2": "the five thesis separators", "Lc": "Table III's values"})
+    refuse_fixed("fig23", overrides, FIXED["fig23"])
     d = np.array(list(TABLE_III))
     lc = np.array(list(TABLE_III.values()))
     base = thesis_design(d=d, **overrides)
@@ -154,7 +163,7 @@ def fig23(*, backend="compiled", lc_reading="listing", **overrides) -> Study:
 
 def convergence(*, backend="compiled", **overrides) -> Study:
     """t1, V, psi, v0 and max y3 for N = 1 ... 50 (docs/model.md)."""
-    refuse_fixed("convergence", overrides, {"n_modes": "its x axis"})
+    refuse_fixed("convergence", overrides, FIXED["convergence"])
     n = np.array(CONVERGENCE_MODES)
     design = thesis_design(n_modes=n, **overrides)
     ev = check_status(evaluate(design, backend=backend))
