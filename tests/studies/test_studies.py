@@ -164,11 +164,12 @@ def test_sweep_probability_is_a_direct_count():
                                chunk_size=33, workers=1)
     t = out.table()
     # recompute the designs one by one from the written inputs
-    ev = evaluate(thesis_design(d=t["h2_in"], ys=t["ys_in"], e=t["e"]))
+    ev = evaluate(thesis_design(d=t["d_in"], ys=t["ys_in"], e=t["e"]))
     assert np.array_equal(ev.y3_max, t["y3_max_in"])
     assert summary["p_exceed"] == np.mean(ev.y3_max > 0.1)
-    assert np.isclose(summary["y3_max_mean"], ev.y3_max.mean(), rtol=1e-13)
-    assert np.isclose(summary["y3_max_std"], ev.y3_max.std(ddof=1),
+    assert np.isclose(summary["y3_max_mean_in"], ev.y3_max.mean(),
+                      rtol=1e-13)
+    assert np.isclose(summary["y3_max_sd_in"], ev.y3_max.std(ddof=1),
                       rtol=1e-10)
 
 
@@ -219,11 +220,11 @@ def test_sweep_command_json(tmp_path, capsys):
         r for r in path.read_text().splitlines() if not r.startswith("#")))))
     y = np.array([float(r["y3_max_in"]) for r in rows])
     assert summary["p_exceed"] == np.mean(y > 0.1)
-    assert [float(r["h2_in"]) for r in rows[:3]] == [0.125] * 3
+    assert [float(r["d_in"]) for r in rows[:3]] == [0.125] * 3
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["sweep", "--vary", "h9=1:2:3"], "h9: not a numeric Design field"),
+    (["sweep", "--vary", "h9=1:2:3"], "h9: not a design field"),
     (["sweep", "--vary", "h2=1:2"], "expected NAME=START:STOP:COUNT"),
     (["sweep", "--sample", "ys=gauss(1,2)"], "expected NAME=normal"),
     (["sweep", "--sample", "ys=normal(0.5,-1)"], "out of range"),
