@@ -105,10 +105,33 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first),
-               work={"flight_steps": int(counts[0]),
-                     "fixed_steps": int(counts[1]),
-                     "flow_evaluations": int(counts[2])})
+               first=_first(first), work=_work(counts))
+
+
+def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
+    """The compiled adaptive Newton stepper (fortran/chatter/
+    adaptive.f90): exact flow over half steps, Newton's impulses at the
+    midpoints where a contact may close, the exact flow elsewhere."""
+    s = system
+    samples = steps // stride + 1
+    gap0 = s.h @ s.q0 + s.g0
+    energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
+    t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
+        _with_room(lambda room: _api().run_newton_adaptive(
+            s.m, s.p, s.h, s.g0, s.q0, s.v0, e, dt, steps, stride, samples,
+            threshold, s.n_upper, ENERGY_MARGIN * energy0, room))
+    if status != chatter_status.OK:
+        raise StepperError("the contact LCP had no solution")
+    upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
+                                        steps * dt)
+    return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
+               lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
+               first=_first(first), work=_work(counts))
+
+
+def _work(counts) -> dict:
+    return {"flight_steps": int(counts[0]), "fixed_steps": int(counts[1]),
+            "flow_evaluations": int(counts[2])}
 
 
 def moreau_jean(system, e, dt, theta, steps, stride, threshold) -> Run:

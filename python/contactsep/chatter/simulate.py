@@ -187,7 +187,10 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
                                      **flores)
     stack = _system(design, preload, law)
-    if model == "newton":
+    if model == "newton" and stepper == "adaptive" and backend == "compiled":
+        run = runners.newton_adaptive(stack, float(design.e), dt, steps,
+                                      stride, open_threshold)
+    elif model == "newton":
         run = (runners.moreau_jean if backend == "compiled"
                else runners.moreau_jean_numpy)(
             stack, float(design.e), dt, theta, steps, stride,
@@ -207,7 +210,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
         energy_ratio=float(run.energy[-1] / run.energy[0]),
         preload_lb=float(preload), damping=damping,
-        stepper=stepper if model == "hertz" else "fixed",
+        stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, **settings)
 
 

@@ -1,11 +1,22 @@
-!> Hertz contact, fast: the fixed-step splitting of chatter_hertz on the
-!> same grid of dt, with every run of steps in which no contact can
-!> close merged into one exact modal flow, and the circuit's open and
-!> close instants found on the exact flow.  No twin: it is tested
-!> against chatter_hertz (tests/chatter/test_hertz_adaptive.py).
+!> The three beams' contacts, fast: fixed steps of dt only where a
+!> contact may close, every run of steps in which none can merged into
+!> one exact modal flow, and the circuit's open and close instants found
+!> on the exact flow.  Two contact laws:
 !>
-!> Free flight.  Where no contact force acts, a splitting step is the
-!> exact flow, so m steps are one flow over m dt.  With
+!> * Hertz (law_hertz): the fixed-step splitting of chatter_hertz (half
+!>   kick, exact flow, half kick) on the same grid of dt;
+!> * Newton (law_newton): the exact flow over dt/2, the impulse of
+!>   Newton's law at the contacts closed at the midpoint and not
+!>   separating (0 <= u+ + e u- complementary to P >= 0, the one-step
+!>   LCP solved exactly, as chatter_moreau_jean solves it), the exact
+!>   flow over dt/2: Moreau-Jean's velocity-level law with the modal
+!>   flow exact, so that modes far above 1/dt keep their phase.
+!>
+!> No twin: tested against chatter_hertz and chatter_moreau_jean, and
+!> analytic cases (tests/chatter/test_adaptive.py).
+!>
+!> Free flight.  Where no contact force acts, a step is the exact flow,
+!> so m steps are one flow over m dt.  With
 !> B_c = sum_j |h_cj| p_j^2 a_j >= |g_c''| (a_j the mode's amplitude,
 !> constant in flight), g_c(t + s) >= g_c + g_c' s - B_c s^2 / 2 > 0
 !> before the first root s* of that parabola: no contact can close, and
@@ -29,35 +40,43 @@
 !> bisection with the same bound and each crossing refined by Newton's
 !> method with bisection on the exact flow.  The largest value of each
 !> gap is found the same way.
-module chatter_hertz_adaptive
+module chatter_adaptive
   use contactsep_kinds, only: wp
-  use chatter_status, only: status_ok, status_crossings_full
+  use chatter_lcp, only: solve_lcp
+  use chatter_status, only: status_ok, status_crossings_full, &
+      status_lcp_unsolved
   implicit none
   private
-  public :: hertz_adaptive
+  public :: adaptive, law_hertz, law_newton
+
+  !> Contact laws.
+  integer, parameter :: law_hertz = 1, law_newton = 2
 
   !> Flight steps of up to 2^max_level dt.
   integer, parameter :: max_level = 30
   !> Intervals held by a search (depth-first, one split adds one).
   integer, parameter :: max_stack = 400
   !> Relative tolerance of the largest gap.
-  real(wp), parameter :: max_tol = 1.0e-10_wp
+  real(wp), parameter :: max_tol = 1.0e-6_wp
 
 contains
 
   !> Integrate `steps` steps of dt from t = 0; sample every `stride`.
-  subroutine hertz_adaptive(n, k, m, p, h, g0, q, v, stiffness, chi, dt, &
-      steps, stride, samples, threshold, n_moving, energy_bound, &
-      max_cross, t_out, g_out, e_out, first, crossings, n_cross, &
-      gap_max, counts, status)
+  subroutine adaptive(law, n, k, m, p, h, g0, q, v, stiffness, chi, &
+      restitution, dt, steps, stride, samples, threshold, n_moving, &
+      energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
+      n_cross, gap_max, counts, status)
+    !> law_hertz or law_newton.
+    integer, intent(in) :: law
     !> Modes (all members stacked) and contacts (1 or 2).
     integer, intent(in) :: n, k
     !> Mass and frequency of every mode; contact Jacobian; gap offsets.
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k)
     !> Initial modal displacements and velocities (overwritten: final).
     real(wp), intent(inout) :: q(n), v(n)
-    !> Hertz constant k (lb/in^1.5), damping chi (s/in), step dt (s).
-    real(wp), intent(in) :: stiffness, chi, dt
+    !> Hertz constant k (lb/in^1.5; 0 for Newton), damping chi (s/in),
+    !> Newton's coefficient of restitution, step dt (s).
+    real(wp), intent(in) :: stiffness, chi, restitution, dt
     integer, intent(in) :: steps, stride, samples
     !> A contact is open while its gap exceeds threshold (in).
     real(wp), intent(in) :: threshold
@@ -70,7 +89,8 @@ contains
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples)
     !> Contact 1's first episode: the start of its first step with a
-    !> force, and the impulse of its consecutive steps with one.
+    !> force (Hertz) or its first impulse's time (Newton, a midpoint),
+    !> and the impulse of its consecutive steps with one.
     real(wp), intent(out) :: first(2)
     !> crossings(:, i) = time, +c (contact c opens) or -c (it closes).
     real(wp), intent(out) :: crossings(2, max_cross)
@@ -79,11 +99,15 @@ contains
     real(wp), intent(out) :: gap_max(2, k)
     !> Flight steps, fixed steps, flow evaluations of the searches.
     integer, intent(out) :: counts(3)
-    !> status_ok, or status_crossings_full (the table filled up).
+    !> status_ok, status_crossings_full (the table filled up) or
+    !> status_lcp_unsolved (Newton: the contact LCP had no solution).
     integer, intent(out) :: status
 
     real(wp), allocatable :: tab_c(:, :), tab_s(:, :), tab_p(:, :)
     real(wp) :: ht(n, k), half_kick(n, k), force(k), gap(k), gap_new(k)
+    real(wp) :: inv_mh(n, k), coupling(k, k), amp(n)
+    !> amp holds the current segment's amplitudes.
+    logical :: amp_now
     real(wp) :: rate(k), rate_new(k), bound(k), energy_b(k), g_still(k)
     real(wp) :: t_now, span, safe, e_modal
     integer :: moving, step, levels, i_next, level, c, sample, units
@@ -102,6 +126,7 @@ contains
     ht = transpose(h)
     do c = 1, k
       half_kick(:, c) = 0.5_wp * dt * ht(:, c) / m
+      inv_mh(:, c) = ht(:, c) / m
       ! |g''| <= sqrt(2 E sum h^2 p^2 / m) (Cauchy-Schwarz on the modal
       ! energy E): a bound for any state the run can reach
       energy_b(c) = sqrt(2.0_wp * energy_bound * sum(ht(:, c)**2 &
@@ -112,7 +137,16 @@ contains
     do while (levels < max_level .and. 2**levels <= steps)
       levels = levels + 1
     end do
-    allocate(tab_c(n, 0:levels), tab_s(n, 0:levels), tab_p(n, 0:levels))
+    ! D = H M^-1 H^T: an impulse P changes the contact rates by D P
+    do c = 1, k
+      do level = 1, k
+        coupling(c, level) = sum(ht(:, c) * inv_mh(:, level))
+      end do
+    end do
+    ! tables: -1 half a step, 0 the stride, 1.. powers of two of dt
+    allocate(tab_c(n, -1:levels), tab_s(n, -1:levels), &
+        tab_p(n, -1:levels))
+    call table(-1, 0.5_wp * dt)
     call table(0, real(stride, wp) * dt)
     do level = 1, levels
       call table(level, real(2**(level - 1), wp) * dt)
@@ -189,15 +223,14 @@ contains
         gap = gap_new
         rate = rate_new
         step = step + units
+      else if (law == law_newton) then
+        call thaw()
+        counts(2) = counts(2) + 1
+        call newton_step()
+        step = step + 1
       else
         ! a step of the fixed-step splitting, as chatter_hertz takes it
-        if (frozen) then
-          frozen = .false.
-          moving = n
-          amp_fresh = .false.
-          rate_fresh = .false.
-          g_still = g0
-        end if
+        call thaw()
         counts(2) = counts(2) + 1
         call contact_forces(gap, force)
         if (force(1) > 0.0_wp .and. episode == 0) then
@@ -216,15 +249,7 @@ contains
         call kick()
         call flow(1)
         t_now = real(step + 1, wp) * dt
-        do c = 1, k
-          ! the energy bound first (free), the amplitudes if need be
-          if (crossing_possible(gap(c), gap_new(c), dt, energy_b(c)) &
-              .or. max_possible(c, gap(c), gap_new(c), dt, &
-              energy_b(c))) then
-            call amplitude_bounds(bound)
-            call watch(c, gap(c), gap_new(c), dt, 1, t_now, bound(c))
-          end if
-        end do
+        call watch_fixed(dt, 1, t_now)
         gap = gap_new
         call contact_forces(gap, force)
         kicked = kicked .or. any(force /= 0.0_wp)
@@ -245,6 +270,95 @@ contains
     end do
 
   contains
+
+    !> Every mode moves from the first fixed step on.
+    subroutine thaw()
+      if (.not. frozen) return
+      frozen = .false.
+      moving = n
+      amp_fresh = .false.
+      rate_fresh = .false.
+      g_still = g0
+    end subroutine thaw
+
+    !> One Newton step: flow dt/2, the impulses, flow dt/2.
+    subroutine newton_step()
+      real(wp) :: d(2, 2), b(2), z(2), noise, impulse(k), t_mid
+      integer :: active(2), na, i, j
+      logical :: ok
+
+      call flow(-1)
+      t_mid = (real(step, wp) + 0.5_wp) * dt
+      call watch_fixed(0.5_wp * dt, -1, t_mid)
+      gap = gap_new
+      ! closed at the midpoint and not separating beyond the round-off
+      ! of the rate (a resting contact has u = 0 +- that)
+      na = 0
+      do j = 1, k
+        noise = 64.0_wp * epsilon(1.0_wp) * sum(abs(ht(:, j) * v))
+        if (gap(j) <= 0.0_wp .and. rate_new(j) <= noise) then
+          na = na + 1
+          active(na) = j
+        end if
+      end do
+      impulse = 0.0_wp
+      if (na > 0) then
+        do i = 1, na
+          do j = 1, na
+            d(i, j) = coupling(active(i), active(j))
+          end do
+          b(i) = (1.0_wp + restitution) * rate_new(active(i))
+        end do
+        call solve_lcp(na, d, b, z, ok)
+        if (.not. ok) then
+          status = status_lcp_unsolved
+          return
+        end if
+        do i = 1, na
+          impulse(active(i)) = z(i)
+          if (z(i) /= 0.0_wp) call axpy(n, z(i), inv_mh(:, active(i)), v)
+        end do
+      end if
+      if (impulse(1) > 0.0_wp .and. episode == 0) then
+        episode = 1
+        first(1) = t_mid
+        first(2) = 0.0_wp
+      end if
+      if (episode == 1) then
+        if (impulse(1) > 0.0_wp) then
+          first(2) = first(2) + impulse(1)
+        else
+          episode = 2
+        end if
+      end if
+      kicked = any(impulse /= 0.0_wp)
+      amp_fresh = amp_fresh .and. .not. kicked
+      e_fresh = e_fresh .and. .not. kicked
+      call flow(-1)
+      call watch_fixed(0.5_wp * dt, -1, real(step + 1, wp) * dt)
+      gap = gap_new
+      rate = rate_new
+      rate_fresh = .true.
+    end subroutine newton_step
+
+    !> watch() of every contact over a fixed step's flow: the energy
+    !> bound first (free), the amplitudes if need be.
+    subroutine watch_fixed(span_, slot, t_end_)
+      real(wp), intent(in) :: span_, t_end_
+      integer, intent(in) :: slot
+      real(wp) :: margin
+      integer :: j
+
+      do j = 1, k
+        margin = 0.125_wp * energy_b(j) * span_**2
+        if (crossing_possible(gap(j), gap_new(j), margin) .or. &
+            max_possible(j, gap(j), gap_new(j), margin)) then
+          call amplitude_bounds(bound)
+          call watch(j, gap(j), gap_new(j), span_, slot, t_end_, &
+              bound(j))
+        end if
+      end do
+    end subroutine watch_fixed
 
     !> Rotation by the exact flow over tau for every mode.
     subroutine table(slot, tau)
@@ -273,10 +387,12 @@ contains
       considered = merge(1, k, frozen)
     end function considered
 
+    !> Is a considered contact closed (a force may act)?
     logical function any_closed()
       any_closed = any(gap(1:considered()) < 0.0_wp)
     end function any_closed
 
+    !> The gaps of the current state.
     function gaps() result(g)
       real(wp) :: g(k)
       integer :: j
@@ -305,6 +421,7 @@ contains
       end do
     end subroutine contact_forces
 
+    !> Half a step's kick of the Hertz forces in `force`.
     subroutine kick()
       integer :: j
 
@@ -342,11 +459,10 @@ contains
     end subroutine amplitude_bounds
 
     !> Could the gap have crossed the threshold within the step?
-    logical function crossing_possible(ga, gb, span_, b)
-      real(wp), intent(in) :: ga, gb, span_, b
-      real(wp) :: margin
+    !> (Both use a bound of the gap's departure from its chord.)
+    logical function crossing_possible(ga, gb, margin)
+      real(wp), intent(in) :: ga, gb, margin
 
-      margin = 0.125_wp * b * span_**2
       if ((ga > threshold) .neqv. (gb > threshold)) then
         crossing_possible = .true.
       else if (ga > threshold) then
@@ -357,14 +473,16 @@ contains
     end function crossing_possible
 
     !> Could the gap have exceeded its largest value so far?
-    logical function max_possible(c_, ga, gb, span_, b)
+    logical function max_possible(c_, ga, gb, margin)
       integer, intent(in) :: c_
-      real(wp), intent(in) :: ga, gb, span_, b
+      real(wp), intent(in) :: ga, gb, margin
 
-      max_possible = max(ga, gb) + 0.125_wp * b * span_**2 &
+      ! the last contact's (the lower one's) largest gap is the answer
+      max_possible = c_ == k .and. max(ga, gb) + margin &
           > gap_max(1, c_) + tolerance(c_)
     end function max_possible
 
+    !> How far a largest gap may be below the true one.
     real(wp) function tolerance(c_)
       integer, intent(in) :: c_
 
@@ -376,23 +494,59 @@ contains
     !> ended at t_end_ with gap gb, after a flow of span_ (table slot)
     !> from gap ga.  The end rates come from the state at the end, the
     !> one at the start from it flowed back by the table.
+    !> The bound b (B_c, or its energy bound) decides cheaply; where it
+    !> cannot, the tighter chord bound (chord()) of the segment's modal
+    !> amplitudes, and where that cannot either, the searches.
     subroutine watch(c_, ga, gb, span_, slot, t_end_, b)
       integer, intent(in) :: c_, slot
       real(wp), intent(in) :: ga, gb, span_, t_end_, b
-      real(wp) :: ends(4)
+      real(wp) :: ends(4), margin
 
       ends = [ga, gb, 0.0_wp, 0.0_wp]
-      if (crossing_possible(ga, gb, span_, b)) then
-        ends(3:4) = end_rates(c_, slot)
-        call find_crossings(c_, span_, t_end_, b, ends)
+      margin = -1.0_wp
+      amp_now = .false.
+      if (crossing_possible(ga, gb, 0.125_wp * b * span_**2)) then
+        margin = chord(c_, span_, 0)
+        if (crossing_possible(ga, gb, margin)) then
+          ends(3:4) = end_rates(c_, slot)
+          call find_crossings(c_, span_, t_end_, ends)
+        end if
       end if
       if (gb > gap_max(1, c_)) call new_max(c_, gb, t_end_)
       if (ga > gap_max(1, c_)) call new_max(c_, ga, t_end_ - span_)
-      if (max_possible(c_, ga, gb, span_, b)) then
-        ends(3:4) = end_rates(c_, slot)
-        call find_max(c_, span_, t_end_, b, ends)
+      if (max_possible(c_, ga, gb, 0.125_wp * b * span_**2)) then
+        if (margin < 0.0_wp) margin = chord(c_, span_, 0)
+        if (max_possible(c_, ga, gb, margin)) then
+          ends(3:4) = end_rates(c_, slot)
+          call find_max(c_, span_, t_end_, ends)
+        end if
       end if
     end subroutine watch
+
+    !> Amplitudes of the modes in the segment that ends at the current
+    !> state (the flow keeps them).
+    subroutine segment_amplitudes()
+      amp(1:moving) = sqrt(q(1:moving)**2 + (v(1:moving) &
+          / p(1:moving))**2)
+    end subroutine segment_amplitudes
+
+    !> The largest departure of gap c (order 0) or of its rate (order
+    !> 1) from its chord over an interval of length w: mode j departs by
+    !> at most min(p_j^2 w^2 / 8, 2) times its amplitude in it, |h_cj|
+    !> a_j p_j^order (a_j from segment_amplitudes).
+    real(wp) function chord(c_, w, order)
+      integer, intent(in) :: c_, order
+      real(wp), intent(in) :: w
+      integer :: j
+
+      if (.not. amp_now) call segment_amplitudes()
+      amp_now = .true.
+      chord = 0.0_wp
+      do j = 1, moving
+        chord = chord + abs(ht(j, c_)) * amp(j) * p(j)**order &
+            * min(0.125_wp * (p(j) * w)**2, 2.0_wp)
+      end do
+    end function chord
 
     !> Rate of gap c at the step's start (the state flowed back by the
     !> table) and at its end.
@@ -424,9 +578,9 @@ contains
 
     !> Every crossing of the threshold by gap c in (-span_, 0], in order.
     !> ends = gap at the start and end, rate at the start and end.
-    subroutine find_crossings(c_, span_, t_end_, b, ends)
+    subroutine find_crossings(c_, span_, t_end_, ends)
       integer, intent(in) :: c_
-      real(wp), intent(in) :: span_, t_end_, b, ends(4)
+      real(wp), intent(in) :: span_, t_end_, ends(4)
       real(wp) :: stack(6, max_stack), a, z, fa, fz, da, dz, mid, fm, dm
       real(wp) :: root, margin
       integer :: top
@@ -442,13 +596,13 @@ contains
         da = stack(5, top)
         dz = stack(6, top)
         top = top - 1
-        margin = 0.125_wp * b * (z - a)**2
+        margin = chord(c_, z - a, 0)
         if (fa > 0.0_wp .and. fz > 0.0_wp .and. min(fa, fz) - margin &
             > 0.0_wp) cycle
         if (fa <= 0.0_wp .and. fz <= 0.0_wp .and. max(fa, fz) + margin &
             <= 0.0_wp) cycle
         if (((fa > 0.0_wp) .neqv. (fz > 0.0_wp)) .and. &
-            monotone(da, dz, b, z - a)) then
+            monotone(da, dz, chord(c_, z - a, 1))) then
           call refine_root(c_, a, z, fa, root)
           call record(t_end_ + root, merge(-c_, c_, fa > 0.0_wp))
           cycle
@@ -470,13 +624,12 @@ contains
       end do
     end subroutine find_crossings
 
-    !> g' keeps one sign on an interval of length w with end rates
-    !> da, dz and |g''| <= b.
-    logical function monotone(da, dz, b, w)
-      real(wp), intent(in) :: da, dz, b, w
+    !> g' keeps one sign on an interval with end rates da, dz, the rate
+    !> departing from its chord by at most margin.
+    logical function monotone(da, dz, margin)
+      real(wp), intent(in) :: da, dz, margin
 
-      monotone = (da > 0.0_wp .and. dz > 0.0_wp .and. da + dz > b * w) &
-          .or. (da < 0.0_wp .and. dz < 0.0_wp .and. -da - dz > b * w)
+      monotone = min(da, dz) > margin .or. max(da, dz) < -margin
     end function monotone
 
     !> The one root of g - threshold in [a, z] (signs differ at the
@@ -515,6 +668,7 @@ contains
       end do
     end subroutine refine_root
 
+    !> Add a crossing to the table (status_crossings_full if full).
     subroutine record(t_cross, code)
       real(wp), intent(in) :: t_cross
       integer, intent(in) :: code
@@ -530,9 +684,9 @@ contains
 
     !> The largest value of gap c in (-span_, 0], to max_tol relative:
     !> branch and bound with the chord bound.
-    subroutine find_max(c_, span_, t_end_, b, ends)
+    subroutine find_max(c_, span_, t_end_, ends)
       integer, intent(in) :: c_
-      real(wp), intent(in) :: span_, t_end_, b, ends(4)
+      real(wp), intent(in) :: span_, t_end_, ends(4)
       real(wp) :: stack(6, max_stack), a, z, fa, fz, da, dz, mid, fm, dm
       integer :: top
 
@@ -548,9 +702,9 @@ contains
         top = top - 1
         if (fa > gap_max(1, c_)) call new_max(c_, fa, t_end_ + a)
         if (fz > gap_max(1, c_)) call new_max(c_, fz, t_end_ + z)
-        if (max(fa, fz) + 0.125_wp * b * (z - a)**2 <= gap_max(1, c_) &
+        if (max(fa, fz) + chord(c_, z - a, 0) <= gap_max(1, c_) &
             + tolerance(c_)) cycle
-        if (monotone(da, dz, b, z - a)) cycle
+        if (monotone(da, dz, chord(c_, z - a, 1))) cycle
         if (top + 2 > max_stack) cycle
         mid = 0.5_wp * (a + z)
         call gap_at(c_, mid, fm, dm)
@@ -561,6 +715,7 @@ contains
       end do
     end subroutine find_max
 
+    !> A new largest value of gap c, at time when.
     subroutine new_max(c_, value, when)
       integer, intent(in) :: c_
       real(wp), intent(in) :: value, when
@@ -569,7 +724,7 @@ contains
       gap_max(2, c_) = when
     end subroutine new_max
 
-  end subroutine hertz_adaptive
+  end subroutine adaptive
 
   !> The exact flow of modes 1..nm over a step: (q, v) rotated by the
   !> step's cos, sin / p and p sin (kernels apart, so that they
@@ -601,6 +756,7 @@ contains
     sums = [g1, g2, u1, u2]
   end subroutine advance
 
+  !> a . b, a sum the compiler vectorises.
   pure function dot(nm, a, b) result(total)
     integer, intent(in) :: nm
     real(wp), intent(in) :: a(nm), b(nm)
@@ -614,6 +770,7 @@ contains
     end do
   end function dot
 
+  !> y += alpha x.
   pure subroutine axpy(nm, alpha, x, y)
     integer, intent(in) :: nm
     real(wp), intent(in) :: alpha, x(nm)
@@ -622,6 +779,7 @@ contains
     y = y + alpha * x
   end subroutine axpy
 
+  !> Kinetic and strain energy of the modes, sum m (v^2 + p^2 q^2) / 2.
   pure function modal_energy(nm, m, p, q, v) result(total)
     integer, intent(in) :: nm
     real(wp), intent(in) :: m(nm), p(nm), q(nm), v(nm)
@@ -655,4 +813,4 @@ contains
     end if
   end function safe_time
 
-end module chatter_hertz_adaptive
+end module chatter_adaptive
