@@ -183,18 +183,6 @@ def test_lcp_solution_is_complementary():
         assert abs(z @ w) < 1e-14
 
 
-def test_chatter_command_json(capsys):
-    assert main(["chatter", "--model", "newton", "--n-modes", "2",
-                 "--dt", "1e-6", "--json"]) == 0
-    data = json.loads(capsys.readouterr().out)
-    for key in ("first_impact_s", "first_impulse_lb_s", "energy_ratio",
-                "max_lower_gap_in", "circuit_open_s",
-                "first_circuit_open_s", "circuit_open_intervals"):
-        assert key in data
-    assert main(["chatter", "--dt", "-1"]) == 2
-    assert "dt: found -1.0" in capsys.readouterr().err
-
-
 def _inertia_modulus(design, i):
     """E I (lb in^2) of member i from the design's own fields."""
     b, h = float(getattr(design, "b" + i)), float(getattr(design, "h" + i))

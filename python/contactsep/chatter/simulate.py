@@ -16,6 +16,7 @@ Models (docs/chatter.md):
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -32,10 +33,11 @@ MAX_MODES = 1024
 MAX_STEPS = 1e9
 DAMPINGS = ("none", "flores")
 STEPPERS = ("adaptive", "fixed")
-#: Default steps (docs/chatter.md, "Convergence"): Moreau-Jean 1e-7 s;
-#: Hertz 5e-8 s (first impulse, max lower gap and open time within
-#: 1e-4 of the dt -> 0 limit).
-DEFAULT_DT = {"appE": None, "newton": 1e-7, "hertz": 5e-8}
+#: Default steps of the adaptive steppers (docs/chatter.md,
+#: "Convergence"): Hertz 5e-8 s (the thesis rig's first impulse, max
+#: lower gap and open time within 1e-6 of the dt -> 0 limit); Newton
+#: 5e-8 s (max lower gap within 1 % for d <= 0.75 in, N <= 32).
+DEFAULT_DT = {"appE": None, "newton": 5e-8, "hertz": 5e-8}
 #: Sample intervals per simulation (the gaps are sampled, not every step).
 DEFAULT_SAMPLES = 60_000
 #: Poisson's ratio and button radius (in) of the Hertz constant.
@@ -43,8 +45,16 @@ DEFAULT_NU = 0.33
 DEFAULT_BUTTON_RADIUS = 0.125
 
 
+#: A dt more than this many times the default is far from converged.
+COARSE_DT = 10.0
+
+
 class ChatterError(InputError):
     """A simulation setting the chatter layer refuses."""
+
+
+class CoarseStepWarning(UserWarning):
+    """A time step far coarser than the converged default."""
 
 
 def _stack(design):
@@ -177,6 +187,11 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         raise ChatterError(f"dt: found {dt!r}, expected at least "
                            f"{t_end / MAX_STEPS:.3g} s "
                            f"(at most {MAX_STEPS:.0e} steps a run)")
+    if dt > COARSE_DT * DEFAULT_DT[model]:
+        warnings.warn(f"dt: {dt:g} s is {dt / DEFAULT_DT[model]:.3g} times "
+                      f"the converged default {DEFAULT_DT[model]:g} s: the "
+                      f"answers may be far from converged (docs/chatter.md)",
+                      CoarseStepWarning, stacklevel=2)
     steps = max(1, int(round(t_end / dt)))
     dt = t_end / steps
     stride = max(1, steps // samples)
