@@ -47,6 +47,12 @@ def test_the_documented_defaults():
         other = chatter.simulate(design, **common,
                                  **{**documented, name: value})
         assert other.to_json_dict() != plain.to_json_dict(), name
+    # Appendix E's Zeno threshold: the default run is the 1e-4 run
+    from contactsep.chatter.event_driven import rigid_stop_from_design
+    rest = [rigid_stop_from_design(design, t_end=0.03, **zeno)
+            for zeno in ({}, {"zeno_speed": 1e-4}, {"zeno_speed": 1e-3})]
+    assert rest[0].impact_t.tolist() == rest[1].impact_t.tolist()
+    assert rest[0].impact_t.tolist() != rest[2].impact_t.tolist()
     # the Hertz constant of the defaults: 4/3 E/(2 (1 - nu^2)) sqrt(R)
     law = HertzLaw.for_materials(1e7)
     assert law.k == pytest.approx(4 / 3 * 1e7 / (2 * (1 - 0.33**2))
