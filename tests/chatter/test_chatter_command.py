@@ -199,3 +199,18 @@ def test_the_repr_is_short():
     text = repr(r)
     assert len(text) < 300 and "\n" not in text and "array" not in text
     assert "n_events=" in text and "hertz" in text
+
+
+def test_the_single_impulse_figures_can_be_skipped():
+    """single_impulse=False changes nothing but the eq. 23 figures (the
+    Flores V_ref still comes from the model)."""
+    design = contactsep.thesis_design(n_modes=2)
+    for damping in ("none", "flores"):
+        full = chatter.simulate(design, model="hertz", t_end=0.03,
+                                damping=damping).to_json_dict()
+        lean = chatter.simulate(design, model="hertz", t_end=0.03,
+                                damping=damping,
+                                single_impulse=False).to_json_dict()
+        assert full.pop("single_impulse")["y3_max_in"] > 0
+        assert lean.pop("single_impulse") == {}
+        assert full == lean

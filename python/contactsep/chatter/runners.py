@@ -16,6 +16,8 @@ from contactsep.errors import InputError
 #: First size of the crossing tables; a run that fills one is repeated
 #: with 16x the room (the run is deterministic).
 FIRST_CROSSINGS = 4096
+#: Most crossings a run may record (64 MB of table).
+MAX_CROSSINGS = 4096 * 16**3
 #: The energy bound the adaptive stepper's cheap test uses, as a multiple
 #: of the energy at the start (the splitting's energy error is ~1e-8 of
 #: it; Flores damping only removes energy).
@@ -84,6 +86,10 @@ def _with_room(call):
         out = call(room)
         if out[-1] != chatter_status.CROSSINGS_FULL:
             return out
+        if room >= MAX_CROSSINGS:
+            raise StepperError(f"more than {MAX_CROSSINGS:,} crossings of "
+                               f"the open threshold: the gaps hover at it "
+                               f"(raise open_threshold)")
         room *= 16
 
 

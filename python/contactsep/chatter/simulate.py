@@ -153,8 +153,8 @@ def simulate(design, model="newton", damping="none", dt=None, *,
              t_end=LISTING_TAU_S, open_threshold=circuit.OPEN_THRESHOLD,
              min_open=circuit.MIN_OPEN, preload=0.0, nu=DEFAULT_NU,
              button_radius=DEFAULT_BUTTON_RADIUS, backend="compiled",
-             samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive"
-             ) -> ChatterResult:
+             samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive",
+             single_impulse=True) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
     ``dt`` defaults per model (DEFAULT_DT; it is rounded so that a whole
@@ -169,11 +169,13 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     intervals of the gaps (1: the ends only; the summary does not depend
     on it for hertz and newton); ``stepper="fixed"`` runs Hertz with the
     fixed-step splitting (the reference); ``backend="numpy"`` runs the
-    NumPy twins of the fixed-step steppers (slow: tests only).
+    NumPy twins of the fixed-step steppers (slow: tests only);
+    ``single_impulse=False`` skips the thesis's eq. 23 figures (two model
+    evaluations, ~1 ms: a sweep of chatter runs need not pay them).
     """
     _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper)
-    single = _single_impulse(design)
+    single = _single_impulse(design) if single_impulse else {}
     settings = dict(t_end_s=float(t_end),
                     open_threshold_in=float(open_threshold),
                     min_open_s=float(min_open), design=design,
@@ -197,7 +199,8 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     stride = max(1, steps // samples)
     law = None
     if model == "hertz":
-        flores = dict(e=float(design.e), v_ref=single["v_impact_in_s"]) \
+        flores = dict(e=float(design.e), v_ref=(
+            single or _single_impulse(design))["v_impact_in_s"]) \
             if damping == "flores" else {}
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
                                      **flores)

@@ -31,12 +31,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         "chatter", help="simulate repeated impacts and circuit opening",
         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG,
         description="Simulate the thesis rig, any design field changed, "
-                    "from the release: Appendix E against a rigid separator "
-                    "(appE), the three beams with Newton's impact law "
-                    "(newton) or with Hertz contact (hertz). Prints when "
-                    "and for how long the circuit opens: the openings, "
-                    "and the discontinuity events (openings of at least "
-                    "--min-open).")
+                    "from the release:\nAppendix E against a rigid "
+                    "separator (appE), the three beams with Newton's\n"
+                    "impact law (newton) or with Hertz contact (hertz). "
+                    "Prints when and for how\nlong the circuit opens: the "
+                    "openings, and the discontinuity events\n(openings of "
+                    "at least --min-open).")
     run_group = parser.add_argument_group("simulation")
     run_group.add_argument("--model", choices=("appE", "newton", "hertz"),
                            default="newton", help="default newton")
