@@ -7,7 +7,8 @@ Models (docs/chatter.md):
   never moves, so the circuit never opens: the model answers how the
   upper contact chatters);
 * ``"newton"`` — the three beams, two unilateral contacts, Newton's
-  impact law with restitution e, Moreau-Jean time stepping;
+  impact law with restitution e: the adaptive exact-flow stepper by
+  default, Moreau-Jean time stepping on request (``stepper="fixed"``);
 * ``"hertz"`` — the three beams with Hertz contact forces (elastic, or
   Flores damping calibrated to e with V_ref the first impact speed);
   the adaptive stepper by default, the fixed-step one on request.
