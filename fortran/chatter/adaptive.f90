@@ -23,7 +23,7 @@
 !> the fixed-step stepper would meet no force, at any grid point before
 !> it.  The flight step is the largest tabled multiple of dt (a power of
 !> two, or the sample stride) that fits in s*, the next sample and the
-!> end.  A contact that may close is stepped as chatter_hertz does it.
+!> end.  Where a contact may close, the step is the law's fixed step.
 !>
 !> A preloaded start (n_moving < n): the modes n_moving+1..n (separator
 !> and lower contact) are in static equilibrium with the preload, which
@@ -35,11 +35,15 @@
 !> exact flow of the state after the first kick (the state at the step's
 !> end, before the second kick, flowed back).  If both ends of a step
 !> lie on one side of the open threshold with a margin B_c dt^2 / 8 (the
-!> largest departure from the chord of a function with |g''| <= B_c),
-!> the gap cannot have crossed it; otherwise the step is searched by
-!> bisection with the same bound and each crossing refined by Newton's
-!> method with bisection on the exact flow.  The largest value of each
-!> gap is found the same way.
+!> largest departure from the chord of a function with |g''| <= B_c;
+!> in fixed steps first with a bound of B_c from the energy, which costs
+!> nothing), or with the tighter margin sum_j |h_cj| a_j
+!> min(p_j^2 dt^2 / 8, 2) (each mode departs from its own chord by at
+!> most that), the gap cannot have crossed it; otherwise the step is
+!> searched by bisection with the tighter margin and each crossing
+!> refined by Newton's method with bisection on the exact flow.  The
+!> largest value of the last contact's (the lower) gap is found the same
+!> way, to max_tol.
 module chatter_adaptive
   use contactsep_kinds, only: wp
   use chatter_lcp, only: solve_lcp
