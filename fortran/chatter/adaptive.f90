@@ -62,6 +62,12 @@ module chatter_adaptive
   integer, parameter :: max_stack = 400
   !> Relative tolerance of the largest gap.
   real(wp), parameter :: max_tol = 1.0e-6_wp
+  !> Steps whose search for the largest gap waits for the end of the run
+  !> (by then the running largest gap excludes most of them).
+  integer, parameter :: max_waiting = 64
+  !> Header of a waiting step: its end time, length, upper bound, gaps
+  !> and rates at its ends, moving modes, the still modes' part of gap.
+  integer, parameter :: head = 9
 
 contains
 
@@ -108,6 +114,9 @@ contains
     integer, intent(out) :: status
 
     real(wp), allocatable :: tab_c(:, :), tab_s(:, :), tab_p(:, :)
+    !> The waiting steps: header, then q and v at the step's end.
+    real(wp), allocatable :: waiting(:, :)
+    integer :: n_waiting
     real(wp) :: ht(n, k), half_kick(n, k), force(k), gap(k), gap_new(k)
     real(wp) :: inv_mh(n, k), coupling(k, k), amp(n)
     !> amp holds the current segment's amplitudes.
@@ -152,6 +161,8 @@ contains
         tab_p(n, -1:levels))
     call table(-1, 0.5_wp * dt)
     call table(0, real(stride, wp) * dt)
+    allocate(waiting(head + 2 * n, max_waiting))
+    n_waiting = 0
     do level = 1, levels
       call table(level, real(2**(level - 1), wp) * dt)
     end do
@@ -272,8 +283,71 @@ contains
       end if
       if (status /= status_ok) exit
     end do
+    call search_waiting()
 
   contains
+
+    !> Keep a step whose largest gap may top the running one (upper
+    !> bound ub), to be searched at the end; when the table is full, the
+    !> step of the lowest bound is searched now instead.
+    subroutine wait_for_max(c_, ub, span_, t_end_, ends)
+      integer, intent(in) :: c_
+      real(wp), intent(in) :: ub, span_, t_end_, ends(4)
+      integer :: low
+
+      if (n_waiting < max_waiting) then
+        n_waiting = n_waiting + 1
+        low = n_waiting
+      else
+        low = minloc(waiting(3, :), 1)
+        if (ub <= waiting(3, low)) then
+          call find_max(c_, span_, t_end_, ends)
+          return
+        end if
+        call search_step(low)
+      end if
+      waiting(1:8, low) = [t_end_, span_, ub, ends, real(moving, wp)]
+      waiting(9, low) = g_still(c_)
+      waiting(head + 1:head + n, low) = q
+      waiting(head + n + 1:, low) = v
+    end subroutine wait_for_max
+
+    !> The waiting steps, highest bound first (the running largest gap
+    !> grows fastest, and excludes more of the rest).
+    subroutine search_waiting()
+      integer :: next
+
+      do while (n_waiting > 0)
+        next = maxloc(waiting(3, 1:n_waiting), 1)
+        call search_step(next)
+        waiting(:, next) = waiting(:, n_waiting)
+        n_waiting = n_waiting - 1
+      end do
+    end subroutine search_waiting
+
+    !> Search waiting step i from its own state (then restore the run's).
+    subroutine search_step(i)
+      integer, intent(in) :: i
+      real(wp) :: q_run(n), v_run(n), still_run
+      integer :: moving_run
+
+      if (waiting(3, i) <= gap_max(1, k) + tolerance(k)) return
+      q_run = q
+      v_run = v
+      moving_run = moving
+      still_run = g_still(k)
+      q = waiting(head + 1:head + n, i)
+      v = waiting(head + n + 1:, i)
+      moving = nint(waiting(8, i))
+      g_still(k) = waiting(9, i)
+      amp_now = .false.
+      call find_max(k, waiting(2, i), waiting(1, i), waiting(4:7, i))
+      q = q_run
+      v = v_run
+      moving = moving_run
+      g_still(k) = still_run
+      amp_now = .false.
+    end subroutine search_step
 
     !> Every mode moves from the first fixed step on.
     subroutine thaw()
@@ -522,7 +596,7 @@ contains
         if (margin < 0.0_wp) margin = chord(c_, span_, 0)
         if (max_possible(c_, ga, gb, margin)) then
           ends(3:4) = end_rates(c_, slot)
-          call find_max(c_, span_, t_end_, ends)
+          call wait_for_max(c_, max(ga, gb) + margin, span_, t_end_, ends)
         end if
       end if
     end subroutine watch
