@@ -43,7 +43,8 @@
 !> searched by bisection with the tighter margin and each crossing
 !> refined by Newton's method with bisection on the exact flow.  The
 !> largest value of the last contact's (the lower) gap is found the same
-!> way, to max_tol.
+!> way, to max_tol; those searches wait for the end of the run, when the
+!> running largest value excludes most of the steps that might top it.
 module chatter_adaptive
   use contactsep_kinds, only: wp
   use chatter_lcp, only: solve_lcp
