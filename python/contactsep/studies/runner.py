@@ -20,6 +20,7 @@ import numpy as np
 
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.output import json_text
+from contactsep.studies import chatter_sweep
 from contactsep.studies.study import csv_comments
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
@@ -50,6 +51,39 @@ COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
 CSV_DIGITS = 12
 
 
+def title(spec: SweepSpec) -> str:
+    """The sweep's title (first CSV comment, Parquet metadata)."""
+    return TITLE if spec.model == "eq23" else chatter_sweep.title(
+        spec.model)
+
+
+def column_notes(spec: SweepSpec) -> list[str]:
+    """How to read the columns (CSV comments, Parquet metadata)."""
+    return [COLUMNS_NOTE] if spec.model == "eq23" else \
+        chatter_sweep.notes(spec.model)
+
+
+def default_chunk_size(spec: SweepSpec) -> int:
+    """Designs per chunk unless asked: 100,000 of eq. 23 (one compiled
+    batch), 8 chatter simulations."""
+    return CHUNK_SIZE if spec.model == "eq23" else chatter_sweep.CHUNK_SIZE
+
+
+def check_threshold(spec: SweepSpec, threshold) -> None:
+    """A threshold is on eq23's max y3: a chatter sweep refuses it."""
+    if threshold is not None and spec.model != "eq23":
+        raise InputError(f"--threshold: eq23's max y3; a {spec.model} "
+                         f"sweep reports p_open, the designs with a "
+                         f"discontinuity event")
+
+
+def evaluate(spec: SweepSpec, first: int, last: int) -> dict:
+    """The columns of designs first..last-1, by the sweep's model."""
+    if spec.model == "eq23":
+        return evaluate_chunk(spec, first, last)
+    return chatter_sweep.evaluate_chunk(spec, first, last)
+
+
 def _row_format(columns: dict) -> str:
     """%-format of one CSV row, from the columns' kinds."""
     formats = []
@@ -68,8 +102,8 @@ class CsvWriter:
     def __init__(self, path: str, spec: SweepSpec, notes=()):
         self.path = path
         self._handle = open(path, "w", newline="", encoding="ascii")
-        self._handle.write(csv_comments([TITLE, *spec.describe(),
-                                         COLUMNS_NOTE, *notes]))
+        self._handle.write(csv_comments([title(spec), *spec.describe(),
+                                         *column_notes(spec), *notes]))
         self._writer = csv.writer(self._handle, lineterminator="\n")
         self._line = None
 
@@ -102,7 +136,9 @@ class ParquetWriter:
                              "'contactsep[tables]'") from None
         self.path = path
         self._metadata = {"contactsep": json_text({
-            "title": TITLE, "notes": [COLUMNS_NOTE],
+            "title": title(spec) if spec is not None else TITLE,
+            "notes": column_notes(spec) if spec is not None
+            else [COLUMNS_NOTE],
             "inputs": spec.inputs() if spec is not None else None},
             indent=None)}
         self._writer = None
@@ -205,7 +241,7 @@ def _evaluate_to_file(spec, first, last, directory) -> str:
     short path, written to the pipe at once (a worker killed while it
     sent megabytes of columns would leave the pool reading the rest of
     the message forever), and no pickling of the columns."""
-    columns = evaluate_chunk(spec, first, last)
+    columns = evaluate(spec, first, last)
     path = os.path.join(directory, f"{first}.npz")
     np.savez(path, **{k: np.ascontiguousarray(v) for k, v in columns.items()})
     return path
@@ -222,7 +258,7 @@ def _results_local(spec, bounds, workers, stop):
     if workers <= 1:
         for first, last in bounds:
             stop.check()
-            yield evaluate_chunk(spec, first, last)
+            yield evaluate(spec, first, last)
         return
     shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
     directory = tempfile.mkdtemp(prefix="contactsep-sweep-", dir=shared)
@@ -260,7 +296,7 @@ def _results_dask(spec, bounds, address, stop):
     try:
         window = collections.deque()
         for first, last in bounds:
-            window.append(client.submit(evaluate_chunk, spec, first, last,
+            window.append(client.submit(evaluate, spec, first, last,
                                         pure=False))
             if len(window) >= 8:
                 yield _wait(window.popleft(), stop)
@@ -272,26 +308,35 @@ def _results_dask(spec, bounds, address, stop):
 
 
 def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
-              chunk_size: int = CHUNK_SIZE, workers: int | None = None,
+              chunk_size: int | None = None, workers: int | None = None,
               scheduler=None, progress: bool | None = None) -> dict:
     """Evaluate every design of ``spec`` chunk by chunk, in order; each
     chunk goes to every writer as it arrives.  Returns the summary
-    (:meth:`Summary.as_dict`, ``elapsed_s``, and ``inputs``: what made the
-    sweep, :meth:`SweepSpec.inputs`).
+    (:meth:`Summary.as_dict`, or :meth:`ChatterSummary.as_dict
+    <contactsep.studies.chatter_sweep.ChatterSummary.as_dict>` for a
+    chatter model; ``elapsed_s``; and ``inputs``: what made the sweep,
+    :meth:`SweepSpec.inputs`).
+
+    ``chunk_size``: designs per chunk (default :func:`default_chunk_size`);
+    ``threshold`` (in, eq23 only): also report P(max y3 > threshold).
 
     ``workers``: local processes (default: the machine's cores; 1 runs in
     this process); ``scheduler``: a Dask scheduler address (or Client).
     An interrupt (Ctrl-C) raises :class:`SweepInterrupted` after closing
     the writers: the chunks already written stay.
     """
+    if chunk_size is None:
+        chunk_size = default_chunk_size(spec)
     if chunk_size < 1:
         raise InputError("--chunk-size must be at least 1")
+    check_threshold(spec, threshold)
     if workers is None:
         workers = os.cpu_count() or 1
     bounds = chunks(spec.size, chunk_size)
     if spec.size <= chunk_size:
         workers = 1
-    summary = Summary(threshold=threshold)
+    summary = Summary(threshold=threshold) if spec.model == "eq23" \
+        else chatter_sweep.ChatterSummary()
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()
