@@ -72,6 +72,11 @@ def register(commands: argparse._SubParsersAction) -> None:
     study.add_argument("--model", choices=PRELOAD_MODELS, default=None,
                        help="preload and conclusionN only: the contact "
                             "model (default hertz)")
+    study.add_argument("--damping", choices=("none", "flores"),
+                       default=None,
+                       help="preload only: the Hertz contact's damping "
+                            "(default none: elastic; flores: calibrated "
+                            "to e)")
     study.add_argument("--workers", type=int, default=None,
                        help="preload and conclusionN only: local "
                             "processes for the simulations (default: all "
@@ -177,6 +182,9 @@ def _compute(name: str, args, overrides: dict):
     if name not in searches and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
+    if name != "preload" and args.damping:
+        raise InputError(f"--damping is study preload's option, not "
+                         f"study {name}'s (conclusion3 uses flores)")
     if name in searches:
         return _search_study(name, args, overrides)
     if name == "chatter":
@@ -210,7 +218,8 @@ def _search_study(name: str, args, overrides: dict):
                    n_modes=overrides.pop("n_modes", DEFAULT_MODES),
                    workers=args.workers)
     if name == "preload":
-        return preload_chart(**options, **overrides)
+        return preload_chart(**options, damping=args.damping or "none",
+                             **overrides)
     return conclusion(name, **options, **overrides)
 
 

@@ -10,16 +10,21 @@ y_s = 0.25, 0.5, 0.75 in) the search
    if the first octave has no event it scans down instead, to 2^-20 lb,
    then tries 0;
 2. **bisects** (geometric midpoints) between that highest event and the
-   next grid value until they are within 1 %.
+   next grid value until they are within 1 %;
+3. **checks** every 1 % step up to 25 % above the answer: if one has an
+   event, the highest such is the new lower end, the next tested
+   preload above it the upper end, and 2-3 repeat.
 
 "Closed" is not monotone in preload (docs/chatter.md, "The preload
-chart"): above the highest preload with an event a slightly smaller one
-may be closed, and so on.  The answer is therefore the smallest tested
-preload above which every tested preload stays closed: the bisection
+chart"): below the highest preload with an event a smaller one may be
+closed, and short open windows lie between the scan's values.  The
+answer is therefore the smallest tested preload above which every
+tested preload stays closed: closed at every 1 % step to 25 % above it
+and at the scan's steps to an octave above its last event.  Each step
 keeps that true (a closed midpoint becomes the upper end, an open one
-the lower end), and it is itself closed.
+the lower end), and the answer is itself closed.
 
-Every scan step and every bisection step is one batch of simulations
+Every scan step, bisection step and check is one batch of simulations
 over all the rows, run on worker processes.
 """
 
@@ -59,6 +64,9 @@ LOWEST_K = -80
 HIGHEST_K = 40
 #: The bisection stops when the bracket's ends are within this ratio - 1.
 TOLERANCE = 0.01
+#: The check above an answer: every 1 % step up to 25 % above it.
+BAND_STEP = 0.01
+BAND_STEPS = 25
 #: The fields the chart sets itself.
 FIXED = {"h2": "its rows, d = 0.125-0.75 in",
          "ys": "its curves, y_s = 0.25, 0.5, 0.75 in"}
@@ -121,7 +129,8 @@ def _bracket(scan: dict, zero) -> tuple:
 
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE
            ) -> list[PreloadSearch]:
-    """Run the scan and the bisection for ``n_rows`` designs at once.
+    """Run the scan, the bisection and the check above the answer for
+    ``n_rows`` designs at once (module docstring).
 
     ``has_event(tasks)`` takes a list of (row, preload lb) and returns,
     in order, whether each has a discontinuity event (one batch).
@@ -130,38 +139,67 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE
     zeros = [None] * n_rows
     tested = [dict() for _ in range(n_rows)]
 
-    def run(tasks):
+    def run(tasks, on_grid=False):
         for (row, preload), event in zip(tasks, has_event(tasks)):
             tested[row][preload] = bool(event)
-            if preload == 0.0:
+            if on_grid and preload == 0.0:
                 zeros[row] = bool(event)
-            else:
+            elif on_grid:
                 k = round(PER_OCTAVE * math.log2(preload))
                 scans[row][k] = bool(event)
 
     run([(row, grid(k)) for row in range(n_rows)
-         for k in range(FIRST_K, FIRST_K + PER_OCTAVE)])
+         for k in range(FIRST_K, FIRST_K + PER_OCTAVE)], on_grid=True)
     while True:
         tasks = [(row, p) for row in range(n_rows)
                  for p in _next_scan(scans[row], zeros[row])]
         if not tasks:
             break
-        run(tasks)
+        run(tasks, on_grid=True)
     brackets = [list(_bracket(scans[row], zeros[row]))
                 for row in range(n_rows)]
+    checked = [None] * n_rows
+    while True:
+        _bisect(brackets, tested, has_event, tolerance)
+        # the band above each new answer: an event there moves the
+        # bracket up to it (every tested preload above stays closed)
+        rows = [row for row, (_, hi) in enumerate(brackets)
+                if hi > 0.0 and math.isfinite(hi) and checked[row] != hi]
+        if not rows:
+            break
+        run([(row, p) for row in rows for p in _band(brackets[row][1])
+             if p not in tested[row]])
+        for row in rows:
+            checked[row] = hi = brackets[row][1]
+            opened = [p for p in _band(hi) if tested[row][p]]
+            if opened:
+                top = max(opened)
+                brackets[row] = [top, min(p for p in tested[row]
+                                          if p > top)]
+    return [PreloadSearch(min_preload_lb=hi,
+                          tested=tuple(sorted(tested[row].items())))
+            for row, (_, hi) in enumerate(brackets)]
+
+
+def _band(answer: float) -> list:
+    """The preloads checked above an answer: BAND_STEPS steps of
+    BAND_STEP."""
+    return [answer * (1.0 + BAND_STEP * j)
+            for j in range(1, BAND_STEPS + 1)]
+
+
+def _bisect(brackets, tested, has_event, tolerance) -> None:
+    """Geometric bisection of every bracket (event, closed) until its
+    ends are within ``tolerance``, one batch per step for all rows."""
     while True:
         tasks = [(row, math.sqrt(lo * hi))
                  for row, (lo, hi) in enumerate(brackets)
                  if lo > 0.0 and hi > lo * (1.0 + tolerance)]
         if not tasks:
-            break
-        events = has_event(tasks)
-        for (row, preload), event in zip(tasks, events):
+            return
+        for (row, preload), event in zip(tasks, has_event(tasks)):
             tested[row][preload] = bool(event)
             brackets[row][0 if event else 1] = preload
-    return [PreloadSearch(min_preload_lb=hi,
-                          tested=tuple(sorted(tested[row].items())))
-            for row, (_, hi) in enumerate(brackets)]
 
 
 def _simulate_event(task) -> bool:
@@ -238,37 +276,45 @@ def min_preloads(designs, model: str = "hertz", settings=None,
 
 
 def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
-                  dt=None, workers: int | None = None,
-                  thicknesses=THICKNESSES, heights=HEIGHTS,
-                  **overrides) -> Study:
+                  damping: str = "none", dt=None,
+                  workers: int | None = None, thicknesses=THICKNESSES,
+                  heights=HEIGHTS, **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
-    ``dt`` the stepper's step (default: the model's)."""
+    ``damping`` the Hertz contact's (none: elastic; flores: calibrated
+    to e), ``dt`` the stepper's step (default: the model's)."""
     refuse_fixed("preload", overrides, FIXED)
+    if damping != "none" and model != "hertz":
+        raise InputError("damping: the Hertz contact's (--model hertz)")
     rows = [(d, ys) for d in thicknesses for ys in heights]
     designs = [thesis_design(d=d, ys=ys, n_modes=n_modes, **overrides)
                for d, ys in rows]
-    settings = {} if dt is None else {"dt": dt}
+    settings = {"damping": damping} if model == "hertz" else {}
+    if dt is not None:
+        settings["dt"] = dt
     with Simulations(workers) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
+    law = f", damping {damping}" if model == "hertz" else ""
     notes = [
-        f"model {model}, N = {n_modes} modes per member, the adaptive "
-        f"stepper at dt {step:g} s, window 0-0.06 s from the release; an "
-        f"event: the circuit open (both gaps above 1e-6 in) for at least "
-        f"{MIN_OPEN:g} s",
+        f"model {model}{law}, N = {n_modes} modes per member, the "
+        f"adaptive stepper at dt {step:g} s, window 0-0.06 s from the "
+        f"release; an event: the circuit open (both gaps above 1e-6 in) "
+        f"for at least {MIN_OPEN:g} s",
         "min_preload_lb: the smallest tested preload above which every "
         "tested preload has no event; scan 2^(k/4) lb upward from 1/16 "
-        "lb until an octave above the last event is closed, then "
-        f"bisection to {TOLERANCE:.0%}",
+        "lb until an octave above the last event is closed, bisection "
+        f"to {TOLERANCE:.0%}, every {BAND_STEP:.0%} step to "
+        f"{BAND_STEP * BAND_STEPS:.0%} above the answer closed",
         f"{sims.runs} simulations",
     ]
     for (d, ys), result in zip(rows, found):
-        if result.closed_below:
+        below = result.closed_below
+        if below:
             notes.append(
                 f"not monotone at d = {d:g} in, y_s = {ys:g} in: no event "
-                f"also at " + ", ".join(f"{p:.4g}" for p in
-                                        result.closed_below) + " lb")
+                f"also at {len(below)} tested preloads from "
+                f"{min(below):.4g} to {max(below):.4g} lb")
     notes += design_lines(designs[0], per_row=("h2", "ys"))
     return Study("preload", "The smallest lower-contact preload with no "
                  "discontinuity event in the window", {
