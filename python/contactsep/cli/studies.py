@@ -29,6 +29,7 @@ def _backend(parser: argparse.ArgumentParser) -> None:
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep study`` and ``contactsep sweep``."""
+    from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies import STUDIES
     from contactsep.studies.preload import DEFAULT_MODES as PRELOAD_MODES
     from contactsep.studies.preload import MODELS as PRELOAD_MODELS
@@ -72,8 +73,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     study.add_argument("--model", choices=PRELOAD_MODELS, default=None,
                        help="preload and conclusionN only: the contact "
                             "model (default hertz)")
-    study.add_argument("--damping", choices=("none", "flores"),
-                       default=None,
+    study.add_argument("--damping", choices=DAMPINGS, default=None,
                        help="preload only: the Hertz contact's damping "
                             "(default none: elastic; flores: calibrated "
                             "to e)")
@@ -214,9 +214,9 @@ def _search_study(name: str, args, overrides: dict):
         raise InputError(f"--workers: found {args.workers}, expected at "
                          f"least 1")
     overrides = dict(overrides)
-    options = dict(model=args.model or "hertz",
-                   n_modes=overrides.pop("n_modes", DEFAULT_MODES),
-                   workers=args.workers)
+    options = {"model": args.model or "hertz",
+               "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
+               "workers": args.workers}
     if name == "preload":
         return preload_chart(**options, damping=args.damping or "none",
                              **overrides)

@@ -89,12 +89,13 @@ def _columns(name: str, values, single, base) -> dict:
 
 
 def conclusion(name: str, model: str = "hertz",
-               n_modes: int = DEFAULT_MODES, *, workers=None,
+               n_modes: int = DEFAULT_MODES, *, dt=None, workers=None,
                **overrides) -> Study:
     """One of the studies (module docstring): the parameter's columns,
     then y3_max_in (eq. 23 as printed, the thesis's measure, same N),
     max_lower_gap_in, circuit_open_s, n_events (no preload) and
-    min_preload_lb; any other design field overridden by keyword."""
+    min_preload_lb; any other design field overridden by keyword;
+    ``dt`` the stepper's step (default: the model's)."""
     own, why, claim = STUDIES[name]
     refuse_fixed(name, overrides, {own: why})
     base = thesis_design(n_modes=n_modes, **overrides)
@@ -103,18 +104,22 @@ def conclusion(name: str, model: str = "hertz",
     single = check_status(evaluate(base.replace(**{own: values})))
     settings = {"damping": "flores"} if (
         name == "conclusion3" and model == "hertz") else {}
+    if dt is not None:
+        settings["dt"] = dt
     with Simulations(workers) as sims:
         free = sims.map(_zero_preload, [(d, model, settings)
                                         for d in designs])
         found = min_preloads(designs, model, settings, simulations=sims)
     gap, open_s, events = (np.array(v) for v in zip(*free))
     law = {"hertz": "Hertz contact" + (", Flores damping calibrated to e"
-                                       if settings else ", elastic"),
+                                       if "damping" in settings
+                                       else ", elastic"),
            "newton": "Newton's impact law with e"}[model]
     notes = [f"the thesis (conclusion {name[-1]}): {claim}",
              f"y3_max_in: eq. 23 as printed, N = {n_modes}; the rest: the "
              f"three beams, {law}, N = {n_modes}, the adaptive stepper at "
-             f"dt {DEFAULT_DT[model]:g} s, window 0-0.06 s from the release",
+             f"dt {dt or DEFAULT_DT[model]:g} s, window 0-0.06 s from the "
+             f"release",
              "max_lower_gap_in, circuit_open_s, n_events: no preload; "
              "min_preload_lb: the smallest tested preload above which no "
              "tested preload has an event (opening >= 1e-05 s), the "
@@ -122,7 +127,7 @@ def conclusion(name: str, model: str = "hertz",
              f"{sims.runs} simulations",
              *design_lines(designs[0], per_row=(own,))]
     return Study(name, f"Conclusion {name[-1]} re-examined for circuit "
-                 f"opening", {
+                 f"opening ({model}, N = {n_modes})", {
                      **_columns(name, values, single, base),
                      "y3_max_in": single.y3_max,
                      "max_lower_gap_in": gap, "circuit_open_s": open_s,

@@ -174,8 +174,13 @@ def _conclusion(axes, c, name):
     top.semilogy(x, c["max_lower_gap_in"], "o-",
                  label="three beams: max lower gap, no preload")
     top.set(ylabel="lower contact (in)")
-    bottom.semilogy(x, c["min_preload_lb"], "o-", color="C2",
-                    label="smallest preload with no event")
+    preloads = c["min_preload_lb"]
+    bottom.plot(x, preloads, "o-", color="C2",
+                label="smallest preload with no event")
+    if np.nanmax(preloads) > 10 * np.nanmin(preloads) > 0:
+        bottom.set_yscale("log")
+    else:
+        bottom.set_ylim(bottom=0.0)
     bottom.set(xlabel=label, ylabel="preload (lb)")
     if name == "conclusion6":
         top.set_xscale("log")
