@@ -311,10 +311,11 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     for (d, ys), result in zip(rows, found):
         below = result.closed_below
         if below:
-            notes.append(
-                f"not monotone at d = {d:g} in, y_s = {ys:g} in: no event "
-                f"also at {len(below)} tested preloads from "
-                f"{min(below):.4g} to {max(below):.4g} lb")
+            where = f"{below[0]:.4g} lb" if len(below) == 1 else (
+                f"{len(below)} tested preloads from {below[0]:.4g} to "
+                f"{below[-1]:.4g} lb")
+            notes.append(f"not monotone at d = {d:g} in, y_s = {ys:g} in: "
+                         f"no event also at {where}")
     notes += design_lines(designs[0], per_row=("h2", "ys"))
     return Study("preload", "The smallest lower-contact preload with no "
                  "discontinuity event in the window", {
