@@ -91,6 +91,28 @@ def test_closed_without_a_preload_and_below_the_floor():
         preload.HIGHEST_K)
 
 
+def test_nothing_above_a_ceiling_is_tested():
+    """A ceiling (the largest preload the simulation takes) cuts the
+    scan's closed octave and the band short; an event at the highest
+    grid value below it leaves no answer."""
+    calls = []
+
+    def has_event(tasks):
+        calls.extend(tasks)
+        return [p < (3.7, 10.0, 3.7)[row] for row, p in tasks]
+
+    found = preload.search(3, has_event, ceilings=[5.0, 10.5, math.inf])
+    cut, beyond, free = found
+    assert 3.7 <= cut.min_preload_lb <= 3.7 * 1.01
+    assert cut.min_preload_lb == free.min_preload_lb
+    assert max(p for row, p in calls if row == 0) <= 5.0
+    # without a ceiling: an octave above the last event, 2^(7/4) lb
+    assert max(p for row, p in calls if row == 2) == preload.grid(11)
+    # 2^(13/4) = 9.51 lb has an event, 2^(14/4) = 11.3 lb is above 10.5
+    assert math.isnan(beyond.min_preload_lb)
+    assert max(p for row, p in calls if row == 1) == preload.grid(13)
+
+
 # the chart against simulate(), 3 % either side
 
 def _check(row_model, d, ys, n_modes, answer):

@@ -6,21 +6,25 @@ y_s = 0.25, 0.5, 0.75 in) the search
 
 1. **scans** the grid of preloads 2^(k/4) lb (19 % apart) upward from
    1/16 lb, an octave (four values) at a time, until the four values
-   above the highest preload with an event are all closed (no event);
-   if the first octave has no event it scans down instead, to 2^-20 lb,
-   then tries 0;
+   above the highest preload with an event are all closed (no event),
+   or those of them up to the row's ceiling (the largest preload the
+   simulation takes: it bends the lower contact by its length); if the
+   first octave has no event it scans down instead, to 2^-20 lb, then
+   tries 0;
 2. **bisects** (geometric midpoints) between that highest event and the
    next grid value until they are within 1 %;
 3. **checks** every 1 % step up to 25 % above the answer: if one has an
    event, the highest such is the new lower end, the next tested
-   preload above it the upper end, and 2-3 repeat.
+   preload above it the upper end, and 2-3 repeat (steps above the
+   ceiling are not tested).
 
 "Closed" is not monotone in preload (docs/chatter.md, "The preload
 chart"): below the highest preload with an event a smaller one may be
 closed, and short open windows lie between the scan's values.  The
 answer is therefore the smallest tested preload above which every
 tested preload stays closed: closed at every 1 % step to 25 % above it
-and at the scan's steps to an octave above its last event.  Each step
+and at the scan's steps to an octave above its last event (or to the
+ceiling).  Each step
 keeps that true (a closed midpoint becomes the upper end, an open one
 the lower end), and the answer is itself closed.
 
@@ -56,8 +60,9 @@ MODELS = ("hertz", "newton")
 DEFAULT_MODES = 32
 #: The scan's grid: preload k is 2^(k / PER_OCTAVE) lb; the scan starts
 #: at FIRST_K (1/16 lb), goes down to LOWEST_K (2^-20 lb, ~1e-6 lb: a
-#: preload that small is none) and up to HIGHEST_K (1024 lb): an event
-#: within an octave of it leaves the row without an answer (NaN).
+#: preload that small is none) and up to HIGHEST_K (1024 lb), or a
+#: row's ceiling below it: an event at the highest grid value tested
+#: leaves the row without an answer (NaN).
 PER_OCTAVE = 4
 FIRST_K = -16
 LOWEST_K = -80
@@ -95,16 +100,16 @@ class PreloadSearch:
                      if not event and p < self.min_preload_lb)
 
 
-def _next_scan(scan: dict, zero) -> list:
+def _next_scan(scan: dict, zero, top_k: int) -> list:
     """The preloads a row's scan still needs (empty: done).  ``scan``
     maps grid index -> has an event; ``zero`` whether 0 lb has one
-    (None: not tried)."""
+    (None: not tried); ``top_k`` the highest grid index the row may
+    test."""
     events = [k for k, event in scan.items() if event]
     if events:
         top = max(events)
-        if top + PER_OCTAVE > HIGHEST_K:
-            return []                     # unresolved: no closed octave
-        return [grid(k) for k in range(top + 1, top + 1 + PER_OCTAVE)
+        return [grid(k) for k in range(top + 1, min(top + PER_OCTAVE,
+                                                     top_k) + 1)
                 if k not in scan]
     low = min(scan)
     if low > LOWEST_K:
@@ -127,14 +132,29 @@ def _bracket(scan: dict, zero) -> tuple:
     return -math.inf, 0.0               # closed even without a preload
 
 
-def search(n_rows: int, has_event, tolerance: float = TOLERANCE
-           ) -> list[PreloadSearch]:
+def top_index(ceiling: float) -> int:
+    """The highest grid index at or below ``ceiling`` lb (and the grid's
+    top, HIGHEST_K)."""
+    if ceiling >= grid(HIGHEST_K):
+        return HIGHEST_K
+    k = math.floor(PER_OCTAVE * math.log2(ceiling))
+    return k - 1 if grid(k) > ceiling else k
+
+
+def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
+           ceilings=None) -> list[PreloadSearch]:
     """Run the scan, the bisection and the check above the answer for
     ``n_rows`` designs at once (module docstring).
 
     ``has_event(tasks)`` takes a list of (row, preload lb) and returns,
     in order, whether each has a discontinuity event (one batch).
+    ``ceilings``: each row's largest preload to test (lb; default the
+    grid's top, 1024 lb): the scan above the last event stops there,
+    even short of an octave, and an event at the highest grid value
+    below it leaves the row without an answer (NaN).
     """
+    limits = list(ceilings) if ceilings else [math.inf] * n_rows
+    tops = [top_index(c) for c in limits]
     scans = [dict() for _ in range(n_rows)]
     zeros = [None] * n_rows
     tested = [dict() for _ in range(n_rows)]
@@ -149,10 +169,11 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE
                 scans[row][k] = bool(event)
 
     run([(row, grid(k)) for row in range(n_rows)
-         for k in range(FIRST_K, FIRST_K + PER_OCTAVE)], on_grid=True)
+         for k in range(FIRST_K, FIRST_K + PER_OCTAVE) if k <= tops[row]],
+        on_grid=True)
     while True:
         tasks = [(row, p) for row in range(n_rows)
-                 for p in _next_scan(scans[row], zeros[row])]
+                 for p in _next_scan(scans[row], zeros[row], tops[row])]
         if not tasks:
             break
         run(tasks, on_grid=True)
@@ -168,10 +189,10 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE
         if not rows:
             break
         run([(row, p) for row in rows for p in _band(brackets[row][1])
-             if p not in tested[row]])
+             if p not in tested[row] and p <= limits[row]])
         for row in rows:
             checked[row] = hi = brackets[row][1]
-            opened = [p for p in _band(hi) if tested[row][p]]
+            opened = [p for p in _band(hi) if tested[row].get(p)]
             if opened:
                 top = max(opened)
                 brackets[row] = [top, min(p for p in tested[row]
