@@ -33,8 +33,8 @@ module model_extremes
   !> Most cell-mode evaluations per design before the search gives up.
   integer(int64), parameter, public :: work_budget = 2_int64**31
   !> Most live cell-modes of a design in a block, and of a segment.
-  integer(int64), parameter, public :: block_cell_budget = 2_int64**16
-  integer(int64), parameter, public :: cell_budget = 2_int64**23
+  integer(int64), parameter, public :: block_cell_budget = 2_int64**14
+  integer(int64), parameter, public :: cell_budget = 2_int64**18
   !> Designs searched together.
   integer, parameter, public :: block_size = 32
   !> Deepest level (cells tau/2^61 wide) and most segment doublings.

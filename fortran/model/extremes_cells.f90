@@ -45,8 +45,9 @@ module model_extremes_cells
     !> The level's per-slot-and-mode arc cosine and sine (-1, 0 for a whole
     !> turn) and Taylor weight (1 for a low mode, else 0).
     real(wp), allocatable :: arc_c(:, :), arc_s(:, :), low(:, :)
-    !> Per slot: modes, window, S, p_max, floor(p_min tau/pi), y3 and its
-    !> slope at 0 and tau, best of y3 and -y3, work done.
+    !> Per slot: modes, cells (first, count), window, S, p_max,
+    !> floor(p_min tau/pi), y3 and its slope at 0 and tau, best of y3 and
+    !> -y3, work done.
     integer, allocatable :: n(:), cells_of(:), first(:)
     real(wp), allocatable :: tau(:), scale(:), p_max(:), ends(:, :)
     real(wp), allocatable :: best(:, :), half_width(:), whole(:)
@@ -179,9 +180,9 @@ contains
       ws%half_width(slot) = ws%tau(slot) * 0.5_wp**(level + 1)
     end do
     call arcs(ws, slots, level)
-    call add_modes(ws, slots)
-    call cell_bounds(ws)
-    call offer_cells(ws, slots)
+    call add_modes(ws, slots, level)
+    call cell_bounds(ws, slots, level)
+    call offer_cells(ws, slots, level)
     call select_cells(ws, slots, level)
     ! the next level's half-angles, then the children
     call halve(ws%chain_c(1:slots, :), ws%chain_s(1:slots, :), &
@@ -215,9 +216,9 @@ contains
   !> Each cell's value, low-mode sums and high-mode arc maxima (a slot's
   !> cells at a time: its modes' data are scalars there).  A mode whose arc
   !> is a whole turn adds |c| to every cell's high sums (ws%whole).
-  pure subroutine add_modes(ws, slots)
+  pure subroutine add_modes(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
-    integer, intent(in) :: slots
+    integer, intent(in) :: slots, level
     integer :: j, s, lo, hi, cells
 
     cells = ws%cells
@@ -259,8 +260,13 @@ contains
     real(wp), value :: absc, ca, sa
     real(wp), intent(out) :: up, down
 
-    up = merge(absc, a * ca + abs(b) * sa, a >= absc * ca)
-    down = merge(absc, abs(b) * sa - a * ca, -a >= absc * ca)
+    real(wp) :: ab
+
+    ! (written as max() with a merge of constants so that the vectoriser
+    ! need not load b inside a branch)
+    ab = abs(b)
+    up = max(a * ca + ab * sa, merge(absc, -huge(absc), a >= absc * ca))
+    down = max(ab * sa - a * ca, merge(absc, -huge(absc), -a >= absc * ca))
   end subroutine arc_maxima
 
   !> A mode bounded by Taylor's theorem: its share of the cells' value,
@@ -310,42 +316,59 @@ contains
   !> is low, its certified values (the lower parabolas' tops) with their
   !> offsets from the centre (else -huge: with high modes at their least
   !> they would not help).
-  pure subroutine cell_bounds(ws)
+  pure subroutine cell_bounds(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots, level
+    integer :: s, lo, hi
 
-    call bounds_kernel(ws%cells, ws%slot, ws%half_width, ws%p_max, &
-        ws%whole, ws%a_low, ws%slope, ws%curve_up, ws%curve_down, &
-        ws%high_up, ws%high_down, ws%bound(:, 1), ws%bound(:, 2), &
-        ws%sure(:, 1), ws%sure(:, 2), ws%sure_at(:, 1), ws%sure_at(:, 2))
+    do s = 1, slots
+      if (ws%cells_of(s) == 0) cycle
+      lo = ws%first(s)
+      hi = lo + ws%cells_of(s) - 1
+      call bounds_kernel(hi - lo + 1, ws%half_width(s), &
+          ws%p_max(s) * ws%half_width(s) <= phi_low, ws%whole(s), &
+          ws%a_low(lo:hi), ws%slope(lo:hi), ws%curve_up(lo:hi), &
+          ws%curve_down(lo:hi), ws%high_up(lo:hi), ws%high_down(lo:hi), &
+          ws%bound(lo:hi, 1), ws%bound(lo:hi, 2), ws%sure(lo:hi, 1), &
+          ws%sure(lo:hi, 2), ws%sure_at(lo:hi, 1), ws%sure_at(lo:hi, 2))
+    end do
   end subroutine cell_bounds
 
-  pure subroutine bounds_kernel(cells, slot, half_width, p_max, whole, a, &
-      b, curve_up, curve_down, high_up, high_down, bound_up, bound_down, &
-      sure_up, sure_down, at_up, at_down)
-    integer, intent(in) :: cells, slot(:)
-    real(wp), intent(in) :: half_width(:), p_max(:), whole(:), a(:), b(:)
-    real(wp), intent(in) :: curve_up(:), curve_down(:), high_up(:)
-    real(wp), intent(in) :: high_down(:)
-    real(wp), intent(out) :: bound_up(:), bound_down(:), sure_up(:)
-    real(wp), intent(out) :: sure_down(:), at_up(:), at_down(:)
-    real(wp) :: r, top, at
-    logical :: all_low
+  pure subroutine bounds_kernel(cells, r, all_low, whole, a, b, curve_up, &
+      curve_down, high_up, high_down, bound_up, bound_down, sure_up, &
+      sure_down, at_up, at_down)
+    integer, intent(in) :: cells
+    real(wp), value :: r, whole
+    logical, value :: all_low
+    real(wp), intent(in) :: a(cells), b(cells), curve_up(cells)
+    real(wp), intent(in) :: curve_down(cells), high_up(cells)
+    real(wp), intent(in) :: high_down(cells)
+    real(wp), intent(out) :: bound_up(cells), bound_down(cells)
+    real(wp), intent(out) :: sure_up(cells), sure_down(cells)
+    real(wp), intent(out) :: at_up(cells), at_down(cells)
     integer :: k
 
     do k = 1, cells
-      r = half_width(slot(k))
-      all_low = p_max(slot(k)) * r <= phi_low
-      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_max(a(k), &
-          b(k), curve_up(k), -r, r)
-      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_max(-a(k), &
-          -b(k), curve_down(k), -r, r)
-      call parabola_top(a(k), b(k), -curve_down(k), r, top, at)
-      sure_up(k) = merge(top, -huge(1.0_wp), all_low)
-      at_up(k) = at
-      call parabola_top(-a(k), -b(k), -curve_up(k), r, top, at)
-      sure_down(k) = merge(top, -huge(1.0_wp), all_low)
-      at_down(k) = at
+      bound_up(k) = high_up(k) + whole + parabola_max(a(k), b(k), &
+          curve_up(k), -r, r)
+      bound_down(k) = high_down(k) + whole + parabola_max(-a(k), -b(k), &
+          curve_down(k), -r, r)
     end do
+    if (all_low) then
+      do k = 1, cells
+        ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
+        ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r]
+        sure_up(k) = parabola_max(a(k), b(k), -curve_down(k), -r, r)
+        at_up(k) = parabola_at(b(k), -curve_down(k), r)
+        sure_down(k) = parabola_max(-a(k), -b(k), -curve_up(k), -r, r)
+        at_down(k) = parabola_at(-b(k), -curve_up(k), r)
+      end do
+    else
+      sure_up = -huge(1.0_wp)
+      sure_down = -huge(1.0_wp)
+      at_up = 0.0_wp
+      at_down = 0.0_wp
+    end if
   end subroutine bounds_kernel
 
   !> max of a + b x + k x^2/2 over lo <= x <= hi.
@@ -360,29 +383,23 @@ contains
     top = merge(max(top, a + b * x + 0.5_wp * k * x * x), top, k < 0.0_wp)
   end function parabola_max
 
-  !> max of a + b x + k x^2/2 over -r <= x <= r, and where (the smaller x
-  !> of equal ends).
-  elemental subroutine parabola_top(a, b, k, r, top, at)
-    real(wp), intent(in) :: a, b, k, r
-    real(wp), intent(out) :: top, at
-    real(wp) :: left, right, x, vertex
+  !> Where a + b x + k x^2/2 is largest on -r <= x <= r (the vertex when
+  !> the parabola opens downwards, else the higher end; -r of equal ends).
+  elemental function parabola_at(b, k, r) result(x)
+    real(wp), intent(in) :: b, k, r
+    real(wp) :: x
 
-    left = a - b * r + 0.5_wp * k * r * r
-    right = a + b * r + 0.5_wp * k * r * r
-    at = merge(r, -r, right > left)
-    top = max(left, right)
-    x = -b / min(k, -tiny(k))
-    vertex = a + b * x + 0.5_wp * k * x * x
-    at = merge(x, at, k < 0.0_wp .and. abs(x) < r .and. vertex > top)
-    top = merge(vertex, top, k < 0.0_wp .and. abs(x) < r .and. vertex > top)
-  end subroutine parabola_top
+    ! the ends differ by 2 b r: the right one is higher where b > 0
+    x = merge(min(max(-b / min(k, -tiny(k)), -r), r), &
+        merge(r, -r, b > 0.0_wp), k < 0.0_wp)
+  end function parabola_at
 
   !> The cells' centres and certified points that come within the tie of
   !> their design's best, as candidates (the best values first raised to
   !> the level's, so that only points near them are kept).
-  pure subroutine offer_cells(ws, slots)
+  pure subroutine offer_cells(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
-    integer, intent(in) :: slots
+    integer, intent(in) :: slots, level
     integer :: k, s, lo, hi
     real(wp) :: floor_up, floor_down
 
@@ -396,7 +413,10 @@ contains
           maxval(ws%sure(lo:hi, 2)))
       floor_up = ws%best(1, s) - tie * ws%scale(s)
       floor_down = ws%best(2, s) - tie * ws%scale(s)
+      call near_best(hi - lo + 1, ws%value(lo:hi), ws%sure(lo:hi, 1), &
+          ws%sure(lo:hi, 2), floor_up, floor_down, ws%keep(lo:hi))
       do k = lo, hi
+        if (.not. ws%keep(k)) cycle
         if (ws%value(k) >= floor_up) &
             call offer(ws, s, 1, ws%centre(k), ws%value(k))
         if (-ws%value(k) >= floor_down) &
@@ -410,6 +430,18 @@ contains
       end do
     end do
   end subroutine offer_cells
+
+  !> Cells whose value, or certified value, comes within the floors.
+  pure subroutine near_best(cells, value, sure_up, sure_down, floor_up, &
+      floor_down, near)
+    integer, intent(in) :: cells
+    real(wp), intent(in) :: value(cells), sure_up(cells), sure_down(cells)
+    real(wp), value :: floor_up, floor_down
+    logical, intent(out) :: near(cells)
+
+    near = value >= floor_up .or. -value >= floor_down .or. &
+        sure_up >= floor_up .or. sure_down >= floor_down
+  end subroutine near_best
 
   !> Drop, finish or polish each cell per side; ws%keep marks the cells to
   !> halve.  A design's cells are all halved while no mode resolves (its
@@ -569,7 +601,7 @@ contains
     logical, allocatable :: swap_alive(:, :)
     integer, allocatable :: swap_slot(:)
     real(wp) :: h
-    integer :: kept, i, k, s, nm, lo, hi, start
+    integer :: kept, i, k, s, nm, lo, hi, done, out
 
     nm = size(ws%p, 2)
     kept = count(ws%keep(1:ws%cells))
@@ -579,39 +611,39 @@ contains
       return
     end if
     call reserve_cells(ws, 2 * kept, nm)
-    kept = 0
-    do k = 1, ws%cells
-      if (ws%keep(k)) then
-        kept = kept + 1
-        ws%which(kept) = k
-      end if
-    end do
-    ! the children of slot s: which(lo:hi) (parents kept in slot order)
-    start = 1
+    done = 0
     do s = 1, slots
-      lo = start
-      hi = lo - 1
-      if (ws%cells_of(s) > 0) hi = lo - 1 + count(ws%keep(ws%first(s): &
-          ws%first(s) + ws%cells_of(s) - 1))
-      ws%first(s) = 2 * lo - 1
-      ws%cells_of(s) = 2 * (hi - lo + 1)
-      start = hi + 1
-      if (hi < lo) cycle
-      h = 0.5_wp * ws%half_width(s)
-      call rotate_children(size(ws%a, 1), ws%n(s), hi - lo + 1, &
-          ws%which(lo:hi), 2 * lo - 1, ws%chain_c(s, :), ws%chain_s(s, :), &
-          ws%a, ws%b, ws%next_a, ws%next_b)
-      do i = lo, hi
-        k = ws%which(i)
-        ws%next_centre(2 * i - 1) = ws%centre(k) - h
-        ws%next_centre(2 * i) = ws%centre(k) + h
-        ws%next_alive(2 * i - 1, :) = ws%alive(k, :)
-        ws%next_alive(2 * i, :) = ws%alive(k, :)
-        ws%next_slot(2 * i - 1) = s
-        ws%next_slot(2 * i) = s
+      lo = ws%first(s)
+      hi = lo + ws%cells_of(s) - 1
+      kept = 0
+      do k = lo, hi
+        if (ws%keep(k)) then
+          kept = kept + 1
+          ws%which(kept) = k
+        end if
       end do
+      ws%first(s) = done + 1
+      ws%cells_of(s) = 2 * kept
+      if (kept == 0) cycle
+      call rotate_children(size(ws%a, 1), ws%n(s), kept, ws%which, &
+          done + 1, ws%chain_c(s, :), ws%chain_s(s, :), ws%a, ws%b, &
+          ws%next_a, ws%next_b)
+      h = 0.5_wp * ws%half_width(s)
+      do i = 1, kept
+        k = ws%which(i)
+        out = done + 2 * i - 1
+        ws%next_centre(out) = ws%centre(k) - h
+        ws%next_centre(out + 1) = ws%centre(k) + h
+        ws%next_alive(out, 1) = ws%alive(k, 1)
+        ws%next_alive(out + 1, 1) = ws%alive(k, 1)
+        ws%next_alive(out, 2) = ws%alive(k, 2)
+        ws%next_alive(out + 1, 2) = ws%alive(k, 2)
+        ws%next_slot(out) = s
+        ws%next_slot(out + 1) = s
+      end do
+      done = done + 2 * kept
     end do
-    ws%cells = 2 * kept
+    ws%cells = done
     ! the children become the current cells (the arrays swap roles)
     call move_alloc(ws%a, swap)
     call move_alloc(ws%next_a, ws%a)
@@ -632,16 +664,34 @@ contains
 
   !> The children of parents a(which(i), :), b(which(i), :) at rows
   !> first + 2 i - 2 (left, phases turned by -p_j h) and first + 2 i - 1
-  !> (right, +p_j h) of next_a, next_b; cx, sx = cos, sin of p_j h.
+  !> (right, +p_j h) of next_a, next_b; cx, sx = cos, sin of p_j h.  The
+  !> parents of a slot are often all kept: then they are contiguous.
   pure subroutine rotate_children(rows, n, kept, which, first, cx, sx, a, &
       b, next_a, next_b)
-    integer, intent(in) :: rows, n, kept, which(kept), first
+    integer, intent(in) :: rows, n, kept, which(:), first
     real(wp), intent(in) :: cx(:), sx(:)
     real(wp), intent(in) :: a(rows, *), b(rows, *)
     real(wp), intent(inout) :: next_a(rows, *), next_b(rows, *)
     real(wp) :: aj, bj, c, s
-    integer :: i, j, k, out
+    integer :: i, j, k, out, lo
 
+    lo = which(1)
+    if (which(kept) - lo == kept - 1) then
+      do j = 1, n
+        c = cx(j)
+        s = sx(j)
+        do i = 1, kept
+          out = first + 2 * i - 2
+          aj = a(lo + i - 1, j)
+          bj = b(lo + i - 1, j)
+          next_a(out, j) = aj * c - bj * s
+          next_b(out, j) = bj * c + aj * s
+          next_a(out + 1, j) = aj * c + bj * s
+          next_b(out + 1, j) = bj * c - aj * s
+        end do
+      end do
+      return
+    end if
     do j = 1, n
       c = cx(j)
       s = sx(j)

@@ -52,8 +52,8 @@ POLISH_STEPS = 3
 WORK_BUDGET = 2**31
 #: Most live cell-modes of a design searched with others, and of a
 #: segment of a design searched alone (memory: 48 bytes each).
-BLOCK_CELL_BUDGET = 2**16
-CELL_BUDGET = 2**23
+BLOCK_CELL_BUDGET = 2**14
+CELL_BUDGET = 2**18
 #: Deepest level (the cells are then tau / 2^61 wide), and most doublings
 #: of the number of segments.
 MAX_DEPTH = 60
