@@ -87,6 +87,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         data = {name: float(getattr(result, name)) for name, _, _ in RESULTS}
         data["at_window_end"] = bool(result.at_window_end)
+        data["t_max_tied"] = bool(result.t_max_tied)
+        data["t_min_tied"] = bool(result.t_min_tied)
         for key in ("p1", "p2", "p3", "c3"):
             data[key] = np.asarray(getattr(result, key)).tolist()
         json.dump(data, sys.stdout, indent=2)
@@ -98,4 +100,8 @@ def run(args: argparse.Namespace) -> int:
     if result.at_window_end:
         print("warning: the largest separation is at the end of the window "
               "(increase --tau)", file=sys.stderr)
+    for name in ("max", "min"):
+        if getattr(result, f"t_{name}_tied"):
+            print(f"note: a later peak comes within 1e-12 of y3_{name}; "
+                  f"t_{name} is the earliest", file=sys.stderr)
     return 0
