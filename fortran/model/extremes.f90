@@ -162,7 +162,6 @@ contains
       ws%chain_s(slot, :) = ws%sin0(slot, :)
     end do
     ws%cells = cells
-    ws%level = 0
   end subroutine start_block
 
   !> cos and sin of p tau/2 from the exact product, and floor(p tau/pi):
@@ -214,7 +213,7 @@ contains
     integer, intent(in) :: slots
     integer :: level
 
-    do level = ws%level, max_depth
+    do level = 0, max_depth
       call count_cells(ws, slots, block_cell_budget, .true.)
       if (ws%cells == 0) return
       call search_level(ws, slots, level)

@@ -32,7 +32,7 @@ module model_extremes_cells
   !> Modes with p_j r <= phi_low enter a cell's bound by Taylor's theorem.
   real(wp), parameter :: phi_low = 1.0_wp
   !> Cells with p_max r <= phi_polish are polished by Newton steps.
-  real(wp), parameter :: phi_polish = 0.25_wp
+  real(wp), parameter :: phi_polish = 1.0_wp
   integer, parameter :: polish_steps = 3
 
   !> Working arrays kept between blocks and batches (grown as needed).
@@ -56,7 +56,7 @@ module model_extremes_cells
     logical :: overflow = .false.
     !> The cells: slot, centre, a_j, b_j, alive for max and min; a slot's
     !> cells are first(slot) .. first(slot) + cells_of(slot) - 1.
-    integer :: cells = 0, level = 0
+    integer :: cells = 0
     integer, allocatable :: slot(:), next_slot(:), which(:)
     real(wp), allocatable :: a(:, :), b(:, :), next_a(:, :), next_b(:, :)
     real(wp), allocatable :: centre(:), next_centre(:)
@@ -91,7 +91,8 @@ contains
         ws%cos0(slots, nm), ws%sin0(slots, nm), ws%chain_c(slots, nm), &
         ws%chain_s(slots, nm), ws%quadrant(slots, nm), &
         ws%arc_c(slots, nm), ws%arc_s(slots, nm), ws%low(slots, nm), &
-        ws%n(slots), ws%cells_of(slots), ws%first(slots), ws%tau(slots), ws%scale(slots), &
+        ws%n(slots), ws%cells_of(slots), ws%first(slots), ws%tau(slots), &
+        ws%scale(slots), &
         ws%p_max(slots), ws%ends(4, slots), ws%best(2, slots), &
         ws%half_width(slots), ws%whole(slots), ws%min_quadrant(slots), &
         ws%work(slots), &
@@ -184,17 +185,21 @@ contains
     call cell_bounds(ws, slots, level)
     call offer_cells(ws, slots, level)
     call select_cells(ws, slots, level)
-    ! the next level's half-angles, then the children
-    call halve(ws%chain_c(1:slots, :), ws%chain_s(1:slots, :), &
-        iand(turns(ws%quadrant(1:slots, :), level + 1), 3_int64), &
-        ws%arc_c(1:slots, :), ws%arc_s(1:slots, :))
-    ws%chain_c(1:slots, :) = ws%arc_c(1:slots, :)
-    ws%chain_s(1:slots, :) = ws%arc_s(1:slots, :)
+    ! the next level's half-angles (of designs with cells left), then the
+    ! children
+    do slot = 1, slots
+      if (ws%cells_of(slot) == 0) cycle
+      call halve(ws%chain_c(slot, :), ws%chain_s(slot, :), &
+          iand(turns(ws%quadrant(slot, :), level + 1), 3_int64), &
+          ws%arc_c(slot, :), ws%arc_s(slot, :))
+      ws%chain_c(slot, :) = ws%arc_c(slot, :)
+      ws%chain_s(slot, :) = ws%arc_s(slot, :)
+    end do
     call split_cells(ws, slots)
   end subroutine search_level
 
-  !> The level's arcs per slot and mode: cos and sin of phi_j (a whole
-  !> turn: -1 and 0), and 1 where the mode is low.
+  !> The level's arcs per slot (with cells) and mode: cos and sin of phi_j
+  !> (a whole turn: -1 and 0), and 1 where the mode is low.
   pure subroutine arcs(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots, level
@@ -203,6 +208,7 @@ contains
 
     do j = 1, size(ws%p, 2)
       do slot = 1, slots
+        if (ws%cells_of(slot) == 0) cycle
         whole = turns(ws%quadrant(slot, j), level) >= 2
         ws%arc_c(slot, j) = merge(-1.0_wp, ws%chain_c(slot, j), whole)
         ws%arc_s(slot, j) = merge(0.0_wp, max(ws%chain_s(slot, j), &
@@ -569,16 +575,19 @@ contains
       slope = 0.0_wp
       second = 0.0_wp
       do j = 1, ws%n(s)
-        ! |x| <= p_max r <= 1/4: these Taylor terms are exact to rounding
+        ! |x| <= p_max r <= 1: Taylor to x^19 and x^20 is exact to rounding
         pj = ws%p(s, j)
         x = pj * shift
         x2 = x * x
         sx = x * (1.0_wp - x2 / 6.0_wp * (1.0_wp - x2 / 20.0_wp * (1.0_wp &
             - x2 / 42.0_wp * (1.0_wp - x2 / 72.0_wp * (1.0_wp - x2 &
-            / 110.0_wp * (1.0_wp - x2 / 156.0_wp))))))
+            / 110.0_wp * (1.0_wp - x2 / 156.0_wp * (1.0_wp - x2 / 210.0_wp &
+            * (1.0_wp - x2 / 272.0_wp * (1.0_wp - x2 / 342.0_wp)))))))))
         cx = 1.0_wp - x2 / 2.0_wp * (1.0_wp - x2 / 12.0_wp * (1.0_wp - x2 &
             / 30.0_wp * (1.0_wp - x2 / 56.0_wp * (1.0_wp - x2 / 90.0_wp &
-            * (1.0_wp - x2 / 132.0_wp * (1.0_wp - x2 / 182.0_wp))))))
+            * (1.0_wp - x2 / 132.0_wp * (1.0_wp - x2 / 182.0_wp * (1.0_wp &
+            - x2 / 240.0_wp * (1.0_wp - x2 / 306.0_wp * (1.0_wp - x2 &
+            / 380.0_wp)))))))))
         a2 = ws%a(k, j) * cx + ws%b(k, j) * sx
         b2 = ws%b(k, j) * cx - ws%a(k, j) * sx
         value = value + a2

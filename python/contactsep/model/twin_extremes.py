@@ -45,7 +45,7 @@ CONVERGED = 0.25e-12
 #: Modes with p_j r <= PHI_LOW enter a cell's bound by Taylor's theorem.
 PHI_LOW = 1.0
 #: Cells with p_max r <= PHI_POLISH are polished by Newton steps.
-PHI_POLISH = 0.25
+PHI_POLISH = 1.0
 #: Newton steps of a polish.
 POLISH_STEPS = 3
 #: Most cell-mode evaluations per design before the search gives up.
