@@ -37,8 +37,10 @@ module model_extremes
   integer(int64), parameter, public :: cell_budget = 2_int64**18
   !> Designs searched together.
   integer, parameter, public :: block_size = 32
-  !> Deepest level (cells tau/2^61 wide) and most segment doublings.
-  integer, parameter :: max_depth = 60, max_segment_levels = 24
+  !> Deepest level (cells tau/2^61 wide).
+  integer, parameter :: max_depth = 60
+  !> Most doublings of the segments of a design searched alone.
+  integer, parameter :: max_segment_levels = 24
   real(wp), parameter :: split = 134217729.0_wp
   real(wp), parameter :: pi_parts(3) = [3.141592653589793116_wp, &
       1.2246467991473532e-16_wp, -2.9947698097183397e-33_wp]

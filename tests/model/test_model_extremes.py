@@ -239,3 +239,25 @@ def test_model_command_refuses_what_it_cannot_resolve(capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1
     assert "could not be resolved to 1e-12" in err
+
+
+def test_the_twin_uses_the_kernels_constants():
+    """Tolerances, thresholds and budgets have their home in the Fortran
+    (fortran/model/extremes*.f90); the twin mirrors them, so that both
+    take the same decisions and give the same statuses."""
+    import re
+
+    from conftest import ROOT
+    from contactsep.model import twin_extremes
+
+    text = "".join((ROOT / "fortran" / "model" / name).read_text()
+                   for name in ("extremes.f90", "extremes_cells.f90"))
+    found = dict(re.findall(
+        r"parameter(?:, public)? :: (\w+) = ([-+.\w*]+)\n", text))
+    for name in ("tie", "converged", "phi_low", "phi_polish",
+                 "polish_steps", "work_budget", "block_cell_budget",
+                 "cell_budget", "max_depth", "max_segment_levels"):
+        value = found[name].replace("_wp", "").replace("_int64", "")
+        base, _, power = value.partition("**")
+        number = float(base) ** int(power) if power else float(base)
+        assert number == getattr(twin_extremes, name.upper()), name

@@ -14,14 +14,20 @@ call after the first).  On a cell of half-width r, with phi_j = p_j r:
   B the value and slope of their sum at m and K >= y_L'' on the cell
   (the sum of p_j^2 times each mode's own maximum of -c_j sin).
 
-A cell whose bound is below the best value found (at a centre, or at a
-polished point) by more than the tie tolerance is dropped; one whose bound
-is within CONVERGED of its own value is finished; the others are halved.
-Cells that resolve every mode are first polished: one Newton step to the
-vertex of y3's Taylor parabola, where the bound is nearly the value.  The
-maximum and the minimum share the cells.  The search never stops on a
-level count with an unrefined answer: it ends when no cell is left, or
-gives up (UNRESOLVED) when its work budget runs out.
+Where every mode is low, the lower parabola (K <= y_L'') gives a certified
+value at a known point; a cell at an end of the window is also bounded by
+Taylor about that end, where y3 and y3' are known.  A cell whose bound is
+below the best value found by more than the tie is dropped; one whose
+bound is within CONVERGED of a value it holds is finished; the others are
+halved.  Cells with p_max r <= PHI_POLISH are first polished: Newton
+steps to the vertex of y3's Taylor parabola, finished when the bound
+about that point is within CONVERGED of its value.  The maximum and the
+minimum share the cells.  The search never stops on a level count with an
+unrefined answer: it ends when no cell is left, or gives up (UNRESOLVED)
+when its work budget runs out.  A design needing more than
+BLOCK_CELL_BUDGET live cell-modes is searched again (deferred), its
+window in 2^k time-ordered segments.  Every choice, constant and budget is
+the compiled kernel's, so that both give the same statuses.
 
 Phases are exact: p_j tau/2 is split into hi + lo (Dekker's product), the
 root centre's sin and cos are sin(hi) + lo cos(hi) and cos(hi) - lo
