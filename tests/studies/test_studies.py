@@ -335,25 +335,34 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
         start_new_session=True,
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    deadline = time.monotonic() + 60
-    while (not csv_path.exists() or csv_path.stat().st_size < 10_000) \
-            and time.monotonic() < deadline:
-        time.sleep(0.1)
-    # the workers' chunk files were in the test's scratch directory
-    assert [p.name for p in scratch.iterdir()
-            if p.name.startswith("contactsep-sweep-")]
-    if signum == signal.SIGKILL:
-        worker = subprocess.run(["pgrep", "-P", str(process.pid)],
-                                capture_output=True, text=True)
-        os.kill(int(worker.stdout.split()[0]), signum)
-    else:
-        os.killpg(process.pid, signum)
-    stderr = process.communicate(timeout=30)[1].decode()
-    assert process.returncode == status
-    assert len(stderr.splitlines()) <= 1 and "Traceback" not in stderr
-    time.sleep(0.5)
-    with pytest.raises(ProcessLookupError):
-        os.killpg(process.pid, 0)     # the workers are gone too
+    try:
+        deadline = time.monotonic() + 60
+        while (not csv_path.exists() or csv_path.stat().st_size < 10_000) \
+                and time.monotonic() < deadline:
+            time.sleep(0.1)
+        # the workers' chunk files were in the test's scratch directory
+        assert [p.name for p in scratch.iterdir()
+                if p.name.startswith("contactsep-sweep-")]
+        if signum == signal.SIGKILL:
+            worker = subprocess.run(["pgrep", "-P", str(process.pid)],
+                                    capture_output=True, text=True)
+            os.kill(int(worker.stdout.split()[0]), signum)
+        else:
+            os.killpg(process.pid, signum)
+        stderr = process.communicate(timeout=30)[1].decode()
+        assert process.returncode == status
+        assert len(stderr.splitlines()) <= 1 and "Traceback" not in stderr
+        time.sleep(0.5)
+        with pytest.raises(ProcessLookupError):
+            os.killpg(process.pid, 0)     # the workers are gone too
+    finally:
+        # whatever failed above, nothing of the 1e8-design sweep it
+        # started outlives the test
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        process.wait()
     assert not list(scratch.iterdir())
     assert csv_path.read_text().endswith("\n")
 
