@@ -51,6 +51,7 @@ module model_extremes_cells
     integer, allocatable :: n(:), cells_of(:), first(:)
     real(wp), allocatable :: tau(:), scale(:), p_max(:), ends(:, :)
     real(wp), allocatable :: best(:, :), half_width(:), whole(:)
+    real(wp), allocatable :: all_low(:), floor_value(:, :), conv(:)
     integer(int64), allocatable :: min_quadrant(:), work(:)
     logical, allocatable :: gave_up(:), deferred(:), has_cells(:)
     logical :: overflow = .false.
@@ -84,7 +85,8 @@ contains
       deallocate(ws%p, ws%c, ws%absc, ws%cos0, ws%sin0, ws%chain_c, &
           ws%chain_s, ws%quadrant, ws%arc_c, ws%arc_s, ws%low, ws%n, &
           ws%cells_of, ws%first, ws%tau, ws%scale, ws%p_max, ws%ends, ws%best, &
-          ws%half_width, ws%whole, ws%min_quadrant, ws%work, ws%gave_up, &
+          ws%half_width, ws%whole, ws%all_low, ws%floor_value, ws%conv, &
+          ws%min_quadrant, ws%work, ws%gave_up, &
           ws%deferred, ws%has_cells)
     end if
     allocate(ws%p(slots, nm), ws%c(slots, nm), ws%absc(slots, nm), &
@@ -94,7 +96,8 @@ contains
         ws%n(slots), ws%cells_of(slots), ws%first(slots), ws%tau(slots), &
         ws%scale(slots), &
         ws%p_max(slots), ws%ends(4, slots), ws%best(2, slots), &
-        ws%half_width(slots), ws%whole(slots), ws%min_quadrant(slots), &
+        ws%half_width(slots), ws%whole(slots), ws%all_low(slots), &
+        ws%floor_value(2, slots), ws%conv(slots), ws%min_quadrant(slots), &
         ws%work(slots), &
         ws%gave_up(slots), ws%deferred(slots), ws%has_cells(slots))
   end subroutine reserve_slots
@@ -182,8 +185,8 @@ contains
     end do
     call arcs(ws, slots, level)
     call add_modes(ws, slots, level)
-    call cell_bounds(ws, slots, level)
-    call offer_cells(ws, slots, level)
+    call cell_bounds(ws, slots)
+    call offer_cells(ws, slots)
     call select_cells(ws, slots, level)
     ! the next level's half-angles (of designs with cells left), then the
     ! children
@@ -322,59 +325,50 @@ contains
   !> is low, its certified values (the lower parabolas' tops) with their
   !> offsets from the centre (else -huge: with high modes at their least
   !> they would not help).
-  pure subroutine cell_bounds(ws, slots, level)
+  pure subroutine cell_bounds(ws, slots)
     type(extremes_workspace), intent(inout) :: ws
-    integer, intent(in) :: slots, level
-    integer :: s, lo, hi
+    integer, intent(in) :: slots
+    integer :: s
 
     do s = 1, slots
-      if (ws%cells_of(s) == 0) cycle
-      lo = ws%first(s)
-      hi = lo + ws%cells_of(s) - 1
-      call bounds_kernel(hi - lo + 1, ws%half_width(s), &
-          ws%p_max(s) * ws%half_width(s) <= phi_low, ws%whole(s), &
-          ws%a_low(lo:hi), ws%slope(lo:hi), ws%curve_up(lo:hi), &
-          ws%curve_down(lo:hi), ws%high_up(lo:hi), ws%high_down(lo:hi), &
-          ws%bound(lo:hi, 1), ws%bound(lo:hi, 2), ws%sure(lo:hi, 1), &
-          ws%sure(lo:hi, 2), ws%sure_at(lo:hi, 1), ws%sure_at(lo:hi, 2))
+      ws%all_low(s) = merge(1.0_wp, 0.0_wp, &
+          ws%p_max(s) * ws%half_width(s) <= phi_low)
     end do
+    call bounds_kernel(ws%cells, ws%slot, ws%half_width, ws%all_low, &
+        ws%whole, ws%a_low, ws%slope, ws%curve_up, ws%curve_down, &
+        ws%high_up, ws%high_down, ws%bound(:, 1), ws%bound(:, 2), &
+        ws%sure(:, 1), ws%sure(:, 2), ws%sure_at(:, 1), ws%sure_at(:, 2))
   end subroutine cell_bounds
 
-  pure subroutine bounds_kernel(cells, r, all_low, whole, a, b, curve_up, &
-      curve_down, high_up, high_down, bound_up, bound_down, sure_up, &
-      sure_down, at_up, at_down)
-    integer, intent(in) :: cells
-    real(wp), value :: r, whole
-    logical, value :: all_low
-    real(wp), intent(in) :: a(cells), b(cells), curve_up(cells)
-    real(wp), intent(in) :: curve_down(cells), high_up(cells)
-    real(wp), intent(in) :: high_down(cells)
-    real(wp), intent(out) :: bound_up(cells), bound_down(cells)
-    real(wp), intent(out) :: sure_up(cells), sure_down(cells)
-    real(wp), intent(out) :: at_up(cells), at_down(cells)
+  pure subroutine bounds_kernel(cells, slot, half_width, all_low, whole, &
+      a, b, curve_up, curve_down, high_up, high_down, bound_up, &
+      bound_down, sure_up, sure_down, at_up, at_down)
+    integer, intent(in) :: cells, slot(:)
+    real(wp), intent(in) :: half_width(:), all_low(:), whole(:)
+    real(wp), intent(in) :: a(:), b(:), curve_up(:), curve_down(:)
+    real(wp), intent(in) :: high_up(:), high_down(:)
+    real(wp), intent(out) :: bound_up(:), bound_down(:), sure_up(:)
+    real(wp), intent(out) :: sure_down(:), at_up(:), at_down(:)
+    real(wp) :: r, lowest
     integer :: k
 
     do k = 1, cells
-      bound_up(k) = high_up(k) + whole + parabola_max(a(k), b(k), &
-          curve_up(k), -r, r)
-      bound_down(k) = high_down(k) + whole + parabola_max(-a(k), -b(k), &
-          curve_down(k), -r, r)
+      r = half_width(slot(k))
+      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_max(a(k), &
+          b(k), curve_up(k), -r, r)
+      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_max(-a(k), &
+          -b(k), curve_down(k), -r, r)
+      ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
+      ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r], where
+      ! every mode is low (else -huge)
+      lowest = merge(-huge(1.0_wp), huge(1.0_wp), all_low(slot(k)) == 0.0_wp)
+      sure_up(k) = min(parabola_max(a(k), b(k), -curve_down(k), -r, r), &
+          lowest)
+      at_up(k) = parabola_at(b(k), -curve_down(k), r)
+      sure_down(k) = min(parabola_max(-a(k), -b(k), -curve_up(k), -r, r), &
+          lowest)
+      at_down(k) = parabola_at(-b(k), -curve_up(k), r)
     end do
-    if (all_low) then
-      do k = 1, cells
-        ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
-        ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r]
-        sure_up(k) = parabola_max(a(k), b(k), -curve_down(k), -r, r)
-        at_up(k) = parabola_at(b(k), -curve_down(k), r)
-        sure_down(k) = parabola_max(-a(k), -b(k), -curve_up(k), -r, r)
-        at_down(k) = parabola_at(-b(k), -curve_up(k), r)
-      end do
-    else
-      sure_up = -huge(1.0_wp)
-      sure_down = -huge(1.0_wp)
-      at_up = 0.0_wp
-      at_down = 0.0_wp
-    end if
   end subroutine bounds_kernel
 
   !> max of a + b x + k x^2/2 over lo <= x <= hi.
@@ -403,50 +397,50 @@ contains
   !> The cells' centres and certified points that come within the tie of
   !> their design's best, as candidates (the best values first raised to
   !> the level's, so that only points near them are kept).
-  pure subroutine offer_cells(ws, slots, level)
+  pure subroutine offer_cells(ws, slots)
     type(extremes_workspace), intent(inout) :: ws
-    integer, intent(in) :: slots, level
-    integer :: k, s, lo, hi
-    real(wp) :: floor_up, floor_down
+    integer, intent(in) :: slots
+    integer :: k, s
 
+    do k = 1, ws%cells
+      s = ws%slot(k)
+      ws%best(1, s) = max(ws%best(1, s), ws%value(k), ws%sure(k, 1))
+      ws%best(2, s) = max(ws%best(2, s), -ws%value(k), ws%sure(k, 2))
+    end do
     do s = 1, slots
-      if (ws%cells_of(s) == 0) cycle
-      lo = ws%first(s)
-      hi = lo + ws%cells_of(s) - 1
-      ws%best(1, s) = max(ws%best(1, s), maxval(ws%value(lo:hi)), &
-          maxval(ws%sure(lo:hi, 1)))
-      ws%best(2, s) = max(ws%best(2, s), -minval(ws%value(lo:hi)), &
-          maxval(ws%sure(lo:hi, 2)))
-      floor_up = ws%best(1, s) - tie * ws%scale(s)
-      floor_down = ws%best(2, s) - tie * ws%scale(s)
-      call near_best(hi - lo + 1, ws%value(lo:hi), ws%sure(lo:hi, 1), &
-          ws%sure(lo:hi, 2), floor_up, floor_down, ws%keep(lo:hi))
-      do k = lo, hi
-        if (.not. ws%keep(k)) cycle
-        if (ws%value(k) >= floor_up) &
-            call offer(ws, s, 1, ws%centre(k), ws%value(k))
-        if (-ws%value(k) >= floor_down) &
-            call offer(ws, s, 2, ws%centre(k), -ws%value(k))
-        if (ws%sure(k, 1) >= floor_up) &
-            call offer(ws, s, 1, ws%centre(k) + ws%sure_at(k, 1), &
-            ws%sure(k, 1))
-        if (ws%sure(k, 2) >= floor_down) &
-            call offer(ws, s, 2, ws%centre(k) + ws%sure_at(k, 2), &
-            ws%sure(k, 2))
-      end do
+      ws%floor_value(:, s) = ws%best(:, s) - tie * ws%scale(s)
+    end do
+    call near_best(ws%cells, ws%slot, ws%floor_value, ws%value, &
+        ws%sure(:, 1), ws%sure(:, 2), ws%keep)
+    do k = 1, ws%cells
+      if (.not. ws%keep(k)) cycle
+      s = ws%slot(k)
+      if (ws%value(k) >= ws%floor_value(1, s)) &
+          call offer(ws, s, 1, ws%centre(k), ws%value(k))
+      if (-ws%value(k) >= ws%floor_value(2, s)) &
+          call offer(ws, s, 2, ws%centre(k), -ws%value(k))
+      if (ws%sure(k, 1) >= ws%floor_value(1, s)) &
+          call offer(ws, s, 1, ws%centre(k) + ws%sure_at(k, 1), &
+          ws%sure(k, 1))
+      if (ws%sure(k, 2) >= ws%floor_value(2, s)) &
+          call offer(ws, s, 2, ws%centre(k) + ws%sure_at(k, 2), &
+          ws%sure(k, 2))
     end do
   end subroutine offer_cells
 
-  !> Cells whose value, or certified value, comes within the floors.
-  pure subroutine near_best(cells, value, sure_up, sure_down, floor_up, &
-      floor_down, near)
-    integer, intent(in) :: cells
-    real(wp), intent(in) :: value(cells), sure_up(cells), sure_down(cells)
-    real(wp), value :: floor_up, floor_down
-    logical, intent(out) :: near(cells)
+  !> Cells whose value, or certified value, reaches their design's floors.
+  pure subroutine near_best(cells, slot, floor_value, value, sure_up, &
+      sure_down, near)
+    integer, intent(in) :: cells, slot(:)
+    real(wp), intent(in) :: floor_value(:, :), value(:), sure_up(:)
+    real(wp), intent(in) :: sure_down(:)
+    logical, intent(out) :: near(:)
+    integer :: k
 
-    near = value >= floor_up .or. -value >= floor_down .or. &
-        sure_up >= floor_up .or. sure_down >= floor_down
+    do k = 1, cells
+      near(k) = max(value(k), sure_up(k)) >= floor_value(1, slot(k)) &
+          .or. max(-value(k), sure_down(k)) >= floor_value(2, slot(k))
+    end do
   end subroutine near_best
 
   !> Drop, finish or polish each cell per side; ws%keep marks the cells to
@@ -455,20 +449,23 @@ contains
   pure subroutine select_cells(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots, level
-    real(wp) :: r, margin, tie_abs
+    real(wp) :: r, margin
     logical :: done
     integer :: k, s, side, lo, hi
 
     do s = 1, slots
+      ws%conv(s) = converged * ws%scale(s)
       if (ws%cells_of(s) == 0) cycle
       lo = ws%first(s)
       hi = lo + ws%cells_of(s) - 1
       if (turns(ws%min_quadrant(s), level) >= 2) then
-        ws%keep(lo:hi) = .true.
+        ! nothing can be dropped or finished yet
+        ws%floor_value(:, s) = -huge(1.0_wp)
+        ws%conv(s) = -huge(1.0_wp)
         cycle
       end if
       r = ws%half_width(s)
-      if (ws%p_max(s) * r <= phi_low) then
+      if (ws%all_low(s) > 0.0_wp) then
         ! the cells at the window's ends (a slot's cells are in time order)
         if (ws%centre(lo) - r <= 0.0_wp) call end_bound(ws, lo, 1, 0.0_wp, &
             2.0_wp * r)
@@ -477,15 +474,12 @@ contains
       end if
       margin = (9.0_wp * (level + 1) + 2.0_wp * ws%n(s) + 8.0_wp) &
           * epsilon(1.0_wp) * ws%scale(s)
-      tie_abs = tie * ws%scale(s)
-      call judge(hi - lo + 1, 1.0_wp, ws%value(lo:hi), ws%sure(lo:hi, 1), &
-          ws%bound(lo:hi, 1), ws%best(1, s) - tie_abs - margin, &
-          converged * ws%scale(s), ws%alive(lo:hi, 1))
-      call judge(hi - lo + 1, -1.0_wp, ws%value(lo:hi), &
-          ws%sure(lo:hi, 2), ws%bound(lo:hi, 2), &
-          ws%best(2, s) - tie_abs - margin, converged * ws%scale(s), &
-          ws%alive(lo:hi, 2))
+      ws%floor_value(:, s) = ws%floor_value(:, s) - margin
     end do
+    call judge(ws%cells, ws%slot, 1.0_wp, ws%floor_value(1, :), ws%conv, &
+        ws%value, ws%sure(:, 1), ws%bound(:, 1), ws%alive(:, 1))
+    call judge(ws%cells, ws%slot, -1.0_wp, ws%floor_value(2, :), ws%conv, &
+        ws%value, ws%sure(:, 2), ws%bound(:, 2), ws%alive(:, 2))
     ! the polishes after every cell is pruned (they raise the best)
     do s = 1, slots
       if (ws%cells_of(s) == 0) cycle
@@ -505,20 +499,20 @@ contains
         ws%alive(1:ws%cells, 2)
   end subroutine select_cells
 
-  !> A side's cells stay alive while their bound reaches `floor_value` and
-  !> is more than conv_abs above the larger of their value (times sgn) and
-  !> their certified value.
-  pure subroutine judge(cells, sgn, value, sure, bound, floor_value, &
-      conv_abs, alive)
-    integer, intent(in) :: cells
-    real(wp), value :: sgn, floor_value, conv_abs
-    real(wp), intent(in) :: value(cells), sure(cells), bound(cells)
-    logical, intent(inout) :: alive(cells)
+  !> A side's cells stay alive while their bound reaches their design's
+  !> floor and is more than its conv above the larger of their value
+  !> (times sgn) and their certified value.
+  pure subroutine judge(cells, slot, sgn, floor_value, conv, value, sure, &
+      bound, alive)
+    integer, intent(in) :: cells, slot(:)
+    real(wp), intent(in) :: sgn, floor_value(:), conv(:), value(:)
+    real(wp), intent(in) :: sure(:), bound(:)
+    logical, intent(inout) :: alive(:)
     integer :: k
 
     do k = 1, cells
-      alive(k) = alive(k) .and. bound(k) >= floor_value .and. &
-          bound(k) - max(sgn * value(k), sure(k)) > conv_abs
+      alive(k) = alive(k) .and. bound(k) >= floor_value(slot(k)) .and. &
+          bound(k) - max(sgn * value(k), sure(k)) > conv(slot(k))
     end do
   end subroutine judge
 
