@@ -603,50 +603,50 @@ contains
     real(wp), allocatable :: swap(:, :), swap_centre(:)
     logical, allocatable :: swap_alive(:, :)
     integer, allocatable :: swap_slot(:)
-    real(wp) :: h
-    integer :: kept, i, k, s, nm, lo, hi, done, out
+    integer :: kept, i, j, k, s, nm, out
 
     nm = size(ws%p, 2)
     kept = count(ws%keep(1:ws%cells))
+    ws%cells_of(1:slots) = 0
     if (kept == 0) then
       ws%cells = 0
-      ws%cells_of(1:slots) = 0
       return
     end if
     call reserve_cells(ws, 2 * kept, nm)
-    done = 0
-    do s = 1, slots
-      lo = ws%first(s)
-      hi = lo + ws%cells_of(s) - 1
-      kept = 0
-      do k = lo, hi
-        if (ws%keep(k)) then
-          kept = kept + 1
-          ws%which(kept) = k
-        end if
-      end do
-      ws%first(s) = done + 1
-      ws%cells_of(s) = 2 * kept
-      if (kept == 0) cycle
-      call rotate_children(size(ws%a, 1), ws%n(s), kept, ws%which, &
-          done + 1, ws%chain_c(s, :), ws%chain_s(s, :), ws%a, ws%b, &
-          ws%next_a, ws%next_b)
-      h = 0.5_wp * ws%half_width(s)
-      do i = 1, kept
-        k = ws%which(i)
-        out = done + 2 * i - 1
-        ws%next_centre(out) = ws%centre(k) - h
-        ws%next_centre(out + 1) = ws%centre(k) + h
-        ws%next_alive(out, 1) = ws%alive(k, 1)
-        ws%next_alive(out + 1, 1) = ws%alive(k, 1)
-        ws%next_alive(out, 2) = ws%alive(k, 2)
-        ws%next_alive(out + 1, 2) = ws%alive(k, 2)
-        ws%next_slot(out) = s
-        ws%next_slot(out + 1) = s
-      end do
-      done = done + 2 * kept
+    kept = 0
+    do k = 1, ws%cells
+      if (ws%keep(k)) then
+        kept = kept + 1
+        ws%which(kept) = k
+        s = ws%slot(k)
+        ws%cells_of(s) = ws%cells_of(s) + 2
+      end if
     end do
-    ws%cells = done
+    ! the children of a slot follow its kept parents, in time order
+    out = 1
+    do s = 1, slots
+      ws%first(s) = out
+      out = out + ws%cells_of(s)
+    end do
+    do j = 1, nm
+      call rotate_children(kept, ws%which, ws%slot, ws%chain_c(:, j), &
+          ws%chain_s(:, j), ws%a(:, j), ws%b(:, j), ws%next_a(:, j), &
+          ws%next_b(:, j))
+    end do
+    do i = 1, kept
+      k = ws%which(i)
+      s = ws%slot(k)
+      out = 2 * i - 1
+      ws%next_centre(out) = ws%centre(k) - 0.5_wp * ws%half_width(s)
+      ws%next_centre(out + 1) = ws%centre(k) + 0.5_wp * ws%half_width(s)
+      ws%next_alive(out, 1) = ws%alive(k, 1)
+      ws%next_alive(out + 1, 1) = ws%alive(k, 1)
+      ws%next_alive(out, 2) = ws%alive(k, 2)
+      ws%next_alive(out + 1, 2) = ws%alive(k, 2)
+      ws%next_slot(out) = s
+      ws%next_slot(out + 1) = s
+    end do
+    ws%cells = 2 * kept
     ! the children become the current cells (the arrays swap roles)
     call move_alloc(ws%a, swap)
     call move_alloc(ws%next_a, ws%a)
@@ -665,49 +665,27 @@ contains
     call move_alloc(swap_slot, ws%next_slot)
   end subroutine split_cells
 
-  !> The children of parents a(which(i), :), b(which(i), :) at rows
-  !> first + 2 i - 2 (left, phases turned by -p_j h) and first + 2 i - 1
-  !> (right, +p_j h) of next_a, next_b; cx, sx = cos, sin of p_j h.  The
-  !> parents of a slot are often all kept: then they are contiguous.
-  pure subroutine rotate_children(rows, n, kept, which, first, cx, sx, a, &
-      b, next_a, next_b)
-    integer, intent(in) :: rows, n, kept, which(:), first
-    real(wp), intent(in) :: cx(:), sx(:)
-    real(wp), intent(in) :: a(rows, *), b(rows, *)
-    real(wp), intent(inout) :: next_a(rows, *), next_b(rows, *)
+  !> One mode's children: parent which(i) gives rows 2 i - 1 (left, its
+  !> phase turned by -p h) and 2 i (right, +p h) of next_a, next_b; cx, sx
+  !> = cos, sin of p h per design slot.  (Padded modes, zero, stay zero.)
+  pure subroutine rotate_children(kept, which, slot, cx, sx, a, b, next_a, &
+      next_b)
+    integer, intent(in) :: kept, which(:), slot(:)
+    real(wp), intent(in) :: cx(:), sx(:), a(:), b(:)
+    real(wp), intent(inout) :: next_a(:), next_b(:)
     real(wp) :: aj, bj, c, s
-    integer :: i, j, k, out, lo
+    integer :: i, k
 
-    lo = which(1)
-    if (which(kept) - lo == kept - 1) then
-      do j = 1, n
-        c = cx(j)
-        s = sx(j)
-        do i = 1, kept
-          out = first + 2 * i - 2
-          aj = a(lo + i - 1, j)
-          bj = b(lo + i - 1, j)
-          next_a(out, j) = aj * c - bj * s
-          next_b(out, j) = bj * c + aj * s
-          next_a(out + 1, j) = aj * c + bj * s
-          next_b(out + 1, j) = bj * c - aj * s
-        end do
-      end do
-      return
-    end if
-    do j = 1, n
-      c = cx(j)
-      s = sx(j)
-      do i = 1, kept
-        k = which(i)
-        out = first + 2 * i - 2
-        aj = a(k, j)
-        bj = b(k, j)
-        next_a(out, j) = aj * c - bj * s
-        next_b(out, j) = bj * c + aj * s
-        next_a(out + 1, j) = aj * c + bj * s
-        next_b(out + 1, j) = bj * c - aj * s
-      end do
+    do i = 1, kept
+      k = which(i)
+      c = cx(slot(k))
+      s = sx(slot(k))
+      aj = a(k)
+      bj = b(k)
+      next_a(2 * i - 1) = aj * c - bj * s
+      next_b(2 * i - 1) = bj * c + aj * s
+      next_a(2 * i) = aj * c + bj * s
+      next_b(2 * i) = bj * c - aj * s
     end do
   end subroutine rotate_children
 
