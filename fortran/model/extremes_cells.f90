@@ -14,8 +14,10 @@
 !> about that end.  Cells small enough (p_max r <= phi_polish) are polished:
 !> Newton steps to the vertex, and a bound about it.
 !>
-!> Cells are vectors (contiguous) and each design's data is gathered by
-!> the cell's slot in the block, so one pass serves every design.
+!> Cells are vectors (contiguous, a design's together, in time order).  The
+!> per-mode sums run a design at a time (its mode's data then scalars in
+!> the loop); every other step runs over all the block's cells at once,
+!> each design's scalars gathered by the cell's slot.
 module model_extremes_cells
   use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
@@ -33,6 +35,7 @@ module model_extremes_cells
   real(wp), parameter :: phi_low = 1.0_wp
   !> Cells with p_max r <= phi_polish are polished by Newton steps.
   real(wp), parameter :: phi_polish = 1.0_wp
+  !> Newton steps of a polish.
   integer, parameter :: polish_steps = 3
 
   !> Working arrays kept between blocks and batches (grown as needed).
@@ -47,7 +50,9 @@ module model_extremes_cells
     real(wp), allocatable :: arc_c(:, :), arc_s(:, :), low(:, :)
     !> Per slot: modes, cells (first, count), window, S, p_max,
     !> floor(p_min tau/pi), y3 and its slope at 0 and tau, best of y3 and
-    !> -y3, work done.
+    !> -y3; the level's half-width, sum of |c_j| over whole turns, 1 where
+    !> every mode is low, floors (best - tie - margin) and convergence
+    !> slack; work done.
     integer, allocatable :: n(:), cells_of(:), first(:)
     real(wp), allocatable :: tau(:), scale(:), p_max(:), ends(:, :)
     real(wp), allocatable :: best(:, :), half_width(:), whole(:)
