@@ -1,10 +1,13 @@
-"""Issue 10: one solve() call, before and now, side by side in one run.
+"""One solve() call, before and now, side by side in one run.
 
+    pip install meson-python meson ninja    # once: the build tools
     python benchmarks/bench_lean.py [--before REV] [--repeat N]
 
 Builds the package at git revision REV (default 2027d9f, the restored
-core as it was when issue 10 was measured: the listing always formatted,
-10,000 zero-filled trace rows on the first try) into a temporary
+core before solve(listing=False): the listing always formatted, 10,000
+zero-filled trace rows on the first try) with ``pip install
+--no-build-isolation`` (the build tools must be installed; the script
+checks first and says which are missing) into a temporary
 directory, then times, each in its own interpreter and alternating so
 that machine load hits both alike:
 
@@ -31,7 +34,7 @@ TIMER = r"""
 import json, sys, timeit, warnings
 import numpy as np
 warnings.simplefilter("ignore")
-try:                    # the layout since issue 20
+try:                    # the layout since commit 7931a31
     from contactsep.restored import core
 except ImportError:     # the 2027d9f build
     from contactsep import core
@@ -85,12 +88,29 @@ def measure(site: Path | None, repeat: int) -> dict:
     return json.loads(done.stdout)
 
 
+def missing_build_tools() -> list[str]:
+    """The build tools pip --no-build-isolation needs and cannot find."""
+    import importlib.util
+    import shutil
+    missing = [package for package, module in (("meson-python", "mesonpy"),
+                                               ("meson", "mesonbuild"))
+               if importlib.util.find_spec(module) is None]
+    if shutil.which("ninja") is None and \
+            importlib.util.find_spec("ninja") is None:
+        missing.append("ninja")
+    return missing
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--before", default="2027d9f")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--rounds", type=int, default=3)
     args = parser.parse_args()
+    missing = missing_build_tools()
+    if missing:
+        sys.exit(f"bench_lean.py builds a past revision without build "
+                 f"isolation and needs: pip install {' '.join(missing)}")
     with tempfile.TemporaryDirectory() as tmp:
         site = build(args.before, Path(tmp))
         before, now = [], []

@@ -69,13 +69,15 @@ contains
           ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
       do i = first, last
         k = i - first + 1
-        res(k)%y3_max = y3_max(i)
-        res(k)%t_max = t_max(i)
-        res(k)%y3_min = y3_min(i)
-        res(k)%t_min = t_min(i)
-        res(k)%at_end = ends(k)
-        res(k)%max_tied = ties(k, 1)
-        res(k)%min_tied = ties(k, 2)
+        if (search(k)) then
+          res(k)%y3_max = y3_max(i)
+          res(k)%t_max = t_max(i)
+          res(k)%y3_min = y3_min(i)
+          res(k)%t_min = t_min(i)
+          res(k)%at_end = ends(k)
+          res(k)%max_tied = ties(k, 1)
+          res(k)%min_tied = ties(k, 2)
+        end if
         call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
             p3(:, i), c3(:, i))
         t1(i) = res(k)%t1

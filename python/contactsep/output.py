@@ -18,6 +18,10 @@
   replaced; a directory is refused;
 * messages name the path as the user gave it, never the temporary file.
 
+JSON (:func:`json_text`, :func:`write_json`) is strict: NaN and the
+infinities are written as null, never as the NaN or Infinity that
+``json.load`` in other languages refuses.
+
 Standard output: a closed standard output (``>&-``) is an error at the
 first write, ``standard output is closed``; a write error (``/dev/full``)
 is reported like any other, exit status 2.
@@ -27,6 +31,8 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import json
+import math
 import os
 import stat
 import sys
@@ -111,10 +117,38 @@ def _named(error: OSError, path: str) -> OSError:
     return renamed
 
 
+def strict_json(value):
+    """``value`` with NaN and the infinities as None and NumPy scalars
+    and arrays as Python numbers and lists, recursively."""
+    if isinstance(value, dict):
+        return {str(k): strict_json(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [strict_json(v) for v in value]
+    if hasattr(value, "tolist"):         # a NumPy array or scalar
+        return strict_json(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def json_text(value, indent: int | None = 2) -> str:
+    """Strict JSON text of ``value`` (:func:`strict_json`), no newline."""
+    return json.dumps(strict_json(value), indent=indent, allow_nan=False)
+
+
+def write_json(stream: TextIO, value, indent: int | None = 2) -> None:
+    """Write ``value`` as strict JSON and a newline."""
+    write_text(stream, json_text(value, indent) + "\n")
+
+
 @contextlib.contextmanager
-def open_output(path: str | os.PathLike) -> Iterator[TextIO]:
-    """A text stream to ``path`` for ``-o`` (module docstring)."""
+def open_output(path: str | os.PathLike, binary: bool = False
+                ) -> Iterator[TextIO]:
+    """A text stream (a binary one with ``binary``) to ``path`` for
+    ``-o`` and every file a command writes (module docstring)."""
     path = os.fspath(path)
+    how, text = ("wb", {}) if binary else \
+        ("w", {"encoding": "ascii", "newline": ""})
     target = os.path.realpath(path)
     try:
         info = os.stat(target)
@@ -126,7 +160,7 @@ def open_output(path: str | os.PathLike) -> Iterator[TextIO]:
         raise OSError(errno.EISDIR, "Is a directory, not a file", path)
     if info is not None and not stat.S_ISREG(info.st_mode):
         try:
-            with open(target, "w", encoding="ascii", newline="") as out:
+            with open(target, how, **text) as out:
                 yield out
         except OSError as error:
             raise _named(error, path) from None
@@ -146,7 +180,7 @@ def open_output(path: str | os.PathLike) -> Iterator[TextIO]:
             os.umask(umask)
             mode = 0o666 & ~umask
         os.fchmod(fd, mode)
-        with os.fdopen(fd, "w", encoding="ascii", newline="") as out:
+        with os.fdopen(fd, how, **text) as out:
             try:
                 yield out
             except (DeckError, InputError) as error:

@@ -216,6 +216,6 @@ def test_model_command_prints_labelled_results(capsys):
     import json
     data = json.loads(capsys.readouterr().out)
     ev = evaluate(thesis_design(x3=0.78 * 19, n_modes=20))
-    assert data["y3_max"] == float(ev.y3_max)
+    assert data["y3_max_in"] == float(ev.y3_max)
     assert main(["model", "--e", "3"]) == 2
     assert "e: found 3.0, expected 0 <= e <= 1" in capsys.readouterr().err

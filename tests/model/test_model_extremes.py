@@ -17,6 +17,7 @@ peaks differently; that is the tie).
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -228,8 +229,12 @@ def test_model_command_with_a_one_second_window(capsys):
 
     assert main(["model", "--tau", "1"]) == 0
     out = capsys.readouterr().out
-    line = next(x for x in out.splitlines() if x.split()[0] == "y3_max")
-    assert line.split()[2] == "1.166210e-01"
+    line = next(x for x in out.splitlines() if x.split()[0] == "y3_max_in")
+    assert line.split()[2] == "0.116621"
+    assert main(["model", "--tau", "1", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert abs(data["y3_max_in"] - 0.1166210278168) < 1e-13
+    assert data["t_max_tied"] is False and data["t_min_tied"] is False
 
 
 def test_model_command_refuses_what_it_cannot_resolve(capsys):

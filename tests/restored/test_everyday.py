@@ -119,12 +119,12 @@ def test_replay_formats_listing_default_unchanged(tmp_path):
     assert default == listing
     legacy_results = contactsep.replay(deck)
     assert default == "".join(r.listing for r in legacy_results)
-    _, js, _ = run_cli("replay", deck, "--format", "json")
-    assert json.loads(js.splitlines()[0])["t_impact"] == \
+    _, js, _ = run_cli("replay", deck, "--format", "jsonl")
+    assert json.loads(js.splitlines()[0])["t_impact_s"] == \
         legacy_results[0].t_impact
     _, table, _ = run_cli("replay", deck, "--format", "csv")
     rows = table.splitlines()
-    assert rows[0].startswith("data_set,t_impact [s]")
+    assert rows[0].startswith("data_set,d_in,n_modes,t_impact_s,")
     assert len(rows) == 2
 
 

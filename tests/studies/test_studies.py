@@ -189,8 +189,8 @@ def test_sweep_probability_is_a_direct_count():
                                chunk_size=33, workers=1)
     t = out.table()
     assert summary["n"] == spec().size == len(t["status"]) == 200
-    assert summary["failed"] == 0
-    ev = evaluate(thesis_design(d=t["h2_in"], ys=t["ys_in"], e=t["e"]))
+    assert summary["n_failed"] == 0
+    ev = evaluate(thesis_design(d=t["d_in"], ys=t["ys_in"], e=t["e"]))
     y = np.array([reference.extremes(c, p, 0.06)[0]
                   for c, p in zip(ev.c3, ev.p3)])
     scale = np.sum(np.abs(ev.c3), axis=1)
@@ -200,10 +200,10 @@ def test_sweep_probability_is_a_direct_count():
     assert np.all(np.abs(y - 0.1) > 1e-12 * scale)
     assert summary["p_exceed"] == np.mean(y > 0.1)
     assert 0.05 < summary["p_exceed"] < 0.95
-    assert np.isclose(summary["y3_max_mean"], y.mean(), rtol=1e-12)
-    assert np.isclose(summary["y3_max_std"], y.std(ddof=1), rtol=1e-9)
-    assert summary["y3_max_min"] == pytest.approx(y.min(), rel=1e-12)
-    assert summary["y3_max_max"] == pytest.approx(y.max(), rel=1e-12)
+    assert np.isclose(summary["y3_max_mean_in"], y.mean(), rtol=1e-12)
+    assert np.isclose(summary["y3_max_sd_in"], y.std(ddof=1), rtol=1e-9)
+    assert summary["y3_max_min_in"] == pytest.approx(y.min(), rel=1e-12)
+    assert summary["y3_max_max_in"] == pytest.approx(y.max(), rel=1e-12)
 
 
 def test_sweep_on_a_dask_local_cluster_equals_local():
@@ -262,11 +262,11 @@ def test_sweep_command_json(tmp_path, capsys):
         r for r in path.read_text().splitlines() if not r.startswith("#")))))
     y = np.array([float(r["y3_max_in"]) for r in rows])
     assert summary["p_exceed"] == np.mean(y > 0.1)
-    assert [float(r["h2_in"]) for r in rows[:3]] == [0.125] * 3
+    assert [float(r["d_in"]) for r in rows[:3]] == [0.125] * 3
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["sweep", "--vary", "h9=1:2:3"], "h9: not a numeric Design field"),
+    (["sweep", "--vary", "h9=1:2:3"], "h9: not a design field"),
     (["sweep", "--vary", "h2=1:2"], "expected NAME=START:STOP:COUNT"),
     (["sweep", "--sample", "ys=gauss(1,2)"], "expected NAME=normal"),
     (["sweep", "--sample", "ys=normal(0.5,-1)"], "out of range"),

@@ -48,21 +48,21 @@ def test_every_column_equals_evaluate_of_its_design(workers):
     summary = runner.run_sweep(spec, writers=[out], chunk_size=7,
                                workers=workers)
     t = out.table()
-    expected = [sweep.column_name(n) for n in ("h2", "gap", "ys", "x3")]
+    expected = ["d_in", "gap_in", "ys_in", "x3_in"]
     assert list(t) == expected + list(sweep.RESULT_COLUMNS)
     size = 4 * 2 * 6
     assert all(len(v) == size for v in t.values())
-    assert summary["n"] + summary["failed"] == size
+    assert summary["n"] + summary["n_failed"] == size
     # the inputs: the grid (last field fastest, each point 6 samples)
     grid_h2 = np.repeat(np.linspace(0.1, 0.9, 4), 2 * 6)
     grid_gap = np.tile(np.repeat([0.0, 0.7], 6), 4)
-    np.testing.assert_array_equal(t["h2_in"], grid_h2)
+    np.testing.assert_array_equal(t["d_in"], grid_h2)
     np.testing.assert_array_equal(t["gap_in"], grid_gap)
     assert np.all((t["ys_in"] >= 0.3) & (t["ys_in"] <= 0.6))
     assert np.all((t["x3_in"] >= 14.0) & (t["x3_in"] <= 19.0))
     assert np.unique(t["ys_in"]).size == size
     # the results: evaluate() of the designs the rows name
-    ev = evaluate(thesis_design(h2=t["h2_in"], gap=t["gap_in"],
+    ev = evaluate(thesis_design(h2=t["d_in"], gap=t["gap_in"],
                                 ys=t["ys_in"], x3=t["x3_in"], n_modes=6))
     assert set(np.unique(ev.status)) == {0, 1}
     for column, field in RESULTS.items():

@@ -3,40 +3,41 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
+import warnings
 
 import numpy as np
 
-from contactsep.errors import InputError
+from contactsep import output
+from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.help import examples
+from contactsep.errors import ContactsepWarning, InputError
 
-#: (attribute, label, unit) of the printed results, in order.
+#: (attribute, key with its unit, unit as printed, meaning), in order.
 RESULTS = (
-    ("t1", "first impact after release", "s"),
-    ("v_impact", "impact speed of the upper contact", "in/s"),
-    ("psi", "impulse", "lb s"),
-    ("v0", "separator velocity after the impact", "in/s"),
-    ("R", "mass ratio (eq. 24)", "-"),
-    ("y3_max", "largest lower-contact separation", "in"),
-    ("t_max", "its time after the impact", "s"),
-    ("y3_min", "smallest lower-contact displacement", "in"),
-    ("t_min", "its time after the impact", "s"),
-    ("M1", "upper contact mass", "lb s^2/in"),
-    ("M2", "separator mass", "lb s^2/in"),
-    ("M3", "lower contact mass", "lb s^2/in"),
+    ("t1", "t1_s", "s", "first impact after release"),
+    ("v_impact", "v_impact_in_s", "in/s", "impact speed of the upper "
+                                          "contact"),
+    ("psi", "psi_lb_s", "lb s", "impulse"),
+    ("v0", "v0_in_s", "in/s", "separator velocity after the impact"),
+    ("R", "R", "-", "mass ratio (eq. 24)"),
+    ("y3_max", "y3_max_in", "in", "largest lower-contact separation"),
+    ("t_max", "t_max_s", "s", "its time after the impact"),
+    ("y3_min", "y3_min_in", "in", "smallest lower-contact displacement"),
+    ("t_min", "t_min_s", "s", "its time after the impact"),
+    ("M1", "M1_lb_s2_in", "lb s^2/in", "upper contact mass"),
+    ("M2", "M2_lb_s2_in", "lb s^2/in", "separator mass"),
+    ("M3", "M3_lb_s2_in", "lb s^2/in", "lower contact mass"),
 )
+#: Per-mode results: (attribute, key with its unit, member).
+PER_MODE = (("p1", "p1_rad_s", 0), ("p2", "p2_rad_s", 1),
+            ("p3", "p3_rad_s", 2), ("c3", "c3_in", 2))
 
-#: Design fields settable from the command line: option, field, type.
-_FIELDS = [("--d", "h2", float), ("--x1", "x1", float),
-           ("--x2", "x2", float), ("--x3", "x3", float),
-           ("--ys", "ys", float), ("--e", "e", float),
-           ("--tau", "tau", float), ("--gap", "gap", float),
-           ("--Lc", "Lc", float),
-           ("--end1", "end1", str), ("--end2", "end2", str),
-           ("--end3", "end3", str)]
-for _member in "123":
-    for _name in ("L", "b", "h", "gamma", "E"):
-        _FIELDS.append((f"--{_name}{_member}", _name + _member, float))
+EXAMPLES = examples(
+    "contactsep model --x3 14.82 --n-modes 20           # contact at 0.78 L3",
+    "contactsep model --d 0.5 --restitution 0.2 --json  # keys with units",
+    "contactsep model --json > my.json && contactsep model --design my.json "
+    "--end2 pinned-pinned")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -47,61 +48,68 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "experiment with any field changed. Units: in, lb, s; "
                     "densities lb/in^3; E psi. x1, x2, x3 are contact "
                     "points in inches from each member's first end "
-                    "(defaults: tip, mid-span, tip).")
-    seen = set()
-    for option, field, kind in _FIELDS:
-        if field in seen:
-            continue
-        seen.add(field)
-        parser.add_argument(option, dest=field, type=kind, default=None,
-                            metavar=field.upper() if kind is float else None)
-    parser.add_argument("--n-modes", type=int, default=None,
-                        help="modes per member (default 4)")
-    parser.add_argument("--impact-velocity", choices=("exact", "listing"))
-    parser.add_argument("--lower-response", choices=("as-printed",
-                                                     "impulse"))
-    parser.add_argument("--lc-reading", choices=("listing", "frequencies",
-                                                 "mass"))
-    parser.add_argument("--release", choices=("tip", "contact"))
+                    "(defaults: tip, mid-span, tip).",
+        **EXAMPLES)
+    add_design_options(parser)
     parser.add_argument("--backend", choices=("compiled", "numpy"),
-                        default="compiled")
+                        default="compiled",
+                        help="compiled: the Fortran batch (default); "
+                             "numpy: its NumPy twin")
     parser.add_argument("--json", action="store_true",
-                        help="print a JSON object instead of a table")
+                        help="print a JSON object (the design and every "
+                             "result, each key with its unit) instead of "
+                             "a table")
     parser.set_defaults(handler=run)
+
+
+def results_dict(design, result) -> dict:
+    """The design (output names, the form --design reads back) and every
+    result under a key that carries its unit."""
+    from contactsep.studies.fields import describe
+    fields = {name: getattr(design, name) for name in design_fields()}
+    data = {"design": describe(fields)}
+    for name, key, _, _ in RESULTS:
+        data[key] = float(getattr(result, name))
+    data["at_window_end"] = bool(result.at_window_end)
+    data["t_max_tied"] = bool(result.t_max_tied)
+    data["t_min_tied"] = bool(result.t_min_tied)
+    data["status"] = int(result.status)
+    counts = design.n_modes if isinstance(design.n_modes, tuple) \
+        else (design.n_modes,) * 3
+    for name, key, member in PER_MODE:
+        # the batch pads every member to the largest N: its own N only
+        data[key] = np.asarray(getattr(result, name))[
+            :int(counts[member])].tolist()
+    return data
+
+
+def design_fields() -> tuple:
+    import dataclasses
+
+    from contactsep.model import Design
+    return tuple(f.name for f in dataclasses.fields(Design))
 
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate and print; status other than 0 is an error (exit 2)."""
     from contactsep.model import evaluate, status, thesis_design
 
-    overrides = {field: getattr(args, field) for _, field, _ in _FIELDS
-                 if getattr(args, field, None) is not None}
-    for option in ("n_modes", "impact_velocity", "lower_response",
-                   "lc_reading", "release"):
-        if getattr(args, option) is not None:
-            overrides[option] = getattr(args, option)
-    result = evaluate(thesis_design(**overrides), backend=args.backend)
+    design = thesis_design(**design_overrides(args))
+    result = evaluate(design, backend=args.backend)
     code = int(result.status)
     if code != status.OK:
         raise InputError(status.MESSAGES[code])
-    if args.json:
-        data = {name: float(getattr(result, name)) for name, _, _ in RESULTS}
-        data["at_window_end"] = bool(result.at_window_end)
-        data["t_max_tied"] = bool(result.t_max_tied)
-        data["t_min_tied"] = bool(result.t_min_tied)
-        for key in ("p1", "p2", "p3", "c3"):
-            data[key] = np.asarray(getattr(result, key)).tolist()
-        json.dump(data, sys.stdout, indent=2)
-        sys.stdout.write("\n")
-        return 0
-    for name, label, unit in RESULTS:
-        print(f"{name:>8} = {float(getattr(result, name)):14.6e}  {unit:<10}"
-              f" {label}")
     if result.at_window_end:
-        print("warning: the largest separation is at the end of the window "
-              "(increase --tau)", file=sys.stderr)
+        warnings.warn("the largest separation is at the end of the window "
+                      "(increase --tau)", ContactsepWarning)
     for name in ("max", "min"):
-        if getattr(result, f"t_{name}_tied"):
-            print(f"note: a later peak comes within 1e-12 of y3_{name}; "
-                  f"t_{name} is the earliest", file=sys.stderr)
+        if bool(getattr(result, f"t_{name}_tied")):
+            warnings.warn(f"a later peak comes within 1e-12 of y3_{name}: "
+                          f"t_{name} is the earliest", ContactsepWarning)
+    if args.json:
+        output.write_json(sys.stdout, results_dict(design, result))
+        return 0
+    for name, key, unit, label in RESULTS:
+        print(f"{key:>13} = {float(getattr(result, name)):<13.6g} "
+              f"{unit:<10} {label}")
     return 0

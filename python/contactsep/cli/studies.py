@@ -3,23 +3,28 @@
 from __future__ import annotations
 
 import argparse
-import json
-import math
-import os
 import sys
+import warnings
 from pathlib import Path
 
-from contactsep.errors import InputError
+from contactsep import output
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    fields_from_file,
+)
+from contactsep.cli.help import examples
+from contactsep.errors import ContactsepWarning, InputError
 
-_OVERRIDES = (("--n-modes", "n_modes", int), ("--e", "e", float),
-              ("--ys", "ys", float), ("--tau", "tau", float))
+#: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
+DEFAULT_DPI = 100
 
 
-def _overrides(parser: argparse.ArgumentParser) -> None:
-    for option, dest, kind in _OVERRIDES:
-        parser.add_argument(option, dest=dest, type=kind, default=None)
+def _backend(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--backend", choices=("compiled", "numpy"),
-                        default="compiled")
+                        default=None,
+                        help="compiled: the Fortran batch (default); "
+                             "numpy: its NumPy twin")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -30,128 +35,219 @@ def register(commands: argparse._SubParsersAction) -> None:
         "study", help="regenerate a thesis figure or table",
         description="Evaluate one of the thesis's studies on the general "
                     "model and print it as a labelled table. NAME is one "
-                    f"of {', '.join(STUDIES)}, chatter, or all (with --out).")
+                    f"of {', '.join(STUDIES)}, chatter, or all (every "
+                    "study but chatter; with --out). Design options change "
+                    "the thesis rig the study starts from; a study refuses "
+                    "those it sets itself (fig5 its thicknesses, ...); "
+                    "fig5 with --ys draws that one curve.",
+        **examples("contactsep study fig5 --png fig5.png --dpi 150",
+                   "contactsep study fig6 --n-modes 16 --restitution 0.5 "
+                   "--csv fig6.csv",
+                   "contactsep study all --out figs   # CSV and PNG of "
+                   "each"))
     study.add_argument("name", metavar="NAME")
     study.add_argument("--csv", metavar="FILE", help="write the CSV here")
     study.add_argument("--png", metavar="FILE",
                        help="draw the figure (needs contactsep[plot])")
     study.add_argument("--out", metavar="DIR",
-                       help="with NAME all: write every study's CSV and PNG")
-    study.add_argument("--lc-reading", choices=("listing", "frequencies",
-                                                "mass"), default=None,
-                       help="fig23: reading of the equivalent length")
-    _overrides(study)
+                       help="write NAME.csv and NAME.png into DIR (for "
+                            "all: every study's; needs contactsep[plot])")
+    study.add_argument("--dpi", type=int, default=DEFAULT_DPI,
+                       help=f"PNG resolution, dots per inch of the 6 x 4 in "
+                            f"figure (default {DEFAULT_DPI})")
+    _backend(study)
+    add_design_options(study)
     study.set_defaults(handler=run_study)
 
     sweep = commands.add_parser(
         "sweep", help="sweep or sample design parameters",
         description="Evaluate the thesis design with fields varied "
                     "(--vary; several form a grid) and/or sampled "
-                    "(--sample, K samples per grid point): one CSV row per "
-                    "design, a JSON summary.")
+                    "(--sample, K samples per grid point), the other "
+                    "fields fixed by the design options: one CSV row per "
+                    "design (with its status), a summary with the inputs. "
+                    "Failed designs are counted (n_failed) and left out of "
+                    "the statistics; if every design fails, exit 2.",
+        **examples("contactsep sweep --vary d=0.1:1.0:19 "
+                   "--vary ys=0.25,0.5,0.75 --csv grid.csv",
+                   "contactsep sweep --sample 'd=normal(0.25,0.01)' "
+                   "--samples 100000 --threshold 0.11 --json",
+                   "contactsep sweep --design my.json "
+                   "--vary end2=clamped-clamped,pinned-pinned"))
     sweep.add_argument("--vary", action="append", default=[],
-                       metavar="NAME=START:STOP:COUNT|NAME=V1,V2,...")
+                       metavar="NAME=START:STOP:COUNT|NAME=V1,V2,...",
+                       help="a grid axis (repeatable): any numeric field, "
+                            "an end condition or n_modes (values as a "
+                            "list)")
     sweep.add_argument("--sample", action="append", default=[],
-                       metavar="NAME=normal(MEAN,SD)|NAME=uniform(LO,HI)")
+                       metavar="'NAME=normal(MEAN,SD)'|'NAME=uniform(LO,HI)'",
+                       help="a distribution of a numeric field (repeatable;"
+                            " quote it for the shell)")
     sweep.add_argument("--samples", type=int, default=None, metavar="K",
                        help="samples per grid point (default 1000)")
-    sweep.add_argument("--seed", type=int, default=0)
+    sweep.add_argument("--seed", type=int, default=0,
+                       help="seed of the samples (default 0)")
     sweep.add_argument("--threshold", type=float, default=None, metavar="T",
-                       help="report p_exceed = P(max y3 > T) (in)")
-    sweep.add_argument("--csv", metavar="FILE")
+                       help="report p_exceed = P(max y3 > T) and its 95 %% "
+                            "Wilson interval (T in inches)")
+    sweep.add_argument("--csv", metavar="FILE",
+                       help="one row per design, written as the sweep goes")
     sweep.add_argument("--parquet", metavar="FILE",
                        help="also write Parquet (needs pyarrow)")
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
-    sweep.add_argument("--chunk-size", type=int, default=None)
+    sweep.add_argument("--chunk-size", type=int, default=None,
+                       help="designs per chunk (default 100000)")
     sweep.add_argument("--workers", type=int, default=None,
                        help="local processes (default: all cores)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the chunks on this Dask scheduler")
     sweep.add_argument("--progress", choices=("auto", "always", "never"),
-                       default="auto")
-    _overrides(sweep)
+                       default="auto",
+                       help="progress bar on stderr: auto (on a terminal),"
+                            " always (needs tqdm), never")
+    _backend(sweep)
+    add_design_options(sweep)
     sweep.set_defaults(handler=run_sweep)
 
 
-def _design_overrides(args) -> dict:
-    return {dest: getattr(args, dest) for _, dest, _ in _OVERRIDES
-            if getattr(args, dest) is not None}
+def _write_csv(path, study) -> None:
+    with output.open_output(path) as out:
+        output.write_text(out, study.csv_text())
 
 
-def _write_text(path: str, text: str) -> None:
-    Path(path).write_text(text, encoding="ascii")
+def _need_matplotlib() -> None:
+    from contactsep.studies.plots import require_matplotlib
+    require_matplotlib()
 
 
-def _run_one(name: str, args) -> "object":
-    from contactsep.studies import STUDIES
+def _compute(name: str, args, overrides: dict):
+    from contactsep.studies import OWN_FIELDS, STUDIES
 
-    kwargs = _design_overrides(args)
-    kwargs["backend"] = args.backend
-    if name == "fig23" and args.lc_reading:
-        kwargs["lc_reading"] = args.lc_reading
-    return STUDIES[name](**kwargs)
+    # a --design file's value of a study's own field gives way to it
+    overrides = {k: v for k, v in overrides.items() if not (
+        k in fields_from_file(args) and k in OWN_FIELDS.get(name, ()))}
+
+    if name == "chatter":
+        if overrides or args.backend:
+            raise InputError("study chatter takes no design options: it "
+                             "runs the thesis rig for its five separators "
+                             "and N = 4, 16, 32 (contactsep chatter runs "
+                             "any design)")
+        from contactsep.studies.chatter import chatter_table
+        return chatter_table()
+    if name not in STUDIES:
+        raise InputError(f"study {name!r}: expected one of "
+                         f"{', '.join(STUDIES)}, chatter or all")
+    return STUDIES[name](backend=args.backend or "compiled", **overrides)
+
+
+def _save(study, out: Path, dpi: int) -> None:
+    from contactsep.studies.plots import save_png
+    _write_csv(out / f"{study.name}.csv", study)
+    save_png(study, out / f"{study.name}.png", dpi=dpi)
+    print(f"{study.name}: {out / study.name}.csv, {out / study.name}.png")
 
 
 def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
 
-    if args.name == "chatter":
-        try:
-            from contactsep.studies.chatter import chatter_table
-        except ImportError:
-            raise InputError("the chatter layer is not installed") from None
-        study = chatter_table()
-    elif args.name == "all":
-        if not args.out:
-            raise InputError("study all needs --out DIR")
+    if args.dpi < 10 or args.dpi > 1200:
+        raise InputError(f"--dpi: found {args.dpi}, expected 10 to 1200")
+    overrides = design_overrides(args)
+    if args.png or args.out:
+        _need_matplotlib()          # before anything is computed
+    if args.name == "all":
+        if not args.out or args.csv or args.png:
+            raise InputError("study all writes with --out DIR (not --csv "
+                             "or --png)")
+        # every study first: a refused option stops before any file
+        done = [_compute(name, args, overrides) for name in STUDIES]
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from contactsep.studies.plots import save_png
-        for name in STUDIES:
-            study = _run_one(name, args)
-            _write_text(out / f"{name}.csv", study.csv_text())
-            save_png(study, out / f"{name}.png")
-            print(f"{name}: {out / name}.csv, {out / name}.png")
+        for study in done:
+            _save(study, out, args.dpi)
+        print("chatter: skipped (45 three-beam simulations, 20 s or more;"
+              " contactsep study chatter --out DIR writes it)")
         return 0
-    elif args.name in STUDIES:
-        study = _run_one(args.name, args)
-    else:
-        raise InputError(f"study {args.name!r}: expected one of "
-                         f"{', '.join(STUDIES)}, chatter or all")
+    study = _compute(args.name, args, overrides)
     sys.stdout.write(study.table_text())
     if args.csv:
-        _write_text(args.csv, study.csv_text())
+        _write_csv(args.csv, study)
     if args.png:
         from contactsep.studies.plots import save_png
-        save_png(study, args.png)
+        save_png(study, args.png, dpi=args.dpi)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        _save(study, out, args.dpi)
     return 0
+
+
+def _failures(summary: dict) -> str:
+    """'1,567 of 10,000 designs failed (1,567 invalid input)'."""
+    from contactsep.model.status import MESSAGES
+    total = summary["n"] + summary["n_failed"]
+    reasons = ", ".join(f"{count:,} {MESSAGES[code].split(':')[0]}"
+                        for code, count in sorted(
+                            summary["n_failed_by_status"].items()))
+    return (f"{summary['n_failed']:,} of {total:,} designs failed "
+            f"({reasons})")
+
+
+def _print_summary(summary: dict, spec) -> None:
+    for key, value in summary.items():
+        if key in ("inputs", "n_failed_by_status"):
+            continue
+        if value is None:
+            value = "-"
+        elif isinstance(value, float):
+            value = f"{value:.6g}"
+        elif isinstance(value, list):
+            value = ", ".join(f"{v:.6g}" for v in value)
+        print(f"{key:>14} = {value}")
+    for line in spec.describe():
+        print(f"{'':>14}   {line}")
 
 
 def run_sweep(args: argparse.Namespace) -> int:
     from contactsep.studies.runner import CsvWriter, ParquetWriter
     from contactsep.studies.runner import run_sweep as run
-    from contactsep.studies.sweep import CHUNK_SIZE, make_spec
+    from contactsep.studies.sweep import (
+        CHUNK_SIZE,
+        make_spec,
+        parse_sample,
+        parse_vary,
+    )
 
-    spec = make_spec(vary=args.vary, sample=args.sample,
-                     samples=args.samples, seed=args.seed,
-                     base=_design_overrides(args), backend=args.backend)
+    vary = [parse_vary(text) for text in args.vary]
+    sample = [parse_sample(text) for text in args.sample]
+    swept = {name for name, _ in vary} | {s[0] for s in sample}
+    # a --design file's value of a swept field gives way to the sweep
+    base = {k: v for k, v in design_overrides(args).items()
+            if not (k in swept and k in fields_from_file(args))}
+    spec = make_spec(vary=vary, sample=sample, samples=args.samples,
+                     seed=args.seed, base=base,
+                     backend=args.backend or "compiled")
     writers = []
+    if args.parquet:
+        writers.append(ParquetWriter(args.parquet, spec))
     if args.csv:
         writers.append(CsvWriter(args.csv, spec))
-    if args.parquet:
-        writers.append(ParquetWriter(args.parquet))
     progress = {"auto": None, "always": True, "never": False}[args.progress]
     summary = run(spec, writers=writers, threshold=args.threshold,
                   chunk_size=args.chunk_size or CHUNK_SIZE,
                   workers=args.workers, scheduler=args.scheduler,
                   progress=progress)
     if args.json:
-        clean = {k: (None if isinstance(v, float) and math.isnan(v) else v)
-                 for k, v in summary.items()}
-        json.dump(clean, sys.stdout, indent=2)
-        sys.stdout.write("\n")
+        output.write_json(sys.stdout, summary)
     else:
-        for key, value in summary.items():
-            print(f"{key:>12} = {value}")
+        _print_summary(summary, spec)
+    if summary["n_failed"]:
+        if not summary["n"]:
+            sys.stdout.flush()
+            raise InputError(f"{_failures(summary)}: every one; nothing "
+                             f"to summarise")
+        warnings.warn(f"{_failures(summary)}; the statistics are over the "
+                      f"other {summary['n']:,}", ContactsepWarning)
     return 0

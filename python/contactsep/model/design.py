@@ -58,6 +58,50 @@ class Design:
     the thesis experiment with the 0.25 in separator (Chapters V and VI).
     A scalar design is checked at once (:class:`DesignError`); in a batch a
     value out of range gives that design status 2 at evaluation instead.
+
+    Fields (unit; default).  Member 1 is the upper contact, 2 the
+    separator, 3 the lower contact; x is measured from each member's
+    first-named end.
+
+    L1, L2, L3 : in
+        Lengths (19, 2.5, 19).
+    b1, b2, b3 : in
+        Widths (2, 0.5, 2).
+    h1, h2, h3 : in
+        Thicknesses (0.125, 0.25, 0.125); h2 is the separator thickness d
+        (``--d`` or ``--h2`` on the command line, ``d_in`` in outputs).
+    gamma1, gamma2, gamma3 : lb/in^3
+        Weight densities (0.100 each; the Appendix G decks use lb/ft^3).
+    E1, E2, E3 : psi
+        Young's moduli (10.0e6 each).
+    end1, end2, end3 : str
+        End conditions: "clamped-free" (also "cantilever"),
+        "clamped-clamped", "clamped-pinned", "pinned-pinned"
+        (clamped-free, clamped-clamped, clamped-free).
+    x1, x2, x3 : in or None
+        Contact points (None: the tip L1, mid-span L2/2, the tip L3).
+    Lc : in or None
+        Separator equivalent length L_c of Table III (None: not used).
+    ys : in
+        Static deflection of the upper contact before release (0.5).
+    e : dimensionless
+        Coefficient of restitution, 0 <= e <= 1 (0.375).
+    n_modes : int, or a tuple (n1, n2, n3)
+        Modes per member (4), at most MAX_MODES.
+    tau : s
+        Window of the lower-contact response from the impact (0.060).
+    gap : in
+        Position of the separator surface seen by the upper contact (0).
+    impact_velocity : str
+        "exact" |dy1/dt(x1, t1)| (default) or "listing" (Appendix G's ACT,
+        without sin).
+    lower_response : str
+        "as-printed" eq. 13/23 with v0/L3 (default) or "impulse" psi/M3.
+    lc_reading : str
+        Reading of Lc: "listing" hybrid (default), "frequencies", "mass".
+    release : str
+        "tip" (default): the cantilever's tip is deflected by ys;
+        "contact": the contact point x1 is.
     """
 
     #: Upper contact length (in).

@@ -1,12 +1,23 @@
 """Figures of the studies (the only module that imports matplotlib; the
-``contactsep[plot]`` extra installs it)."""
+``contactsep[plot]`` extra installs it).
+
+``save_png(study, path, dpi=100)`` draws a study as the thesis drew it: a
+figure 6 in wide (4 in tall; the tables, two panels, 5 in), written to a
+temporary file beside ``path`` and renamed into place when finished.
+"""
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
+from contactsep import output
 from contactsep.errors import InputError
 from contactsep.studies.study import Study
+
+#: Default resolution (dots per inch): a 6 x 4 in figure is 600 x 400.
+DPI = 100
 
 
 def _pyplot():
@@ -20,76 +31,194 @@ def _pyplot():
     return plt
 
 
-def save_png(study: Study, path: str) -> None:
-    """Draw the study as the thesis drew it and write a small PNG."""
+def require_matplotlib() -> None:
+    """Raise the InputError a figure would, before any work is done."""
+    _pyplot()
+
+
+def _fig5(ax, c):
+    for ys in np.unique(c["ys_in"]):
+        rows = c["ys_in"] == ys
+        ax.plot(c["d_in"][rows], c["y3_max_in"][rows],
+                label=f"y_s = {ys:g} in")
+    ax.set_ylim(bottom=0.0)
+    ax.set(xlabel="separator thickness d (in)",
+           ylabel="max lower-contact displacement y3 (in)")
+
+
+def _fig6(ax, c):
+    length = c["L3_in"][c["curve"] == "I"][0]
+    labels = {"I": f"I: L3 = {length:g} in, contact at x3 = r L3",
+              "II": f"II: contact at x3 = {length:g} in, L3 = x3/r"}
+    for curve in ("I", "II"):
+        rows = c["curve"] == curve
+        ax.plot(c["r"][rows], c["y3_max_in"][rows], label=labels[curve])
+    ax.set(xlabel="contact point ratio r = x3/L3", ylabel="max y3 (in)")
+
+
+def _fig7(ax, c):
+    for r in np.unique(c["r"]):
+        rows = c["r"] == r
+        ax.plot(c["t_s"][rows], c["y3_in"][rows], label=f"x/L = {r:g}")
+    ax.set(xlabel="time after impact t (s)", ylabel="y3 (in)")
+
+
+def _fig8(ax, c):
+    ax.semilogx(c["R"], c["y3_max_in"], "o", ms=3, label="eq. 23")
+    ax.semilogx(c["R"], c["law_in"], label="1/(1 + 2R) law")
+    ax.set(xlabel="mass ratio R (eq. 24)", ylabel="max y3 (in)")
+
+
+def _fig23(ax, c):
+    ax.plot(c["d_in"], c["y3_max_in"], "o-", label="with L_c (Table III)")
+    ax.plot(c["d_in"], c["y3_max_uncorrected_in"], "s--",
+            label="without L_c")
+    ax.set_ylim(bottom=0.0)
+    ax.set(xlabel="separator thickness d (in)", ylabel="max y3 (in)")
+
+
+def _convergence(ax, c):
+    ax.loglog(c["N"], c["psi_lb_s"] / c["psi_lb_s"][0], "o-",
+              label="psi / psi(N=1)")
+    ax.loglog(c["N"], c["y3_max_in"] / c["y3_max_in"][0], "s-",
+              label="max y3 / max y3(N=1)")
+    ax.loglog(c["N"], c["v0_in_s"] / c["v0_in_s"][0], "^-",
+              label="v0 / v0(N=1)")
+    ax.set(xlabel="modes N", ylabel="relative to N = 1")
+
+
+#: The tables: x column and label, the value curves (column, label,
+#: style), the value axis label, whether it is logarithmic.
+_TABLES = {
+    "table1": ("mode", "mode number", (
+        ("model_cps", "model (eq. 23 beam)", "o-"),
+        ("printed_theoretical_cps", "printed theory", "s--"),
+        ("experimental_upper_cps", "experiment, upper contact", "^:"),
+        ("experimental_lower_cps", "experiment, lower contact", "v:")),
+        "frequency (cps)", True),
+    "table2": ("d_in", "separator thickness d (in)", (
+        ("model_cps", "model (eq. 23 beam)", "o-"),
+        ("printed_theoretical_cps", "printed theory", "s--"),
+        ("experimental_cps", "experiment", "^:")),
+        "first frequency (cps)", False),
+    "table3": ("d_in", "separator thickness d (in)", (
+        ("printed_Lc_in", "printed L_c", "s--"),
+        ("Lc_formula_in", "sqrt(1.3e6 d/p), printed p", "o-"),
+        ("Lc_model_in", "model separator at the printed p", "^:")),
+        "equivalent length L_c (in)", False),
+}
+
+
+def _table(axes, c, name):
+    x_name, x_label, curves, y_label, log = _TABLES[name]
+    top, bottom = axes
+    x = c[x_name]
+    for column, label, style in curves:
+        top.plot(x, c[column], style, label=label)
+    if log:
+        top.set_yscale("log")
+    top.set(ylabel=y_label)
+    bottom.plot(x, 100 * c["relative_difference"], "o-")
+    bottom.axhline(0.0, color="0.6", lw=0.8)
+    which = "formula" if name == "table3" else "model"
+    bottom.set(xlabel=x_label, ylabel=f"{which} / printed - 1 (%)")
+    if name == "table1":
+        bottom.set_xticks(x)
+
+
+def _chatter(axes, c):
+    top, bottom = axes
+    colours = {"appE": "C0", "newton": "C1", "hertz": "C2"}
+    styles = ("o-", "s--", "^:")
+    for model in dict.fromkeys(c["model"]):
+        for style, n in zip(styles, np.unique(c["N"])):
+            rows = (c["model"] == model) & (c["N"] == n)
+            label = f"{model}, N = {n}"
+            top.plot(c["d_in"][rows], 1e3 * c["circuit_open_s"][rows],
+                     style, color=colours.get(model), ms=3)
+            bottom.plot(c["d_in"][rows], c["max_lower_gap_in"][rows], style,
+                        color=colours.get(model), ms=3, label=label)
+    top.set(ylabel="circuit open (ms)")
+    top.set_ylim(bottom=0.0)
+    bottom.set(xlabel="separator thickness d (in)",
+               ylabel="max lower gap (in)")
+    bottom.set_ylim(bottom=0.0)
+    bottom.legend(fontsize=7, ncol=3, loc="upper right")
+
+
+_ONE_PANEL = {"fig5": _fig5, "fig6": _fig6, "fig7": _fig7, "fig8": _fig8,
+              "fig23": _fig23, "convergence": _convergence}
+
+
+def save_png(study: Study, path, dpi: int = DPI) -> None:
+    """Draw the study as the thesis drew it and write a PNG (module
+    docstring)."""
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.0, 4.0), dpi=80)
-    c = study.columns
     name = study.name
-    if name == "fig5":
-        for ys in np.unique(c["ys_in"]):
-            rows = c["ys_in"] == ys
-            ax.plot(c["d_in"][rows], c["y3_max_in"][rows],
-                    label=f"y_s = {ys:g} in")
-        ax.set(xlabel="separator thickness d (in)",
-               ylabel="max lower-contact displacement y3 (in)")
-    elif name == "fig6":
-        for curve in ("I", "II"):
-            rows = c["curve"] == curve
-            ax.plot(c["r"][rows], c["y3_max_in"][rows], label=f"curve {curve}")
-        ax.set(xlabel="x3/L3", ylabel="max y3 (in)")
-    elif name == "fig7":
-        for r in np.unique(c["r"]):
-            rows = c["r"] == r
-            ax.plot(c["t_s"][rows], c["y3_in"][rows], label=f"x/L = {r:g}")
-        ax.set(xlabel="time after impact t (s)", ylabel="y3 (in)")
-    elif name == "fig8":
-        ax.semilogx(c["R"], c["y3_max_in"], "o", ms=3, label="eq. 23")
-        ax.semilogx(c["R"], c["law_in"], label="1/(1 + 2R) law")
-        ax.set(xlabel="mass ratio R (eq. 24)", ylabel="max y3 (in)")
-    elif name == "fig23":
-        ax.plot(c["d_in"], c["y3_max_in"], "o-", label="with L_c (Table III)")
-        ax.plot(c["d_in"], c["y3_max_uncorrected_in"], "s--",
-                label="without L_c")
-        ax.set(xlabel="separator thickness d (in)", ylabel="max y3 (in)")
-    elif name == "convergence":
-        ax.loglog(c["N"], c["psi_lb_s"] / c["psi_lb_s"][0], "o-",
-                  label="psi / psi(N=1)")
-        ax.loglog(c["N"], c["y3_max_in"] / c["y3_max_in"][0], "s-",
-                  label="max y3 / max y3(N=1)")
-        ax.loglog(c["N"], c["v0_in_s"] / c["v0_in_s"][0], "^-",
-                  label="v0 / v0(N=1)")
-        ax.set(xlabel="modes N", ylabel="relative to N = 1")
-    elif name.startswith("table"):
-        x = np.arange(len(study))
-        ax.plot(x, 100 * c["relative_difference"], "o")
-        ax.axhline(0.0, color="0.6", lw=0.8)
-        ax.set(xlabel="row", ylabel="model / printed - 1 (%)")
+    if name in _ONE_PANEL:
+        fig, ax = plt.subplots(figsize=(6.0, 4.0))
+        _ONE_PANEL[name](ax, study.columns)
+        axes = [ax]
+    elif name in _TABLES or name == "chatter":
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0),
+                                 height_ratios=(2, 1) if name != "chatter"
+                                 else (1, 1))
+        if name == "chatter":
+            _chatter(axes, study.columns)
+        else:
+            _table(axes, study.columns, name)
     else:
-        plt.close(fig)
         raise InputError(f"no figure for the study {name!r}")
-    ax.set_title(study.title, fontsize=9)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8)
-    ax.grid(True, lw=0.3)
+    axes[0].set_title("\n".join(textwrap.wrap(study.title, 64)),
+                      fontsize=9)
+    for ax in axes:
+        if ax.get_legend() is None and ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8)
+        ax.grid(True, lw=0.3)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    try:
+        with output.open_output(path, binary=True) as out:
+            fig.savefig(out, format="png", dpi=dpi)
+    finally:
+        plt.close(fig)
 
 
-def save_chatter_png(result, path) -> None:
-    """Both gaps against time, the open-circuit intervals shaded."""
+def save_chatter_png(result, path, dpi: int = 100) -> None:
+    """The two gaps against time, each on its own axis (the lower one,
+    which decides opening, is small), the open circuit shaded; written
+    to a temporary file beside ``path`` and renamed when finished."""
+    import os
+    import tempfile
+
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7.0, 4.0), dpi=80)
-    ax.plot(result.t, result.gap_upper, lw=0.8, label="upper gap")
-    ax.plot(result.t, result.gap_lower, lw=0.8, label="lower gap")
-    for start, end in result.circuit_open_intervals:
-        ax.axvspan(start, end, color="red", alpha=0.15, lw=0)
-    ax.set(xlabel="time from release (s)", ylabel="gap (in)",
-           title=f"{result.model}, N = {result.n_modes}: circuit open "
-                 f"{result.circuit_open_s * 1e3:.2f} ms (shaded)")
-    ax.legend(fontsize=8)
-    ax.grid(True, lw=0.3)
+    fig, (upper, lower) = plt.subplots(
+        2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
+        gridspec_kw={"height_ratios": (1, 1)})
+    scale = 1e3
+    upper.plot(result.t, result.gap_upper * scale, lw=0.7, color="C0")
+    lower.plot(result.t, result.gap_lower * scale, lw=0.7, color="C1")
+    for ax in (upper, lower):
+        for start, end in result.circuit_open_intervals:
+            ax.axvspan(start, end, color="red", alpha=0.12, lw=0)
+        ax.axhline(result.open_threshold_in * scale, color="0.5", lw=0.6,
+                   ls="--")
+        ax.grid(True, lw=0.3)
+    upper.set(ylabel="upper gap (0.001 in)",
+              title=f"{result.model}, N = {result.n_modes}: circuit open "
+                    f"{result.circuit_open_s * 1e3:.3g} ms (shaded), "
+                    f"{result.n_events} events >= "
+                    f"{result.min_open_s * 1e6:.3g} us")
+    lower.set(xlabel="time from release (s)",
+              ylabel="lower gap (0.001 in)")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, temporary = tempfile.mkstemp(suffix=".png", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as out:
+            fig.savefig(out, format="png")
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+    finally:
+        plt.close(fig)

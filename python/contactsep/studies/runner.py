@@ -12,12 +12,15 @@ import sys
 import tempfile
 import threading
 import time
+import warnings
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
+from contactsep.output import json_text
+from contactsep.studies.study import csv_comments
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     Summary,
@@ -34,38 +37,51 @@ class SweepInterrupted(InputError):
     interrupted = True
 
 
+#: The first comment line of a sweep's CSV and its Parquet metadata.
+TITLE = "contactsep sweep of the general model (eq. 23) on the thesis design"
+#: How to read the columns (a comment line of the CSV).
+COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
+                "lb s, _in_s in/s, _lb_in3 lb/in^3, _psi psi; status 0 = "
+                "ok, 1 no impact, 2 invalid input, 3 overflow "
+                "(contactsep.model.status); failed designs have nan results")
+#: Significant digits of the CSV's numbers: the compiled kernel and its
+#: NumPy twin agree to 1e-12 relative (tests/model), so later digits are
+#: round-off; Parquet keeps every bit.
+CSV_DIGITS = 12
+
+
+def _row_format(columns: dict) -> str:
+    """%-format of one CSV row, from the columns' kinds."""
+    formats = []
+    for values in columns.values():
+        kind = np.asarray(values).dtype.kind
+        formats.append("%d" if kind in "iub" else "%s" if kind in "USO"
+                       else f"%.{CSV_DIGITS}g")
+    return ",".join(formats) + "\n"
+
+
 class CsvWriter:
-    """Streams chunks to a CSV file: '#' lines, a header, the rows."""
+    """Streams chunks to a CSV file: '#' lines (what the sweep is), a
+    header, the rows.  The file is written as the sweep goes, so that an
+    interrupted sweep keeps its finished chunks."""
 
     def __init__(self, path: str, spec: SweepSpec, notes=()):
         self.path = path
         self._handle = open(path, "w", newline="", encoding="ascii")
-        self._handle.write("# contactsep sweep of the general model "
-                           "(eq. 23) on the thesis design\n")
-        for name, values in spec.vary:
-            self._handle.write(f"# vary {name}: {len(values)} values from "
-                               f"{values[0]:.12g} to {values[-1]:.12g}\n")
-        for name, kind, a, b in spec.sample:
-            self._handle.write(f"# sample {name} ~ {kind}({a:.12g}, "
-                               f"{b:.12g}), seed {spec.seed}\n")
-        for key, value in spec.base.items():
-            self._handle.write(f"# fixed {key} = {value}\n")
-        for note in notes:
-            self._handle.write(f"# {note}\n")
+        self._handle.write(csv_comments([TITLE, *spec.describe(),
+                                         COLUMNS_NOTE, *notes]))
         self._writer = csv.writer(self._handle, lineterminator="\n")
-        self._header = False
+        self._line = None
 
     def write(self, columns: dict) -> None:
-        if not self._header:
+        if self._line is None:
             self._writer.writerow(list(columns))
-            self._header = True
+            self._line = _row_format(columns)
         # Python's own %-formatting, row by row: numpy.char.mod is slower
         # (~15 us a row) and swallows a signal raised while it runs, so
         # Ctrl-C and SIGTERM went unheard during a long write
-        line = ",".join("%d" if k == "status" else "%.17g"
-                        for k in columns) + "\n"
         rows = zip(*(np.asarray(v).tolist() for v in columns.values()))
-        self._handle.writelines(line % row for row in rows)
+        self._handle.writelines(self._line % row for row in rows)
         self._handle.flush()
 
     def close(self) -> None:
@@ -73,9 +89,11 @@ class CsvWriter:
 
 
 class ParquetWriter:
-    """Streams chunks to a Parquet file (needs pyarrow)."""
+    """Streams chunks to a Parquet file (needs pyarrow); the file's
+    metadata key ``contactsep`` holds what the CSV's comments say, as
+    JSON (``title``, ``inputs``, ``notes``)."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str, spec: SweepSpec | None = None):
         try:
             import pyarrow  # noqa: F401
             import pyarrow.parquet  # noqa: F401
@@ -83,6 +101,10 @@ class ParquetWriter:
             raise InputError("--parquet needs pyarrow: pip install "
                              "'contactsep[tables]'") from None
         self.path = path
+        self._metadata = {"contactsep": json_text({
+            "title": TITLE, "notes": [COLUMNS_NOTE],
+            "inputs": spec.inputs() if spec is not None else None},
+            indent=None)}
         self._writer = None
 
     def write(self, columns: dict) -> None:
@@ -90,6 +112,7 @@ class ParquetWriter:
         import pyarrow.parquet as pq
         table = pa.table({k: np.ascontiguousarray(v)
                           for k, v in columns.items()})
+        table = table.replace_schema_metadata(self._metadata)
         if self._writer is None:
             self._writer = pq.ParquetWriter(self.path, table.schema)
         self._writer.write_table(table)
@@ -100,14 +123,21 @@ class ParquetWriter:
 
 
 def _progress(total: int, enabled: bool | None):
-    """A tqdm bar on a terminal (stderr), or nothing."""
+    """A tqdm bar on a terminal (stderr), or nothing.  Asked for
+    (``enabled`` True) without tqdm installed: a warning says so."""
     if enabled is None:
         enabled = sys.stderr.isatty()
+        required = False
+    else:
+        required = enabled
     if not enabled:
         return None
     try:
         from tqdm import tqdm
     except ImportError:
+        if required:
+            warnings.warn("no progress bar: it needs tqdm (pip install "
+                          "'contactsep[progress]')", ContactsepWarning)
         return None
     # shown only once the run has taken a second
     return tqdm(total=total, unit="design", unit_scale=True, delay=1.0,
@@ -245,7 +275,9 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
               chunk_size: int = CHUNK_SIZE, workers: int | None = None,
               scheduler=None, progress: bool | None = None) -> dict:
     """Evaluate every design of ``spec`` chunk by chunk, in order; each
-    chunk goes to every writer as it arrives.  Returns the summary.
+    chunk goes to every writer as it arrives.  Returns the summary
+    (:meth:`Summary.as_dict`, ``elapsed_s``, and ``inputs``: what made the
+    sweep, :meth:`SweepSpec.inputs`).
 
     ``workers``: local processes (default: the machine's cores; 1 runs in
     this process); ``scheduler``: a Dask scheduler address (or Client).
@@ -288,5 +320,6 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
             if bar is not None:
                 bar.close()
     result = summary.as_dict()
-    result["seconds"] = time.perf_counter() - start
+    result["elapsed_s"] = time.perf_counter() - start
+    result["inputs"] = spec.inputs()
     return result

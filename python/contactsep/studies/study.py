@@ -8,6 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactsep.errors import InputError
+from contactsep.studies.fields import OUTPUT_NAMES
+
 
 @dataclass(frozen=True)
 class Study:
@@ -39,7 +42,6 @@ class Study:
         try:
             import pandas
         except ImportError:  # pragma: no cover - depends on the install
-            from contactsep.errors import InputError
             raise InputError("to_pandas needs pandas: pip install "
                              "'contactsep[tables]'") from None
         return pandas.DataFrame(self.columns)
@@ -47,9 +49,7 @@ class Study:
     def csv_text(self) -> str:
         """'#' lines (title, notes), a header row with units, the rows."""
         out = io.StringIO()
-        out.write(f"# {self.title}\n")
-        for note in self.notes:
-            out.write(f"# {note}\n")
+        out.write(csv_comments([self.title, *self.notes]))
         writer = csv.writer(out, lineterminator="\n")
         writer.writerow(list(self.columns))
         for row in zip(*self.columns.values()):
@@ -67,6 +67,35 @@ class Study:
         for row in zip(*cells):
             lines.append("  ".join(c.rjust(w) for c, w in zip(row, widths)))
         return "\n".join(lines) + "\n"
+
+
+def check_status(evaluation):
+    """The evaluation, if every design of the study was evaluated; else
+    an InputError (a study's rows are all or nothing)."""
+    if np.any(evaluation.status != 0):
+        raise InputError("a design of the study failed (status "
+                         f"{int(np.max(evaluation.status))}); check the "
+                         "design options")
+    return evaluation
+
+
+def refuse_fixed(study: str, overrides: dict, fixed: dict) -> None:
+    """A study sets some fields itself (``fixed``: field -> why); an
+    override of one is refused with an InputError naming it."""
+    for name, why in fixed.items():
+        if name in overrides:
+            label = f"{OUTPUT_NAMES[name]}/{name}" if name in OUTPUT_NAMES \
+                else name
+            raise InputError(f"study {study} sets {label} itself ({why}); "
+                             f"leave it out")
+
+
+def csv_comments(lines) -> str:
+    """Comment lines for the top of a CSV: each line of each text its own
+    line starting with '# ' (a reader told that '#' starts a comment
+    then never sees a stray line)."""
+    return "".join(f"# {line}\n" for text in lines
+                   for line in str(text).splitlines() or [""])
 
 
 def _format(value, digits: int = 12) -> str:

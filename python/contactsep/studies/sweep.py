@@ -22,7 +22,9 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
-from contactsep.model.design import REAL_COLUMNS
+from contactsep.studies import fields as design_fields
+from contactsep.studies.fields import column_name
+from contactsep.studies.stats import wilson_interval
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
 SAMPLE_BLOCK = 65536
@@ -30,29 +32,19 @@ SAMPLE_BLOCK = 65536
 CHUNK_SIZE = 100_000
 #: Output columns beside the varied fields.
 RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
-_UNITS = {"L": "in", "b": "in", "h": "in", "x": "in", "Lc": "in",
-          "gamma": "lb_in3", "E": "psi", "ys": "in", "e": "", "tau": "s",
-          "gap": "in"}
-_SWEEPABLE = REAL_COLUMNS
 
 
 class SweepError(InputError):
     """A sweep specification the command refuses."""
 
 
-def column_name(field_name: str) -> str:
-    """'h2' -> 'h2_in', 'e' -> 'e', 'gamma2' -> 'gamma2_lb_in3'."""
-    stem = field_name.rstrip("123") if field_name not in ("e", "Lc") \
-        else field_name
-    unit = _UNITS.get(stem, "")
-    return f"{field_name}_{unit}" if unit else field_name
-
-
-def _check_name(name: str) -> str:
-    if name not in _SWEEPABLE:
-        raise SweepError(f"{name}: not a numeric Design field (one of "
-                         f"{', '.join(_SWEEPABLE)})")
-    return name
+def _field(name: str, option: str, allowed: tuple) -> str:
+    field = design_fields.field_name(name, f"{option} {name.strip()}")
+    if field not in allowed:
+        raise SweepError(f"{option} {name.strip()}: {field} cannot be "
+                         f"{'varied' if option == '--vary' else 'sampled'}"
+                         f" (one of {', '.join(allowed)})")
+    return field
 
 
 @dataclass(frozen=True)
@@ -81,34 +73,41 @@ class LinearAxis:
         return np.where(k == self.count - 1, self.stop, values)[()]
 
 
-def parse_vary(text: str) -> tuple[str, np.ndarray]:
-    """'h2=0.1:1.0:19' (START:STOP:COUNT) or 'h2=0.1,0.25,0.5'."""
-    name, _, spec = text.partition("=")
-    name = _check_name(name.strip())
-    try:
-        if ":" in spec:
-            start, stop, count = spec.split(":")
+def parse_vary(text: str) -> tuple[str, object]:
+    """'h2=0.1:1.0:19' (START:STOP:COUNT, numeric fields), 'd=0.1,0.25'
+    (a list) or 'end2=clamped-clamped,pinned-pinned'; the name may be
+    any name of the field (h2, d, d_in).  Returns (field, values)."""
+    name, sep, values_text = text.partition("=")
+    field = _field(name, "--vary", design_fields.VARIABLE)
+    label = f"--vary {name.strip()}"
+    if not sep:
+        raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
+                         f"NAME=V1,V2,...")
+    if ":" in values_text and field in design_fields.SAMPLED:
+        try:
+            start, stop, count = values_text.split(":")
             count = int(count)
             if count < 1:
                 raise ValueError
             values = LinearAxis(float(start), float(stop), count)
-        else:
-            values = np.array([float(v) for v in spec.split(",")])
-    except ValueError:
-        raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
-                         f"NAME=V1,V2,...") from None
-    if len(values) == 0:
-        raise SweepError(f"--vary {text}: no values")
-    return name, values
+        except ValueError:
+            raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT"
+                             f" or NAME=V1,V2,...") from None
+    else:
+        items = [design_fields.parse_value(field, item, label)
+                 for item in values_text.split(",")]
+        values = np.array(items)
+    return field, values
 
 
 _SAMPLE = re.compile(r"^\s*(normal|uniform)\(\s*([^,]+),\s*([^)]+)\)\s*$")
 
 
 def parse_sample(text: str) -> tuple[str, str, float, float]:
-    """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)'."""
+    """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)' (numeric
+    fields, any of their names)."""
     name, _, spec = text.partition("=")
-    name = _check_name(name.strip())
+    field = _field(name, "--sample", design_fields.SAMPLED)
     match = _SAMPLE.match(spec)
     try:
         kind, a, b = match.group(1), float(match.group(2)), \
@@ -119,7 +118,7 @@ def parse_sample(text: str) -> tuple[str, str, float, float]:
     if not (math.isfinite(a) and math.isfinite(b)) or (
             kind == "normal" and b < 0) or (kind == "uniform" and b < a):
         raise SweepError(f"--sample {text}: the parameters are out of range")
-    return name, kind, a, b
+    return field, kind, a, b
 
 
 @dataclass(frozen=True)
@@ -151,6 +150,55 @@ class SweepSpec:
         """Names of the varied and sampled fields (output columns)."""
         return tuple(n for n, _ in self.vary) + tuple(
             s[0] for s in self.sample)
+
+    def inputs(self) -> dict:
+        """Everything that makes the sweep, under output names: seed,
+        samples per grid point, the grids, the distributions and the
+        fixed fields (the rest is the thesis design); JSON-ready."""
+        vary = {}
+        for name, values in self.vary:
+            vary[column_name(name)] = (
+                {"start": values.start, "stop": values.stop,
+                 "count": values.count} if isinstance(values, LinearAxis)
+                else {"values": np.asarray(values).tolist()})
+        sample = {column_name(name): {"distribution": kind,
+                                      **dict(zip(_PARAMETERS[kind],
+                                                 (a, b)))}
+                  for name, kind, a, b in self.sample}
+        return {"seed": self.seed, "samples": self.samples,
+                "designs": self.size, "vary": vary, "sample": sample,
+                "fixed": design_fields.describe(self.base),
+                "backend": self.backend}
+
+    def describe(self) -> list[str]:
+        """The inputs in words, one line each (the CSV's comments)."""
+        lines = [f"designs: {self.size}"]
+        for name, values in self.vary:
+            if isinstance(values, LinearAxis):
+                lines.append(f"vary {column_name(name)}: {len(values)} "
+                             f"values from {values.start:.12g} to "
+                             f"{values.stop:.12g}")
+            else:
+                lines.append(f"vary {column_name(name)}: " + ", ".join(
+                    _text(v) for v in np.asarray(values).tolist()))
+        if self.sample:
+            lines.append(f"samples: {self.samples} per grid point, seed "
+                         f"{self.seed}")
+        for name, kind, a, b in self.sample:
+            p, q = _PARAMETERS[kind]
+            lines.append(f"sample {column_name(name)} ~ {kind}({p} "
+                         f"{a:.12g}, {q} {b:.12g})")
+        for key, value in design_fields.describe(self.base).items():
+            lines.append(f"fixed {key} = {value}")
+        return lines
+
+
+#: Parameter names of each distribution, as the summary records them.
+_PARAMETERS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
+
+
+def _text(value) -> str:
+    return f"{value:.12g}" if isinstance(value, float) else str(value)
 
 
 def _draw(spec: SweepSpec, which: int, first: int, last: int) -> np.ndarray:
@@ -187,7 +235,8 @@ def chunk_inputs(spec: SweepSpec, first: int, last: int) -> dict:
 
 
 def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
-    """Evaluate designs first..last-1; returns the output columns."""
+    """Evaluate designs first..last-1; returns the output columns: the
+    varied and sampled fields (output names), then RESULT_COLUMNS."""
     inputs = chunk_inputs(spec, first, last)
     design = thesis_design(**{**spec.base, **inputs})
     ev = evaluate(design, backend=spec.backend)
@@ -210,22 +259,27 @@ def chunks(size: int, chunk_size: int):
 
 @dataclass
 class Summary:
-    """Running statistics of max y3 over the evaluated designs."""
+    """Running statistics of max y3 over the designs evaluated with
+    status 0; failed designs are counted by status."""
 
     threshold: float | None = None
     n: int = 0
-    failed: int = 0
     total: float = 0.0
     total_sq: float = 0.0
     exceed: int = 0
     low: float = math.inf
     high: float = -math.inf
+    #: status code -> designs that ended with it (0 excluded).
+    failed: dict = field(default_factory=dict)
     _shift: float | None = None
 
     def add(self, columns: dict) -> None:
         y = np.asarray(columns["y3_max_in"])
-        ok = np.asarray(columns["status"]) == 0
-        self.failed += int(np.sum(~ok))
+        status = np.asarray(columns["status"])
+        ok = status == 0
+        codes, counts = np.unique(status[~ok], return_counts=True)
+        for code, count in zip(codes.tolist(), counts.tolist()):
+            self.failed[code] = self.failed.get(code, 0) + count
         y = y[ok]
         if y.size == 0:
             return
@@ -240,26 +294,40 @@ class Summary:
         if self.threshold is not None:
             self.exceed += int(np.sum(y > self.threshold))
 
+    @property
+    def n_failed(self) -> int:
+        return sum(self.failed.values())
+
     def as_dict(self) -> dict:
-        """n, y3_max_mean, y3_max_std (sample), min, max, failed, and
-        p_exceed with a threshold."""
-        mean = self._shift + self.total / self.n if self.n else math.nan
-        var = (self.total_sq - self.total**2 / self.n) / (self.n - 1) \
-            if self.n > 1 else math.nan
-        out = {"n": self.n, "failed": self.failed, "y3_max_mean": mean,
-               "y3_max_std": math.sqrt(max(var, 0.0)) if self.n > 1
-               else math.nan,
-               "y3_max_min": self.low if self.n else math.nan,
-               "y3_max_max": self.high if self.n else math.nan}
+        """n (designs with status 0: the statistics are theirs),
+        n_failed and n_failed_by_status (status code -> count), the
+        mean, sample sd, min and max of max y3 (None where there is
+        nothing to compute them from), and with a threshold p_exceed =
+        P(max y3 > threshold) and its 95 % Wilson interval
+        p_exceed_ci95."""
+        n = self.n
+        mean = self._shift + self.total / n if n else None
+        var = (self.total_sq - self.total**2 / n) / (n - 1) \
+            if n > 1 else None
+        out = {"n": n, "n_failed": self.n_failed,
+               "n_failed_by_status": dict(sorted(self.failed.items())),
+               "y3_max_mean_in": mean,
+               "y3_max_sd_in": math.sqrt(max(var, 0.0))
+               if var is not None else None,
+               "y3_max_min_in": self.low if n else None,
+               "y3_max_max_in": self.high if n else None}
         if self.threshold is not None:
             out["threshold_in"] = self.threshold
-            out["p_exceed"] = self.exceed / self.n if self.n else math.nan
+            out["p_exceed"] = self.exceed / n if n else None
+            out["p_exceed_ci95"] = list(wilson_interval(self.exceed, n)) \
+                if n else None
         return out
 
 
 def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
               backend="compiled") -> SweepSpec:
-    """A SweepSpec from --vary / --sample texts (or parsed tuples)."""
+    """A SweepSpec from --vary / --sample texts (or parsed tuples);
+    ``base`` the fixed fields (Design field -> value)."""
     vary = tuple(parse_vary(v) if isinstance(v, str) else v for v in vary)
     sample = tuple(parse_sample(s) if isinstance(s, str) else s
                    for s in sample)
@@ -270,10 +338,14 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
         raise SweepError("--sample: a field is sampled twice")
     if set(names) & {s[0] for s in sample}:
         raise SweepError("a field cannot be both varied and sampled")
+    base = dict(base or {})
+    fixed = set(base) & (set(names) | {s[0] for s in sample})
+    if fixed:
+        raise SweepError(f"{', '.join(sorted(fixed))}: fixed by a design "
+                         f"option and varied or sampled too")
     if samples is None:
         samples = 1000 if sample else 1
     if samples < 1 or (samples > 1 and not sample):
         raise SweepError("--samples needs --sample (and K >= 1)")
-    base = dict(base or {})
     return SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend)

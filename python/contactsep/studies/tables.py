@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.model import evaluate, thesis_design
-from contactsep.studies.study import Study
+from contactsep.studies.fields import design_lines
+from contactsep.studies.study import Study, check_status, refuse_fixed
 
 #: Table I (cps): theoretical and experimental, upper and lower contact.
 TABLE_I_THEORETICAL = (10.6, 66.5, 187.0, 366.0)
@@ -26,6 +27,11 @@ TABLE_II_EXPERIMENTAL = (2000.0, 4000.0, 5000.0, 6250.0, 11100.0)
 #: Table III: p (rad/s) and L_c (in), from L_c^2 = 1.3e6 d/p.
 TABLE_III_P = (12560.0, 25120.0, 31400.0, 39250.0, 70000.0)
 TABLE_III_LC = (3.60, 3.60, 3.81, 4.07, 4.15)
+#: The fields each table sets itself (field -> why): an override of one
+#: is refused.
+FIXED = {"table1": {"n_modes": "the table's four modes"},
+         "table2": {"h2": "the table's five separators"},
+         "table3": {"h2": "the table's five separators"}}
 
 
 def _relative(model, printed):
@@ -34,9 +40,10 @@ def _relative(model, printed):
 
 def table1(*, backend="compiled", **overrides) -> Study:
     """Table I: the contacts' first four natural frequencies (cps)."""
-    overrides.setdefault("n_modes", 4)
-    ev = evaluate(thesis_design(**overrides), backend=backend)
-    model = ev.p1[:4] / (2 * np.pi)
+    refuse_fixed("table1", overrides, FIXED["table1"])
+    design = thesis_design(n_modes=4, **overrides)
+    ev = check_status(evaluate(design, backend=backend))
+    model = ev.p1 / (2 * np.pi)
     return Study("table1", "Table I: contact natural frequencies", {
         "mode": np.arange(1, 5),
         "printed_theoretical_cps": np.array(TABLE_I_THEORETICAL),
@@ -44,8 +51,8 @@ def table1(*, backend="compiled", **overrides) -> Study:
         "relative_difference": _relative(model, TABLE_I_THEORETICAL),
         "experimental_upper_cps": np.array(TABLE_I_UPPER),
         "experimental_lower_cps": np.array(TABLE_I_LOWER)}, (
-        "model: 19 x 2 x 0.125 in cantilever, E = 10.0e6 psi, "
-        "gamma = 0.100 lb/in^3",
+        "model_cps: the upper contact's frequencies (end1, L1, h1, E1 and "
+        "gamma1 below)", *design_lines(design),
         "known disagreement: the printed theory is 3.2-3.7 % low; it "
         "implies E/gamma = 9.34e7 in, not the 1e8 in that reproduces "
         "Table II"))
@@ -53,17 +60,18 @@ def table1(*, backend="compiled", **overrides) -> Study:
 
 def table2(*, backend="compiled", **overrides) -> Study:
     """Table II: the separator's first natural frequency (cps)."""
+    refuse_fixed("table2", overrides, FIXED["table2"])
     d = np.array(TABLE_II_D)
-    overrides.pop("d", None)
-    ev = evaluate(thesis_design(d=d, **overrides), backend=backend)
+    design = thesis_design(d=d, **overrides)
+    ev = check_status(evaluate(design, backend=backend))
     model = ev.p2[:, 0] / (2 * np.pi)
     return Study("table2", "Table II: separator natural frequency", {
         "d_in": d, "printed_theoretical_cps": np.array(TABLE_II_THEORETICAL),
         "model_cps": model,
         "relative_difference": _relative(model, TABLE_II_THEORETICAL),
         "experimental_cps": np.array(TABLE_II_EXPERIMENTAL)}, (
-        "model: 2.5 x 0.5 x d in clamped-clamped, E = 10.0e6 psi, "
-        "gamma = 0.100 lb/in^3 (the printed theory to 0.22 %)",
+        "model_cps: the separator's first frequency (the thesis rig: the "
+        "printed theory to 0.22 %)", *design_lines(design),
         "the experiment is 2-2.6 times lower: support compliance, shear "
         "and rotatory inertia (Chapter VI)"))
 
@@ -75,11 +83,11 @@ def table3(*, backend="compiled", **overrides) -> Study:
     printed p; ``Lc_model_in`` the length at which the model's
     clamped-clamped separator has the printed p (the same idea without
     the formula's rounded constant, which is 2.4 % off)."""
+    refuse_fixed("table3", overrides, FIXED["table3"])
     d = np.array(TABLE_II_D)
     p = np.array(TABLE_III_P)
-    overrides.pop("d", None)
     design = thesis_design(d=d, **overrides)
-    ev = evaluate(design, backend=backend)
+    ev = check_status(evaluate(design, backend=backend))
     formula = np.sqrt(1.3e6 * d / p)
     model = float(design.L2) * np.sqrt(ev.p2[:, 0] / p)
     return Study("table3", "Table III: equivalent length of the separators",
@@ -88,6 +96,8 @@ def table3(*, backend="compiled", **overrides) -> Study:
                   "Lc_formula_in": formula,
                   "relative_difference": _relative(formula, TABLE_III_LC),
                   "Lc_model_in": model}, (
-                     "Lc_formula_in = sqrt(1.3e6 d/p) with the printed p",
+                     "Lc_formula_in = sqrt(1.3e6 d/p) with the printed p; "
+                     "Lc_model_in from the separator below",
+                     *design_lines(design),
                      "known disagreement: the d = 0.750 row gives 3.73 in, "
                      "printed 4.15 (what p = 6.28 x 9000 would give)"))

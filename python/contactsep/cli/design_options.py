@@ -1,0 +1,161 @@
+"""The design options every command that takes a design shares (model,
+sweep, study, chatter): one option per field of
+:class:`contactsep.Design`, ``--set FIELD=VALUE`` and ``--design FILE``.
+
+* ``add_design_options(parser)`` adds them, grouped by member, each with
+  its unit and default in the help.  The separator's thickness is
+  ``--d`` or ``--h2`` (the Design's field), the coefficient of
+  restitution ``--e`` or ``--restitution``.
+* ``design_overrides(args) -> dict`` returns the fields the user gave
+  (Design field -> value; ``thesis_design(**overrides)`` makes the
+  design), checked by building that design; an error names the option
+  as typed (``--d: found -0.1, expected a finite number > 0``).
+
+Precedence: ``--design FILE`` (a JSON object of fields, or the output of
+``contactsep model --json`` whose ``design`` it reads) is the starting
+design; the command line overrides it, and so do a study's own axes and
+a sweep's --vary and --sample (``fields_from_file(args)`` names the
+fields only the file gave).  A field given twice on the command line is
+refused.  Values are read by
+:func:`contactsep.studies.fields.parse_value`, the one place that reads
+a field from text.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+
+from contactsep.errors import InputError
+from contactsep.studies import fields as F
+
+#: Where the command line's design values are kept: (field or name,
+#: option as typed, text), in command-line order.
+_GIVEN = "design_given"
+#: Where design_overrides notes the fields only the --design file gave.
+_FROM_FILE = "design_from_file"
+
+#: Option spellings of the fields whose option is not ``--FIELD``.
+_SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
+              "n_modes": ("--n-modes",),
+              "impact_velocity": ("--impact-velocity",),
+              "lower_response": ("--lower-response",),
+              "lc_reading": ("--lc-reading",), "release": ("--release",)}
+
+class _Given(argparse.Action):
+    """Keeps the text and the option as typed; design_overrides reads
+    them (so that every error is one line naming the option)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = list(getattr(namespace, _GIVEN, None) or [])
+        given.append((self.const, option_string, values))
+        setattr(namespace, _GIVEN, given)
+
+
+def _help(field: str) -> str:
+    """'upper contact length (in; default 19)'."""
+    from contactsep.model import Design
+    value = {f.name: f.default for f in dataclasses.fields(Design)}[field]
+    if value is None:
+        value = F.OPTIONAL[field]
+    elif isinstance(value, float):
+        value = f"{value:.12g}"
+    details = [F.unit(field)] if F.unit(field) else []
+    details.append(f"default {value}")
+    return f"{F.FIELDS[field][2]} ({'; '.join(details)})"
+
+
+def add_design_options(parser: argparse.ArgumentParser) -> None:
+    """One option per Design field, and --set and --design (module
+    docstring); design_overrides(args) reads them."""
+    parser.set_defaults(**{_GIVEN: None})
+    for title, names in F.GROUPS:
+        group = parser.add_argument_group(f"design: {title}")
+        for field in names:
+            options = _SPELLINGS.get(field, (f"--{field}",))
+            unit = F.unit(field)
+            kwargs = {}
+            if field in F.CHOICES:
+                kwargs["metavar"] = "{" + ",".join(F.CHOICES[field]) + "}"
+            else:
+                kwargs["metavar"] = unit.upper() if unit else \
+                    ("N" if field == "n_modes" else field.upper())
+            group.add_argument(*options, dest=_GIVEN, action=_Given,
+                               const=field, default=argparse.SUPPRESS,
+                               help=_help(field), **kwargs)
+    group = parser.add_argument_group("design: other ways to give it")
+    group.add_argument("--set", dest=_GIVEN, action=_Given, const=None,
+                       default=argparse.SUPPRESS, metavar="FIELD=VALUE",
+                       help="any design field by name (repeatable): "
+                            "--set h2=0.3 --set end2=pinned-pinned")
+    group.add_argument("--design", metavar="FILE",
+                       help="a JSON object of design fields (names as in "
+                            "--set, or output names such as d_in), or the "
+                            "output of `contactsep model --json`; the "
+                            "command line overrides it")
+
+
+def design_overrides(args: argparse.Namespace) -> dict:
+    """The design fields the user gave (Design field -> value), checked
+    by making the design; errors name the option as typed."""
+    values, labels = {}, {}
+    path = getattr(args, "design", None)
+    if path:
+        for key, value in _read_design_file(path).items():
+            label = f"{path}: {key}"
+            field = F.field_name(key, label)
+            values[field] = F.parse_value(field, value, label)
+            labels[field] = label
+    typed = {}
+    for field, option, text in getattr(args, _GIVEN, None) or ():
+        if field is None:               # --set NAME=VALUE
+            name, sep, text = text.partition("=")
+            option = f"--set {name.strip()}"
+            if not sep:
+                raise InputError(f"--set {name}: expected FIELD=VALUE")
+            field = F.field_name(name, option)
+        if field in typed:
+            raise InputError(f"{option}: the {F.FIELDS[field][2]} is "
+                             f"already given by {typed[field]}")
+        typed[field] = option
+        values[field] = F.parse_value(field, text, option)
+        labels[field] = option
+    _check(values, labels)
+    setattr(args, _FROM_FILE, set(values) - set(typed))
+    return values
+
+
+def fields_from_file(args: argparse.Namespace) -> set:
+    """The fields of design_overrides(args) that only --design gave: a
+    study's own axes and a sweep's varied fields take their place."""
+    return set(getattr(args, _FROM_FILE, ()))
+
+
+def _read_design_file(path: str) -> dict:
+    try:
+        with open(path, encoding="utf-8") as handle:
+            data = json.load(handle)
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise InputError(f"--design {path}: not a JSON file "
+                         f"({error})") from None
+    if isinstance(data, dict) and isinstance(data.get("design"), dict):
+        data = data["design"]
+    if not isinstance(data, dict):
+        raise InputError(f"--design {path}: expected a JSON object of "
+                         f"design fields")
+    return data
+
+
+def _check(values: dict, labels: dict) -> None:
+    """Make the design once: its own checks, reported under the name
+    the user gave the field."""
+    from contactsep.model import thesis_design
+    try:
+        thesis_design(**values)
+    except InputError as error:
+        message = str(error)
+        field, sep, rest = message.partition(":")
+        if sep and field in labels:
+            message = f"{labels[field]}:{rest}"
+        raise InputError(message) from None

@@ -1,0 +1,220 @@
+"""The Design's fields as a designer names them: units, other names,
+output column names, and values read from text.
+
+One convention for every output (docs/studies.md, "Names and units"):
+a key or column is the quantity's snake_case name followed by its unit,
+``_in``, ``_s``, ``_lb``, ``_lb_s``, ``_in_s``, ``_psi``, ``_lb_in3``,
+``_rad_s``, ``_cps``, ``_lb_s2_in`` (mass); dimensionless names are bare
+(``e``, ``R``, ``n_modes``, ``status``).  The separator's thickness is
+``d`` in every output (``d_in``), as in the thesis; ``--d`` and
+``--h2`` (the Design's field) are both accepted on input.
+
+Everything the command line and the sweeps read about a field is
+checked here, once: :func:`parse_value` turns a text into a field's
+value or raises an :class:`~contactsep.errors.InputError` naming what
+the user typed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from contactsep import beams
+from contactsep.errors import InputError
+from contactsep.model.design import (
+    IMPACT_VELOCITIES,
+    LC_READINGS,
+    LOWER_RESPONSES,
+    REAL_COLUMNS,
+    RELEASES,
+)
+
+#: field -> (unit suffix of its column, unit as printed, meaning).
+FIELDS: dict[str, tuple[str, str, str]] = {}
+_MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
+for _m, _member in _MEMBERS.items():
+    FIELDS.update({
+        f"L{_m}": ("in", "in", f"{_member} length"),
+        f"b{_m}": ("in", "in", f"{_member} width"),
+        f"h{_m}": ("in", "in", f"{_member} thickness"
+                   + (" d" if _m == "2" else "")),
+        f"gamma{_m}": ("lb_in3", "lb/in^3", f"{_member} weight density"),
+        f"E{_m}": ("psi", "psi", f"{_member} Young's modulus"),
+        f"end{_m}": ("", "", f"{_member} end conditions (x = 0 first)"),
+    })
+FIELDS.update({
+    "x1": ("in", "in", "contact point on the upper contact, from x = 0"),
+    "x2": ("in", "in", "contact point on the separator, from x = 0"),
+    "x3": ("in", "in", "contact point on the lower contact, from x = 0"),
+    "Lc": ("in", "in", "separator equivalent length L_c (Table III)"),
+    "ys": ("in", "in", "static deflection of the upper contact before "
+                       "release"),
+    "e": ("", "", "coefficient of restitution, 0 <= e <= 1"),
+    "n_modes": ("", "", "modes per member: N, or N1,N2,N3"),
+    "tau": ("s", "s", "window of the lower-contact response, from the "
+                      "impact"),
+    "gap": ("in", "in", "position of the separator surface seen by the "
+                        "upper contact"),
+    "impact_velocity": ("", "", "exact: |dy1/dt| at t1; listing: "
+                                "Appendix G's ACT (no sin)"),
+    "lower_response": ("", "", "as-printed: eq. 13/23 with v0/L3; "
+                               "impulse: psi/M3 (eq. 19)"),
+    "lc_reading": ("", "", "reading of L_c: listing (hybrid), "
+                           "frequencies, or mass"),
+    "release": ("", "", "tip: the cantilever's tip is deflected; "
+                        "contact: the contact point x1"),
+})
+
+#: Other names accepted for a field wherever a field is named on input.
+ALIASES = {"d": "h2", "restitution": "e"}
+#: The name a field has in outputs, where it is not the field's own.
+OUTPUT_NAMES = {"h2": "d"}
+#: Fields whose value is one of a few words.
+CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
+           "end3": beams.END_CONDITIONS,
+           "impact_velocity": IMPACT_VELOCITIES,
+           "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
+           "release": RELEASES}
+#: Fields that may be None, and what None means.
+OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
+            "x3": "its tip (L3)", "Lc": "none"}
+#: Fields a sweep may vary (--vary) and sample (--sample).
+VARIABLE = REAL_COLUMNS + ("end1", "end2", "end3", "n_modes")
+SAMPLED = REAL_COLUMNS
+
+
+def column_name(field: str) -> str:
+    """The field's key in every output: 'h2' -> 'd_in', 'e' -> 'e',
+    'gamma2' -> 'gamma2_lb_in3'."""
+    suffix = FIELDS[field][0]
+    name = OUTPUT_NAMES.get(field, field)
+    return f"{name}_{suffix}" if suffix else name
+
+
+_BY_COLUMN = {column_name(f): f for f in FIELDS}
+
+
+def field_name(name: str, label: str | None = None) -> str:
+    """The Design field a name stands for: the field itself, an alias
+    ('d', 'restitution') or an output column name ('d_in').  ``label``
+    (default: the name) is how an error names it."""
+    name = name.strip()
+    field = name if name in FIELDS else ALIASES.get(name) or \
+        _BY_COLUMN.get(name)
+    if field is None:
+        raise InputError(f"{label or name}: not a design field (one of "
+                         f"{', '.join(FIELDS)}; also d, restitution)")
+    return field
+
+
+def unit(field: str) -> str:
+    """The unit as printed ('lb/in^3'); '' for dimensionless."""
+    return FIELDS[field][1]
+
+
+def parse_value(field: str, text, label: str):
+    """A field's value from ``text`` (a str, or a number or list from a
+    JSON file); ``label`` names it in errors ('--d', 'design.json: d_in').
+
+    Real fields take a number (any float; the Design checks its range;
+    x1, x2, x3 and Lc also None, their default),
+    end conditions and the options one of their words, ``n_modes`` an
+    integer >= 1 or three of them ('4,16,4').
+    """
+    if field in CHOICES:
+        allowed = CHOICES[field]
+        word = text.strip() if isinstance(text, str) else text
+        if field.startswith("end"):
+            word = beams.ALIASES.get(word, word)
+        if word not in allowed:
+            raise InputError(f"{label}: found {text!r}, expected one of "
+                             f"{', '.join(allowed)}")
+        return word
+    if field == "n_modes":
+        return _modes(text, label)
+    if text is None and field in OPTIONAL:
+        return None
+    if isinstance(text, bool) or not isinstance(text, (str, int, float)):
+        raise InputError(f"{label}: found {text!r}, expected a number "
+                         f"({unit(field) or 'dimensionless'})")
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{label}: found {text!r}, expected a number "
+                         f"({unit(field) or 'dimensionless'})") from None
+    return value
+
+
+def _modes(text, label: str):
+    parts = text.split(",") if isinstance(text, str) else (
+        list(text) if isinstance(text, (list, tuple)) else [text])
+    counts = []
+    for part in parts:
+        try:
+            if isinstance(part, bool):
+                raise ValueError
+            number = float(part)
+            count = int(number)
+            if count != number or not math.isfinite(number):
+                raise ValueError
+        except (TypeError, ValueError, OverflowError):
+            count = None
+        if count is None or count < 1 or len(parts) not in (1, 3):
+            raise InputError(f"{label}: found {text!r}, expected an "
+                             f"integer >= 1, or three of them (N1,N2,N3)")
+        counts.append(count)
+    return counts[0] if len(counts) == 1 else tuple(counts)
+
+
+def describe(design_fields: dict) -> dict:
+    """Fields as an output shows them: column names, plain values."""
+    out = {}
+    for field, value in design_fields.items():
+        if isinstance(value, tuple):
+            value = list(value)
+        out[column_name(field)] = value
+    return out
+
+
+#: The fields by member, as help and notes group them.
+GROUPS = (("upper contact (member 1)", ("L1", "b1", "h1", "gamma1", "E1",
+                                        "end1", "x1", "ys")),
+          ("separator (member 2)", ("L2", "b2", "h2", "gamma2", "E2",
+                                    "end2", "x2", "Lc")),
+          ("lower contact (member 3)", ("L3", "b3", "h3", "gamma3", "E3",
+                                        "end3", "x3")),
+          ("impact and model", ("e", "n_modes", "tau", "gap",
+                                "impact_velocity", "lower_response",
+                                "lc_reading", "release")))
+
+
+def _value_text(design, field: str, per_row) -> str:
+    value = getattr(design, field)
+    if field in per_row:
+        return "per row"
+    if value is None:
+        return OPTIONAL[field]
+    if isinstance(value, tuple):
+        return ",".join(str(v) for v in value)
+    values = np.unique(np.asarray(value))
+    if values.size > 1:
+        return "per row"
+    value = values.item()
+    text = f"{value:.12g}" if isinstance(value, float) else str(value)
+    return f"{text} {unit(field)}".rstrip()
+
+
+def design_lines(design, per_row=()) -> list[str]:
+    """The design a study or output was computed for, in four lines
+    (upper contact, separator, lower contact, impact and model), each
+    field under its output name with its unit; a field that varies
+    across the batch, or is named in ``per_row``, reads 'per row' (the
+    study's columns and notes give it)."""
+    lines = []
+    for title, names in GROUPS:
+        parts = [f"{OUTPUT_NAMES.get(name, name)} = "
+                 f"{_value_text(design, name, per_row)}" for name in names]
+        lines.append(f"{title}: " + ", ".join(parts))
+    return lines

@@ -1,0 +1,32 @@
+"""Statistics the sweeps report: the Wilson score interval of a
+proportion (the sweeps' p_exceed_ci95; the chatter sweeps' p_open_ci95).
+"""
+
+from __future__ import annotations
+
+import math
+
+#: The standard normal's 97.5 % quantile: a two-sided 95 % interval.
+Z95 = 1.959963984540054
+
+
+def wilson_interval(successes: int, n: int, z: float = Z95
+                    ) -> tuple[float, float]:
+    """Wilson's score interval (Wilson 1927) for a proportion seen as
+    ``successes`` out of ``n`` trials, at the two-sided level of the
+    normal quantile ``z`` (default 95 %).
+
+    Unlike the normal approximation p +- z sqrt(p(1-p)/n) it stays
+    inside [0, 1] and is not empty at p = 0 or 1: with no design over
+    the threshold in n, the interval is [0, z^2/(n + z^2)].
+    """
+    if n < 1 or not 0 <= successes <= n:
+        raise ValueError(f"wilson_interval: need 0 <= successes <= n and "
+                         f"n >= 1, found {successes} of {n}")
+    z2 = z * z
+    centre = (successes + z2 / 2) / (n + z2)
+    half = z / (n + z2) * math.sqrt(successes * (n - successes) / n
+                                    + z2 / 4)
+    low = 0.0 if successes == 0 else max(0.0, centre - half)
+    high = 1.0 if successes == n else min(1.0, centre + half)
+    return low, high
