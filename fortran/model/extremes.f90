@@ -18,8 +18,8 @@
 !> read from the bits of floor(p_j tau/pi) (a three-double pi).
 !>
 !> Memory: a design with more than `block_cell_budget` live cell-modes in
-!> a block is searched again on its own, its window in 2^k time-ordered
-!> segments (k raised while a segment needs more than `cell_budget`).
+!> a block is searched again on its own, its window in time-ordered
+!> segments (one needing more than `cell_budget` halved again).
 module model_extremes
   use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
@@ -39,7 +39,7 @@ module model_extremes
   integer, parameter, public :: block_size = 32
   !> Deepest level (cells tau/2^61 wide).
   integer, parameter :: max_depth = 60
-  !> Most doublings of the segments of a design searched alone.
+  !> Deepest segment of a design searched alone (tau/2^24 wide).
   integer, parameter :: max_segment_levels = 24
   real(wp), parameter :: split = 134217729.0_wp
   real(wp), parameter :: pi_parts(3) = [3.141592653589793116_wp, &
@@ -272,62 +272,79 @@ contains
     ws%cells = kept
   end subroutine count_cells
 
-  !> A deferred design searched alone: its window in 2^k time-ordered
-  !> segments, k raised (and the search begun again) while a segment needs
-  !> more than cell_budget live cell-modes.
+  !> A deferred design searched alone, a segment of its window at a time
+  !> in time order: a segment that needs more than cell_budget live
+  !> cell-modes is searched again as its two halves (a stack of pending
+  !> segments: level and index, the left half on top).
   pure subroutine search_alone(ws, slot)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slot
-    integer :: k_seg, segment, level, nm
-    real(wp), allocatable :: a(:), b(:), t(:), ch(:), sh(:)
+    integer :: seg_level(max_segment_levels + 2)
+    integer :: seg_index(max_segment_levels + 2)
+    integer :: depth, top, index, level, nm
+    real(wp), allocatable :: a(:), b(:), t(:), ch(:), sh(:), hc(:), hs(:)
     real(wp) :: centre, step, turn
 
     ! the slot becomes the first, alone in the block
     if (slot /= 1) call move_slot(ws, slot, 1)
     nm = size(ws%p, 2)
-    allocate(a(nm), b(nm), t(nm), ch(nm), sh(nm))
+    allocate(a(nm), b(nm), t(nm), ch(nm), sh(nm), hc(nm), hs(nm))
     ws%deferred(1) = .false.
-    do k_seg = 0, max_segment_levels
-      ws%overflow = .false.
-      do segment = 0, 2**k_seg - 1
-        ! walk from the root to the segment, left or right by its bits
-        a = ws%c(1, :) * ws%sin0(1, :)
-        b = ws%c(1, :) * ws%cos0(1, :)
-        ch = ws%cos0(1, :)
-        sh = ws%sin0(1, :)
-        centre = 0.5_wp * ws%tau(1)
-        do level = 1, k_seg
-          call halve(ch, sh, iand(turns(ws%quadrant(1, :), level), &
-              3_int64), ch, sh)
-          turn = merge(1.0_wp, -1.0_wp, btest(segment, k_seg - level))
-          step = ws%tau(1) * 0.5_wp**(level + 1)
-          t = a * ch + turn * b * sh
-          b = b * ch - turn * a * sh
-          a = t
-          centre = centre + turn * step
-        end do
-        call reserve_cells(ws, 1, nm)
-        ws%cells = 1
-        ws%first(1) = 1
-        ws%cells_of(1) = 1
-        ws%slot(1) = 1
-        ws%centre(1) = centre
-        ws%a(1, :) = a
-        ws%b(1, :) = b
-        ws%alive(1, :) = .true.
-        ws%chain_c(1, :) = ch
-        ws%chain_s(1, :) = sh
-        do level = k_seg, max_depth
-          call count_cells(ws, 1, cell_budget, .false.)
-          if (ws%cells == 0 .or. ws%gave_up(1) .or. ws%overflow) exit
-          call search_level(ws, 1, level)
-        end do
-        if (ws%cells > 0 .and. .not. ws%overflow) ws%gave_up(1) = .true.
-        if (ws%gave_up(1) .or. ws%overflow) exit
+    depth = 1
+    seg_level(1) = 0
+    seg_index(1) = 0
+    do while (depth > 0 .and. .not. ws%gave_up(1))
+      top = seg_level(depth)
+      index = seg_index(depth)
+      depth = depth - 1
+      ! walk from the root to the segment, left or right by its bits
+      a = ws%c(1, :) * ws%sin0(1, :)
+      b = ws%c(1, :) * ws%cos0(1, :)
+      ch = ws%cos0(1, :)
+      sh = ws%sin0(1, :)
+      centre = 0.5_wp * ws%tau(1)
+      do level = 1, top
+        call halve(ch, sh, iand(turns(ws%quadrant(1, :), level), 3_int64), &
+            hc, hs)
+        ch = hc
+        sh = hs
+        turn = merge(1.0_wp, -1.0_wp, btest(index, top - level))
+        step = ws%tau(1) * 0.5_wp**(level + 1)
+        t = a * ch + turn * b * sh
+        b = b * ch - turn * a * sh
+        a = t
+        centre = centre + turn * step
       end do
-      if (ws%gave_up(1) .or. .not. ws%overflow) exit
+      call reserve_cells(ws, 1, nm)
+      ws%cells = 1
+      ws%first(1) = 1
+      ws%cells_of(1) = 1
+      ws%slot(1) = 1
+      ws%centre(1) = centre
+      ws%a(1, :) = a
+      ws%b(1, :) = b
+      ws%alive(1, :) = .true.
+      ws%chain_c(1, :) = ch
+      ws%chain_s(1, :) = sh
+      ws%overflow = .false.
+      do level = top, max_depth
+        call count_cells(ws, 1, cell_budget, .false.)
+        if (ws%cells == 0 .or. ws%gave_up(1) .or. ws%overflow) exit
+        call search_level(ws, 1, level)
+      end do
+      if (ws%overflow) then
+        if (top == max_segment_levels) then
+          ws%gave_up(1) = .true.
+        else
+          seg_level(depth + 1:depth + 2) = top + 1
+          seg_index(depth + 1) = 2 * index + 1
+          seg_index(depth + 2) = 2 * index
+          depth = depth + 2
+        end if
+      else if (ws%cells > 0) then
+        ws%gave_up(1) = .true.
+      end if
     end do
-    if (ws%overflow) ws%gave_up(1) = .true.
     if (slot /= 1) call move_slot(ws, 1, slot)
   end subroutine search_alone
 

@@ -266,3 +266,32 @@ def test_the_twin_uses_the_kernels_constants():
         base, _, power = value.partition("**")
         number = float(base) ** int(power) if power else float(base)
         assert number == getattr(twin_extremes, name.upper()), name
+
+
+def test_the_twins_segments_find_the_same_extremes(monkeypatch):
+    """Budgets small enough that designs are deferred and their windows
+    searched in halves, and halves of halves: the twin's stack of pending
+    segments still finds the reference's extremes."""
+    from contactsep.model import twin_extremes
+    monkeypatch.setattr(twin_extremes, "BLOCK_CELL_BUDGET", 40)
+    monkeypatch.setattr(twin_extremes, "CELL_BUDGET", 120)
+    calls = []
+    search = twin_extremes._search_segment
+
+    def spy(s, designs, levels, indices, budget):
+        calls.append(int(np.max(levels, initial=0)))
+        return search(s, designs, levels, indices, budget)
+
+    monkeypatch.setattr(twin_extremes, "_search_segment", spy)
+    design = random_cases(6, seed=4, cap=2e6).replace(
+        tau=0.3, n_modes=np.array([3, 5, 8, 8, 12, 4]))
+    check_against_reference(design, backends=("numpy",))
+    assert max(calls) >= 3
+
+
+@pytest.mark.slow
+def test_a_ten_thousand_second_window_against_the_reference():
+    """The compiled kernel on 1.6e6 periods of the fastest mode (its
+    window searched in segments) against the reference's 2e8-point grid
+    (the twin would take minutes)."""
+    check_against_reference(thesis_design(tau=1e4), backends=("compiled",))

@@ -26,7 +26,9 @@ minimum share the cells.  The search never stops on a level count with an
 unrefined answer: it ends when no cell is left, or gives up (UNRESOLVED)
 when its work budget runs out.  A design needing more than
 BLOCK_CELL_BUDGET live cell-modes is searched again (deferred), its
-window in 2^k time-ordered segments.  Every choice, constant and budget is
+window in time-ordered segments (a segment needing more than CELL_BUDGET
+halved again; the deferred designs' pending segments are Python lists,
+one per design, popped a round at a time for all of them).  Every choice, constant and budget is
 the compiled kernel's, so that both give the same statuses.
 
 Phases are exact: p_j tau/2 is split into hi + lo (Dekker's product), the
@@ -60,8 +62,8 @@ WORK_BUDGET = 2**31
 #: segment of a design searched alone (memory: 48 bytes each).
 BLOCK_CELL_BUDGET = 2**14
 CELL_BUDGET = 2**18
-#: Deepest level (the cells are then tau / 2^61 wide), and most doublings
-#: of the number of segments.
+#: Deepest level (the cells are then tau / 2^61 wide), and deepest segment
+#: of a design searched alone.
 MAX_DEPTH = 60
 MAX_SEGMENT_LEVELS = 24
 #: Designs searched together (bounds the twin's memory).
@@ -232,28 +234,35 @@ def _extremes(c, p, tau):
         s.best.offer(designs, np.full(m, side), tau.copy(),
                      sign * s.ends[:, 2])
     # every design at once, each with at most BLOCK_CELL_BUDGET live
-    # cell-modes; a design that needs more is searched again (deferred),
-    # its window in 2^k time-ordered segments, k raised (and the search
-    # begun again) while a segment needs more than CELL_BUDGET
+    # cell-modes; a design that needs more is searched again (deferred), a
+    # segment of its window at a time in time order, a segment needing more
+    # than CELL_BUDGET searched again as its two halves
     designs = np.flatnonzero((s.scale > 0.0) & ~s.gave_up)
     deferred = _search_segment(s, designs, np.zeros(designs.size, int),
                                np.zeros(designs.size, int),
                                BLOCK_CELL_BUDGET)
-    running = np.zeros(m, dtype=bool)
-    running[designs[deferred]] = True
-    running &= ~s.gave_up
-    k_seg = np.zeros(m, dtype=np.int64)
-    segment = np.zeros(m, dtype=np.int64)
-    while np.any(running):
-        designs = np.flatnonzero(running)
-        overflow = _search_segment(s, designs, k_seg[designs],
-                                   segment[designs], CELL_BUDGET)
-        k_seg[designs] += overflow
-        segment[designs] = np.where(overflow, 0, segment[designs] + 1)
-        finished = segment[designs] == 2**k_seg[designs]
-        too_fine = k_seg[designs] > MAX_SEGMENT_LEVELS
-        s.gave_up[designs[too_fine]] = True
-        running[designs[finished | too_fine | s.gave_up[designs]]] = False
+    # pending segments (level, index) per deferred design, the next last
+    stacks = {int(d): [(0, 0)] for d in designs[deferred]}
+    while True:
+        active = [d for d, stack in stacks.items()
+                  if stack and not s.gave_up[d]]
+        if not active:
+            break
+        designs = np.array(active)
+        top = [stacks[d].pop() for d in active]
+        levels = np.array([t[0] for t in top])
+        indices = np.array([t[1] for t in top])
+        overflow = _search_segment(s, designs, levels, indices,
+                                   CELL_BUDGET)
+        for d, level, index, over in zip(active, levels, indices,
+                                         overflow):
+            if not over:
+                continue
+            if level == MAX_SEGMENT_LEVELS:
+                s.gave_up[d] = True
+            else:
+                stacks[d] += [(level + 1, 2 * index + 1),
+                              (level + 1, 2 * index)]
     first, tied = s.best.earliest(s.p_max)
     y_max, y_min = s.best.value[:, 0], -s.best.value[:, 1]
     for value in (y_max, y_min, first[:, 0], first[:, 1]):
