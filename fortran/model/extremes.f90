@@ -1,6 +1,6 @@
 !> Extremes of the lower-contact response y3(t) = sum_j c_j sin(p_j t) over
-!> 0 <= t <= tau, true to 1e-12 of S = sum |c_j| (docs/model.md,
-!> "Extremes"; python/contactsep/model/twin_extremes.py is the NumPy twin).
+!> 0 <= t <= tau, true to 1e-12 of S = sum |c_j| (docs/model.md, "The
+!> extremes of y3"; python/contactsep/model/twin_extremes.py is the NumPy twin).
 !>
 !> Branch and bound over a list of cells, for a block of designs at once.
 !> Every design's window is halved level by level; a live cell carries

@@ -1,7 +1,7 @@
 """Extremes of y3(t) = sum_j c_j sin(p_j t) over 0 <= t <= tau: the NumPy
 twin of fortran/model/extremes.f90, vectorised over designs and cells.
 
-Branch and bound over a list of cells (docs/model.md, "Extremes").  The
+Branch and bound over a list of cells (docs/model.md, "The extremes of y3").  The
 window is halved level by level; every live cell carries each mode's
 a_j = c_j sin(p_j m) and b_j = c_j cos(p_j m) at its centre m, rotated
 from its parent's by the exact half-angle of the level (no trigonometric
@@ -28,8 +28,9 @@ when its work budget runs out.  A design needing more than
 BLOCK_CELL_BUDGET live cell-modes is searched again (deferred), its
 window in time-ordered segments (a segment needing more than CELL_BUDGET
 halved again; the deferred designs' pending segments are Python lists,
-one per design, popped a round at a time for all of them).  Every choice, constant and budget is
-the compiled kernel's, so that both give the same statuses.
+one per design, popped a round at a time for all of them).  Every
+choice, constant and budget is the compiled kernel's, so that both give
+the same statuses.
 
 Phases are exact: p_j tau/2 is split into hi + lo (Dekker's product), the
 root centre's sin and cos are sin(hi) + lo cos(hi) and cos(hi) - lo
