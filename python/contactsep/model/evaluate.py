@@ -10,7 +10,7 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.model import status as status_codes
-from contactsep.model.design import Design, pack
+from contactsep.model.design import Design, outside_domain, pack
 
 BACKENDS = ("compiled", "numpy")
 
@@ -123,7 +123,8 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
     packed = pack(design)
-    out = _backend(backend).evaluate_packed(packed)
+    out = _refuse_outside_domain(packed,
+                                 _backend(backend).evaluate_packed(packed))
     shape = packed.shape
     fields = {}
     for key in _SCALARS:
@@ -132,3 +133,24 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
     return Evaluation(**fields)
+
+
+def _refuse_outside_domain(packed, out: dict) -> dict:
+    """Designs outside the model's domain (the kernel computes them, but
+    not to true digits) get status 2 and NaN results, as the kernel gives
+    any other invalid design."""
+    bad = outside_domain(packed.real, packed.ints) & (
+        np.asarray(out["status"]) == status_codes.OK)
+    if not np.any(bad):
+        return out
+    out = dict(out)
+    for key, value in out.items():
+        value = np.array(value)
+        if key == "status":
+            value[bad] = status_codes.INVALID_INPUT
+        elif value.dtype.kind == "f":
+            value[bad] = np.nan
+        elif value.dtype.kind == "b":
+            value[bad] = False
+        out[key] = value
+    return out
