@@ -141,60 +141,168 @@ def write_json(stream: TextIO, value, indent: int | None = 2) -> None:
     write_text(stream, json_text(value, indent) + "\n")
 
 
+class Replacement:
+    """A file that replaces ``path`` only when it is finished (module
+    docstring): ``stream`` writes a temporary file beside the target,
+    :meth:`commit` renames it into place, :meth:`discard` removes it.  A
+    device, FIFO or terminal is written in place (commit and discard
+    close it); a directory is refused.
+
+    ``lock=True`` (sweeps, which write for minutes): a second command
+    writing the same file is refused at once, while this one runs
+    (``.NAME.lock`` beside the target, held with flock and removed at the
+    end), instead of two temporary files racing to be renamed.
+    """
+
+    def __init__(self, path: str | os.PathLike, binary: bool = False,
+                 lock: bool = False) -> None:
+        self.path = os.fspath(path)
+        how, text = ("wb", {}) if binary else \
+            ("w", {"encoding": "ascii", "newline": ""})
+        self._target = os.path.realpath(self.path)
+        self._temp = None
+        self._lock = None
+        info = target_info(self.path)
+        if info is not None and not stat.S_ISREG(info.st_mode):
+            try:
+                self.stream = open(self._target, how, **text)
+            except OSError as error:
+                raise _named(error, self.path) from None
+            return
+        directory, name = os.path.split(self._target)
+        if lock:
+            self._lock = _lock(os.path.join(directory, f".{name}.lock"),
+                               self.path)
+        try:
+            fd, self._temp = tempfile.mkstemp(prefix=f".{name}.",
+                                              suffix=".tmp",
+                                              dir=directory or ".")
+        except OSError as error:
+            self._unlock()
+            raise _named(error, self.path) from None
+        try:
+            if info is not None:
+                mode = stat.S_IMODE(info.st_mode)
+            else:
+                umask = os.umask(0)
+                os.umask(umask)
+                mode = 0o666 & ~umask
+            os.fchmod(fd, mode)
+            self.stream = os.fdopen(fd, how, **text)
+        except BaseException:
+            os.close(fd)
+            self.discard()
+            raise
+
+    def commit(self) -> None:
+        """Close; a temporary file replaces the target."""
+        try:
+            self.stream.close()
+            if self._temp is not None:
+                os.replace(self._temp, self._target)
+                self._temp = None
+        except OSError as error:
+            self.discard()
+            raise _named(error, self.path) from None
+        self._unlock()
+
+    def discard(self) -> None:
+        """Close; the target stays as it was (a device: as written)."""
+        with contextlib.suppress(OSError, AttributeError):
+            self.stream.close()
+        if self._temp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(self._temp)
+            self._temp = None
+        self._unlock()
+
+    def _unlock(self) -> None:
+        if self._lock is not None:
+            lock_path, fd = self._lock
+            with contextlib.suppress(OSError):
+                os.unlink(lock_path)
+            os.close(fd)
+            self._lock = None
+
+
+def target_info(path: str | os.PathLike) -> os.stat_result | None:
+    """stat() of the file ``path`` names (links followed), None if there
+    is none yet; a directory is refused (OSError naming ``path``)."""
+    path = os.fspath(path)
+    try:
+        info = os.stat(os.path.realpath(path))
+    except FileNotFoundError:
+        return None
+    except OSError as error:
+        raise _named(error, path) from None
+    if stat.S_ISDIR(info.st_mode):
+        raise OSError(errno.EISDIR, "Is a directory, not a file", path)
+    return info
+
+
+def _lock(lock_path: str, path: str) -> tuple[str, int]:
+    """Hold ``lock_path`` (flock, exclusive, created if need be); a lock
+    held by another process is refused with an InputError naming
+    ``path``.  The inode check: a holder that just finished unlinked the
+    file this process opened, so lock the one now at the path instead."""
+    import fcntl
+    while True:
+        try:
+            fd = os.open(lock_path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC,
+                         0o600)
+        except OSError as error:
+            raise _named(error, path) from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            raise InputError(f"{path}: in use: another contactsep command "
+                             f"is writing it (it holds "
+                             f"{os.path.basename(lock_path)}); wait for it "
+                             f"or write elsewhere") from None
+        try:
+            same = os.path.samestat(os.fstat(fd), os.stat(lock_path))
+        except FileNotFoundError:
+            same = False
+        if same:
+            return lock_path, fd
+        os.close(fd)
+
+
 @contextlib.contextmanager
 def open_output(path: str | os.PathLike, binary: bool = False
                 ) -> Iterator[TextIO]:
     """A text stream (a binary one with ``binary``) to ``path`` for
-    ``-o`` and every file a command writes (module docstring)."""
-    path = os.fspath(path)
-    how, text = ("wb", {}) if binary else \
-        ("w", {"encoding": "ascii", "newline": ""})
-    target = os.path.realpath(path)
-    try:
-        info = os.stat(target)
-    except FileNotFoundError:
-        info = None
-    except OSError as error:
-        raise _named(error, path) from None
-    if info is not None and stat.S_ISDIR(info.st_mode):
-        raise OSError(errno.EISDIR, "Is a directory, not a file", path)
-    if info is not None and not stat.S_ISREG(info.st_mode):
-        try:
-            with open(target, how, **text) as out:
-                yield out
-        except OSError as error:
-            raise _named(error, path) from None
-        return
-    directory, name = os.path.split(target)
-    try:
-        fd, temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp",
-                                    dir=directory or ".")
-    except OSError as error:
-        raise _named(error, path) from None
+    ``-o`` and every file a command writes (module docstring): a
+    :class:`Replacement` committed when the block ends."""
+    out = Replacement(path, binary)
     kept: BaseException | None = None
     try:
-        if info is not None:
-            mode = stat.S_IMODE(info.st_mode)
-        else:
-            umask = os.umask(0)
-            os.umask(umask)
-            mode = 0o666 & ~umask
-        os.fchmod(fd, mode)
-        with os.fdopen(fd, how, **text) as out:
-            try:
-                yield out
-            except (DeckError, InputError) as error:
-                # the deck's fault, not the output's: keep what was done
-                kept = error
-        os.replace(temp, target)
+        try:
+            yield out.stream
+        except (DeckError, InputError) as error:
+            # the deck's fault, not the output's: keep what was done
+            kept = error
+        out.commit()
     except BaseException as error:
-        with contextlib.suppress(OSError):
-            os.unlink(temp)
+        out.discard()
         if isinstance(error, OSError):
-            raise _named(error, path) from None
+            raise _named(error, out.path) from None
         raise
     if kept is not None:
         raise kept
+
+
+def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
+    """True when two paths name one file (links followed; a file not yet
+    written by its resolved path)."""
+    a, b = os.path.realpath(first), os.path.realpath(second)
+    if a == b:
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
 
 
 def _printable(message: str) -> str:
@@ -223,17 +331,24 @@ def _silence_stdout() -> None:
             os.close(null)
 
 
-def report(prog: str, error: BaseException) -> None:
-    """Print ``prog: error: <message>``: one printable line."""
+def one_line(error: BaseException) -> str:
+    """An error's message as one printable line (an OSError's strerror
+    and the path it names)."""
     if isinstance(error, OSError) and error.strerror:
         message = error.strerror
         if error.filename is not None:
             message += f": {os.fsdecode(error.filename)}"
     else:
         message = str(error)
+    return _printable(message)
+
+
+def report(prog: str, error: BaseException) -> None:
+    """Print ``prog: error: <message>``: one printable line."""
+    message = one_line(error)
     _silence_stdout()
     with contextlib.suppress(OSError, ValueError):
-        sys.stderr.write(f"{prog}: error: {_printable(message)}\n")
+        sys.stderr.write(f"{prog}: error: {message}\n")
         sys.stderr.flush()
 
 

@@ -278,8 +278,9 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
         start_new_session=True,
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 60
-    while (not csv_path.exists() or csv_path.stat().st_size < 10_000) \
-            and time.monotonic() < deadline:
+    # the rows go to a temporary file beside the target until the end
+    while sum(p.stat().st_size for p in tmp_path.glob(".out.csv.*.tmp")) \
+            < 10_000 and time.monotonic() < deadline:
         time.sleep(0.1)
     if signum == signal.SIGKILL:
         worker = subprocess.run(["pgrep", "-P", str(process.pid)],
@@ -298,7 +299,12 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
     if os.path.isdir("/dev/shm"):
         assert not [p for p in os.listdir("/dev/shm")
                     if p.startswith("contactsep-sweep-")]
-    assert csv_path.read_text().endswith("\n")
+    # the finished chunks, in place, whole lines, and a last line that
+    # says the sweep stopped; no temporary file or lock left
+    text = csv_path.read_text()
+    assert text.endswith("\n") and text.splitlines()[-1].startswith(
+        ("# interrupted after ", "# stopped (a worker process died"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv"]
 
 
 def test_a_linear_axis_is_numpys_linspace():

@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import signal
 import sys
 import warnings
@@ -40,8 +41,47 @@ def _version() -> str:
     return __version__
 
 
+class UsageError(InputError):
+    """A command line argparse cannot read (an unknown option, a missing
+    value, a value of the wrong type): reported as every error is, in
+    one line, instead of argparse's usage and ``prog: error:`` lines."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors raised as :class:`UsageError` and values
+    that start with a minus sign read as values when they are numbers in
+    any of Python's spellings (``--d -inf``, ``--gap -1e-3``; argparse
+    takes only ``-1`` and ``-.5`` and says '--d: expected one argument')."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
+
+    def parse_args(self, args=None, namespace=None):
+        # argparse's own, except that extra words are reported with the
+        # subcommand they were given to
+        args, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = getattr(args, "command", None)
+            raise UsageError(
+                (f"{command}: " if command else "")
+                + f"unrecognized arguments: {' '.join(extras)} "
+                f"(contactsep {command or ''} --help lists the "
+                f"options)".replace("  ", " "))
+        return args
+
+    def error(self, message: str):
+        command = self.prog.partition(" ")[2]
+        raise UsageError(f"{command}: {message}" if command else message)
+
+
+_NEGATIVE_NUMBER = re.compile(
+    r"^-(\d[\d_]*(\.[\d_]*)?|\.\d[\d_]*)(e[-+]?\d+)?$|^-(inf|infinity|nan)$",
+    re.IGNORECASE)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="contactsep",
         description="Contact separation due to impact in a redundant "
                     "contact system: the thesis program of Appendix G.")
@@ -85,11 +125,10 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
     warnings.showwarning = _one_line_warning
-    handler = args.handler
     try:
-        status = handler(args)
+        args = parser.parse_args(argv)
+        status = args.handler(args)
         sys.stdout.flush()
         return status
     except BrokenPipeError:
