@@ -1,11 +1,15 @@
-"""One three-beam run of the thesis rig, N = 16, side by side (issue 8).
+"""One design of the thesis rig through the chatter layer, side by side
+with numpy.sin on 1e6 float64 elements, in one run (issue 16):
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_chatter.py
 
-Compiled steppers (contactsep.chatter._chatter) over the whole 0.06 s window
-against their NumPy twins timed on 1/50 of the steps (per-step cost is
-constant, so the ratio is per step), and Appendix E's event-driven
-solver on the rigid stop, compiled against NumPy (best of 5 each).
+Every time is the best of REPEATS in-process calls of
+``contactsep.chatter.simulate`` (the whole call: design, modes, the
+single-impulse figures, the stepper, the circuit) and is printed with
+its ratio to numpy.sin.  The adaptive steppers are the defaults; the
+fixed-step ones are the references they are tested against.  The last
+column counts the work: flight steps, fixed steps and flow evaluations
+of the searches (adaptive), or steps (fixed).
 """
 
 from __future__ import annotations
@@ -15,67 +19,61 @@ import time
 import numpy as np
 
 import contactsep
-import contactsep.chatter._chatter as compiled_module
-from contactsep.chatter import steppers
-from contactsep.chatter.contacts import HertzLaw
-from contactsep.chatter.event_driven import rigid_stop_from_design
-from contactsep.chatter.event_driven_compiled import (
-    simulate_rigid_stop_compiled,
-)
-from contactsep.chatter.simulate import _stack
-from contactsep.chatter.system import members
+from contactsep import chatter
 
-API = compiled_module.chatter_api
+REPEATS = 5
 
 
-def timed(fn):
-    start = time.perf_counter()
-    fn()
-    return time.perf_counter() - start
+def best(fn, repeats=REPEATS) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
 
 
 def main() -> None:
-    design = contactsep.thesis_design(n_modes=16)
-    m, p, h, q0, v0, _ = _stack(design)
-    g0 = np.zeros(2)
-    law = HertzLaw.for_materials(10.0e6)
+    x = np.random.default_rng(0).random(1_000_000)
+    sine = best(lambda: np.sin(x), 20)
     rows = []
-    for name, dt in (("newton (Moreau-Jean)", 1e-7), ("hertz", 2e-8)):
-        steps = int(round(0.06 / dt))
-        stride = steps // 60_000
-        samples = steps // stride + 1
-        if name == "hertz":
-            full = timed(lambda: API.run_hertz(
-                m, p, h, g0, q0, v0, law.k, law.chi, dt, steps, stride,
-                samples))
-            part = timed(lambda: steppers.hertz(
-                m, p, h, g0, q0, v0, law=law, dt=dt, steps=steps // 50,
-                stride=stride)) * 50
-        else:
-            full = timed(lambda: API.run_moreau_jean(
-                m, p, h, g0, q0, v0, 0.375, dt, 0.5, steps, stride,
-                samples))
-            part = timed(lambda: steppers.moreau_jean(
-                m, p, h, g0, q0, v0, e=0.375, dt=dt, steps=steps // 50,
-                stride=stride)) * 50
-        rows.append((name, dt, steps, full, part))
-    appe = min(timed(lambda: rigid_stop_from_design(design, t_end=0.06))
-               for _ in range(5))
-    appe_compiled = min(timed(lambda: rigid_stop_from_design(
-        design, t_end=0.06, backend="fortran")) for _ in range(5))
-    upper = members(design)[0]
-    appe_events = min(timed(lambda: simulate_rigid_stop_compiled(
-        upper.p, upper.x, upper.mass, upper.q0, upper.v0, 0.375, 0.06,
-        segments=False)) for _ in range(5))
-    print(f"{'run (N = 16, 0-0.06 s)':28} {'dt':>7} {'steps':>9} "
-          f"{'compiled s':>10} {'NumPy s':>9} {'ratio':>6}")
-    for name, dt, steps, full, part in rows:
-        print(f"{name:28} {dt:7.0e} {steps:9d} {full:10.2f} {part:9.1f} "
-              f"{part / full:6.0f}")
-    print(f"{'appE event-driven':28} {'-':>7} {'-':>9} "
-          f"{appe_compiled:10.4f} {appe:9.4f} {appe / appe_compiled:6.0f}")
-    print(f"{'appE, events only (no replay)':28} {'-':>7} {'-':>9} "
-          f"{appe_events:10.4f} {appe:9.4f} {appe / appe_events:6.0f}")
+
+    def case(label, design, repeats=REPEATS, **options):
+        result = chatter.simulate(design, **options)
+        seconds = best(lambda: chatter.simulate(design, **options),
+                       repeats)
+        rows.append((label, seconds, result))
+
+    rig16 = contactsep.thesis_design(n_modes=16)
+    rig32 = contactsep.thesis_design(n_modes=32)
+    case("hertz N=16 (default)", rig16, model="hertz")
+    case("hertz N=16, summary only", rig16, model="hertz", samples=1)
+    case("hertz N=16, preload 0.1 lb", rig16, model="hertz", preload=0.1)
+    case("hertz N=32 (default)", rig32, model="hertz")
+    case("hertz N=16 fixed-step", rig16, 1, model="hertz",
+         stepper="fixed")
+    case("newton N=16 (default)", rig16, model="newton")
+    case("newton N=32 d=0.75 (default)",
+         contactsep.thesis_design(n_modes=32, d=0.75), model="newton")
+    case("newton N=16 Moreau-Jean 1e-7", rig16, 1, model="newton",
+         stepper="fixed", dt=1e-7)
+    case("appE N=16", rig16, model="appE")
+    print(f"numpy.sin, 1e6 float64: {sine * 1e3:.2f} ms\n")
+    print(f"| {'run (thesis rig, 0-0.06 s)':32} | ms | x numpy.sin | "
+          f"work |")
+    print("|---|---:|---:|---|")
+    for label, seconds, result in rows:
+        work = ", ".join(f"{k} {v}" for k, v in result.work.items())
+        print(f"| {label:32} | {seconds * 1e3:.1f} | "
+              f"{seconds / sine:.2f} | {work} |")
+    label, seconds, result = rows[1]
+    modes = 3 * result.n_modes
+    mode_steps = modes * (result.work["flight_steps"]
+                          + result.work["fixed_steps"])
+    print(f"\nsummary-only Hertz N = 16: {mode_steps:.3g} mode-steps, "
+          f"{seconds / mode_steps * 1e9:.2f} ns each (numpy.sin: "
+          f"{sine / 1e6 * 1e9:.2f} ns an element); a 1,000-design sweep: "
+          f"{1000 * seconds:.1f} s on one core")
 
 
 if __name__ == "__main__":

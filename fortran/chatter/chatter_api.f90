@@ -3,31 +3,39 @@ module chatter_api
   use contactsep_kinds, only: wp
   use chatter_moreau_jean, only: moreau_jean
   use chatter_hertz, only: hertz
+  use chatter_adaptive, only: adaptive, law_hertz, law_newton
   use chatter_event_driven, only: rigid_stop, jacobi_eigen
   use chatter_status, only: status_ok, status_no_eigenbasis
   implicit none
   private
-  public :: run_moreau_jean, run_hertz, run_rigid_stop, symmetric_eigen
+  public :: run_moreau_jean, run_hertz, run_hertz_adaptive
+  public :: run_newton_adaptive, run_rigid_stop
+  public :: symmetric_eigen
 
 contains
 
   !> Moreau-Jean (see chatter_moreau_jean); q, v are copied, not changed.
+  !> crossings(:, i) = time, +c / -c (contact c opens / closes);
+  !> gap_max(:, c) = largest gap c, its time; status: chatter_status.
   subroutine run_moreau_jean(n, k, m, p, h, g0, q0, v0, e, dt, theta, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first, status)
-    integer, intent(in) :: n, k, steps, stride, samples
+      steps, stride, samples, threshold, max_cross, t_out, g_out, e_out, &
+      p_out, first, crossings, n_cross, gap_max, status)
+    integer, intent(in) :: n, k, steps, stride, samples, max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
-    real(wp), intent(in) :: e, dt, theta
+    real(wp), intent(in) :: e, dt, theta, threshold
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
     !> First episode of contact 1: time, impulse (-1: none).
     real(wp), intent(out) :: first(2)
-    integer, intent(out) :: status
+    real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
+    integer, intent(out) :: n_cross, status
     real(wp) :: q(n), v(n)
 
     q = q0
     v = v0
     call moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, steps, &
-        stride, samples, t_out, g_out, e_out, p_out, first, status)
+        stride, samples, threshold, max_cross, t_out, g_out, e_out, &
+        p_out, first, crossings, n_cross, gap_max, status)
   end subroutine run_moreau_jean
 
   !> Hertz splitting (see chatter_hertz); q, v are copied, not changed.
@@ -47,6 +55,57 @@ contains
     call hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, steps, &
         stride, samples, t_out, g_out, e_out, p_out, first)
   end subroutine run_hertz
+
+  !> Hertz, adaptive (see chatter_adaptive); q0, v0 are copied.
+  !> crossings(:, i) = time, +c / -c (contact c opens / closes);
+  !> gap_max(:, c) = largest gap c, its time; counts = flight steps,
+  !> fixed steps, flow evaluations; status: chatter_status.
+  subroutine run_hertz_adaptive(n, k, m, p, h, g0, q0, v0, stiffness, &
+      chi, dt, steps, stride, samples, threshold, n_moving, &
+      energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
+      n_cross, gap_max, counts, status)
+    integer, intent(in) :: n, k, steps, stride, samples, n_moving
+    integer, intent(in) :: max_cross
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: stiffness, chi, dt, threshold, energy_bound
+    real(wp), intent(out) :: t_out(samples), g_out(k, samples)
+    real(wp), intent(out) :: e_out(samples), first(2)
+    real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
+    integer, intent(out) :: n_cross, counts(3), status
+    real(wp) :: q(n), v(n)
+
+    q = q0
+    v = v0
+    call adaptive(law_hertz, n, k, m, p, h, g0, q, v, stiffness, chi, &
+        0.0_wp, dt, steps, stride, samples, threshold, n_moving, &
+        energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
+        n_cross, gap_max, counts, status)
+  end subroutine run_hertz_adaptive
+
+  !> Newton's law, adaptive (see chatter_adaptive): arguments and
+  !> results as run_hertz_adaptive, with the restitution e instead of
+  !> the Hertz constants.
+  subroutine run_newton_adaptive(n, k, m, p, h, g0, q0, v0, e, dt, &
+      steps, stride, samples, threshold, n_moving, energy_bound, &
+      max_cross, t_out, g_out, e_out, first, crossings, n_cross, &
+      gap_max, counts, status)
+    integer, intent(in) :: n, k, steps, stride, samples, n_moving
+    integer, intent(in) :: max_cross
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: e, dt, threshold, energy_bound
+    real(wp), intent(out) :: t_out(samples), g_out(k, samples)
+    real(wp), intent(out) :: e_out(samples), first(2)
+    real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
+    integer, intent(out) :: n_cross, counts(3), status
+    real(wp) :: q(n), v(n)
+
+    q = q0
+    v = v0
+    call adaptive(law_newton, n, k, m, p, h, g0, q, v, 0.0_wp, 0.0_wp, &
+        e, dt, steps, stride, samples, threshold, n_moving, &
+        energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
+        n_cross, gap_max, counts, status)
+  end subroutine run_newton_adaptive
 
   !> Appendix E on a rigid stop (see chatter_event_driven's rigid_stop);
   !> q0, v0 are copied, not changed.  impacts(:, i) = time, impulse,

@@ -17,4 +17,6 @@ module chatter_status
   integer, parameter, public :: status_no_eigenbasis = 4
   !> Moreau-Jean: the one-step contact LCP had no solution.
   integer, parameter, public :: status_lcp_unsolved = 5
+  !> Hertz (adaptive): the table of threshold crossings filled up.
+  integer, parameter, public :: status_crossings_full = 6
 end module chatter_status

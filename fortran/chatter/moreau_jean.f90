@@ -4,7 +4,8 @@
 module chatter_moreau_jean
   use contactsep_kinds, only: wp
   use chatter_lcp, only: solve_lcp
-  use chatter_status, only: status_ok, status_lcp_unsolved
+  use chatter_status, only: status_ok, status_lcp_unsolved, &
+      status_crossings_full
   implicit none
   private
   public :: moreau_jean
@@ -12,8 +13,13 @@ module chatter_moreau_jean
 contains
 
   !> Integrate `steps` steps of dt; sample every `stride` steps.
+  !> The positions are linear within a step (q += dt (theta v+ +
+  !> (1 - theta) v)), so each crossing of the open threshold is found
+  !> there by linear interpolation, and each gap's largest value is its
+  !> largest at a step's end.
   pure subroutine moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first, status)
+      steps, stride, samples, threshold, max_cross, t_out, g_out, e_out, &
+      p_out, first, crossings, n_cross, gap_max, status)
     !> Modes (all members stacked) and contacts (1 or 2).
     integer, intent(in) :: n, k
     !> Mass and frequency of every mode; contact Jacobian; gap offsets.
@@ -22,16 +28,25 @@ contains
     real(wp), intent(inout) :: q(n), v(n)
     real(wp), intent(in) :: e, dt, theta
     integer, intent(in) :: steps, stride, samples
+    !> A contact is open while its gap exceeds threshold (in).
+    real(wp), intent(in) :: threshold
+    integer, intent(in) :: max_cross
     !> Sampled times, gaps, energy, and impulses summed over each sample.
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
     !> Contact 1's first episode: the time its first step ends, the
     !> impulse of its consecutive contact steps.
     real(wp), intent(out) :: first(2)
-    !> 0 ok, 1 the LCP had no solution.
+    !> crossings(:, i) = time, +c (contact c opens) or -c (it closes).
+    real(wp), intent(out) :: crossings(2, max_cross)
+    integer, intent(out) :: n_cross
+    !> gap_max(:, c) = largest gap c at a step's end and its time.
+    real(wp), intent(out) :: gap_max(2, k)
+    !> status_ok, status_lcp_unsolved (the LCP had no solution) or
+    !> status_crossings_full (the crossings filled their table).
     integer, intent(out) :: status
     real(wp) :: stiff(n), w(n), v_free(n), v_new(n), u(k), gap(k)
-    real(wp) :: d(2, 2), b(2), z(2), hw(k, n)
+    real(wp) :: d(2, 2), b(2), z(2), hw(k, n), gap_new(k)
     integer :: step, i, j, s, active(2), na
     logical :: ok, touched
     integer :: episode
@@ -48,9 +63,13 @@ contains
     t_out(1) = 0.0_wp
     g_out(:, 1) = matmul(h, q) + g0
     e_out(1) = 0.5_wp * sum(m * v**2 + stiff * q**2)
+    crossings = 0.0_wp
+    n_cross = 0
+    gap = matmul(h, q) + g0
+    gap_max(1, :) = gap
+    gap_max(2, :) = 0.0_wp
     do step = 1, steps
       u = matmul(h, v)
-      gap = matmul(h, q) + g0
       v_free = w * (m * v - dt * stiff * q &
           - dt**2 * theta * (1.0_wp - theta) * stiff * v)
       na = 0
@@ -107,10 +126,28 @@ contains
       end if
       q = q + dt * (theta * v_new + (1.0_wp - theta) * v)
       v = v_new
+      gap_new = matmul(h, q) + g0
+      do i = 1, k
+        if ((gap(i) > threshold) .neqv. (gap_new(i) > threshold)) then
+          if (n_cross >= max_cross) then
+            status = status_crossings_full
+            return
+          end if
+          n_cross = n_cross + 1
+          crossings(1, n_cross) = (step - 1) * dt + dt * (gap(i) &
+              - threshold) / (gap(i) - gap_new(i))
+          crossings(2, n_cross) = merge(i, -i, gap_new(i) > threshold)
+        end if
+        if (gap_new(i) > gap_max(1, i)) then
+          gap_max(1, i) = gap_new(i)
+          gap_max(2, i) = step * dt
+        end if
+      end do
+      gap = gap_new
       if (mod(step, stride) == 0) then
         s = step / stride + 1
         t_out(s) = step * dt
-        g_out(:, s) = matmul(h, q) + g0
+        g_out(:, s) = gap
         e_out(s) = 0.5_wp * sum(m * v**2 + stiff * q**2)
       end if
     end do

@@ -77,28 +77,38 @@ def test_appendix_e_never_penetrates_and_rests_with_a_compressive_force():
     pytest.param(8, 1e-7, marks=pytest.mark.slow),
     pytest.param(16, 5e-8, marks=pytest.mark.slow)])
 def test_moreau_jean_matches_appendix_e_on_the_rigid_stop(n, dt):
+    """Moreau-Jean activates the contact in the step whose predicted gap
+    g + (dt/2) u closes, i.e. the exact impact t* lies within dt/2 of
+    that step's start t_n, and reports the step's end t_n + dt: so
+    t_MJ - t* lies in [dt/2, 3 dt/2) (measured 0.92-1.40 dt); a shift
+    of one step leaves that band.  Impulse to 1e-5 (measured <= 1.0e-5),
+    energy at 0.03 s to 1e-3."""
     design = contactsep.thesis_design(n_modes=n)
     upper = members(design)[0]
     t_end = 0.03
     exact = rigid_stop_from_design(design, t_end=t_end)
     steps = int(round(t_end / dt))
-    _, _, energy, _, first, status = api.run_moreau_jean(
+    _, _, energy, _, first, *_, status = api.run_moreau_jean(
         np.full(n, upper.mass), upper.p, upper.x[None, :], np.zeros(1),
-        upper.q0, upper.v0, 0.375, dt, 0.5, steps, 1000, steps // 1000 + 1)
+        upper.q0, upper.v0, 0.375, dt, 0.5, steps, 1000, steps // 1000 + 1,
+        1e-6, 1000)
     assert status == 0
-    assert abs(first[0] / exact.impact_t[0] - 1) < 1e-5
+    assert 0.5 <= (first[0] - exact.impact_t[0]) / dt < 1.5
     assert abs(first[1] / exact.impulse[0] - 1) < 1e-5
     assert abs(energy[-1] / exact.final_energy - 1) < 1e-3
 
 
-def test_newton_three_beams_conserve_energy_for_e_one():
+@pytest.mark.filterwarnings("ignore:dt:UserWarning")
+@pytest.mark.parametrize("stepper", ["fixed", "adaptive"])
+def test_newton_three_beams_conserve_energy_for_e_one(stepper):
     r = chatter.simulate(contactsep.thesis_design(n_modes=4, e=1.0),
-                         model="newton", dt=1e-6)
-    # the trapezoidal flight conserves the quadratic energy exactly and
-    # the velocity-level law with e = 1 returns it at each impact
+                         model="newton", dt=1e-6, stepper=stepper)
+    # the trapezoidal flight (Moreau-Jean) and the exact flow (adaptive)
+    # conserve the quadratic energy exactly, and the velocity-level law
+    # with e = 1 returns it at each impact
     assert np.max(np.abs(r.energy / r.energy[0] - 1)) < 1e-9
     lossy = chatter.simulate(contactsep.thesis_design(n_modes=4),
-                             model="newton", dt=1e-6)
+                             model="newton", dt=1e-6, stepper=stepper)
     assert np.all(np.diff(lossy.energy) <= 1e-12 * lossy.energy[0])
     # interpenetration of the velocity-level law: below dt x impact speed
     assert lossy.gap_upper.min() > -1e-6 * 35.0
@@ -153,7 +163,7 @@ def test_compiled_steppers_equal_their_twins():
     a = steppers.moreau_jean(m, p, h, np.zeros(2), q0, v0, e=0.375, dt=dt,
                              steps=steps, stride=stride)
     b = api.run_moreau_jean(m, p, h, np.zeros(2), q0, v0, 0.375, dt, 0.5,
-                            steps, stride, samples)
+                            steps, stride, samples, 1e-6, 1000)
     # the same operations in another order: rounding only (until an
     # active-set decision flips, which the window ends before)
     assert np.allclose(a[1], b[1].T, rtol=0, atol=1e-12)
@@ -174,30 +184,6 @@ def test_lcp_solution_is_complementary():
         w = matrix @ z + vector
         assert np.all(z >= 0) and np.all(w >= -1e-14)
         assert abs(z @ w) < 1e-14
-
-
-def test_circuit_intervals():
-    t = np.arange(10) * 0.1
-    up = np.array([0, 1, 1, 1, 0, 1, 1, 0, 1, 1]) * 1.0
-    low = np.array([0, 0, 1, 1, 1, 1, 0, 0, 1, 1]) * 1.0
-    found = circuit.discontinuity(t, up, low, threshold=0.5)
-    assert found["circuit_open_intervals"].tolist() == [[0.2, 0.30000000000000004],
-                                                        [0.5, 0.5],
-                                                        [0.8, 0.9]]
-    assert found["first_circuit_open_s"] == 0.2
-    assert found["max_lower_gap_in"] == 1.0
-
-
-def test_chatter_command_json(capsys):
-    assert main(["chatter", "--model", "newton", "--n-modes", "2",
-                 "--dt", "1e-6", "--json"]) == 0
-    data = json.loads(capsys.readouterr().out)
-    for key in ("first_impact_s", "first_impulse_lb_s", "energy_ratio",
-                "max_lower_gap_in", "circuit_open_s",
-                "first_circuit_open_s", "circuit_open_intervals"):
-        assert key in data
-    assert main(["chatter", "--dt", "-1"]) == 2
-    assert "dt: found -1.0" in capsys.readouterr().err
 
 
 def _inertia_modulus(design, i):
@@ -233,12 +219,16 @@ def test_a_preload_is_a_static_equilibrium(model):
         law = HertzLaw.for_materials(float(design.E1))
         depth = (force / law.k) ** (2 / 3)
         assert r.gap_lower[0] == pytest.approx(-depth, rel=1e-9)
-        # Strang splitting's fixed point lies O(dt^2) from the static
-        # state: the gap rocks by that much, a quarter when dt halves
-        wobble = np.ptp(r.gap_lower)
-        coarse = chatter.simulate(design, model=model, preload=force,
-                                  t_end=0.02, dt=2 * r.dt)
-        assert 3.5 < np.ptp(coarse.gap_lower) / wobble < 4.5
+        # the adaptive stepper holds the static start still
+        assert np.ptp(r.gap_lower) == 0.0
+        # the fixed-step splitting's fixed point lies O(dt^2) from the
+        # static state: the gap rocks by that much, a quarter when dt
+        # halves
+        fixed = [chatter.simulate(design, model=model, preload=force,
+                                  t_end=0.02, dt=dt, stepper="fixed")
+                 for dt in (r.dt, 2 * r.dt)]
+        wobble = np.ptp(fixed[0].gap_lower)
+        assert 3.5 < np.ptp(fixed[1].gap_lower) / wobble < 4.5
         assert wobble < 1e-6 * depth
     else:
         assert -1e-15 < r.gap_lower[0] <= 0.0

@@ -8,11 +8,7 @@ Hertz contact; docs/chatter.md.
 >>> r.circuit_open_s, r.first_circuit_open_s, r.max_lower_gap_in
 """
 
-from contactsep.chatter.simulate import (
-                                         MODELS,
-                                         ChatterError,
-                                         ChatterResult,
-                                         simulate,
-)
+from contactsep.chatter.result import ChatterResult
+from contactsep.chatter.simulate import MODELS, ChatterError, simulate
 
 __all__ = ["MODELS", "ChatterError", "ChatterResult", "simulate"]

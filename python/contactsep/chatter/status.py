@@ -15,3 +15,5 @@ RESTS_FULL = 3
 NO_EIGENBASIS = 4
 #: Moreau-Jean: the one-step contact LCP had no solution.
 LCP_UNSOLVED = 5
+#: Hertz (adaptive): the table of threshold crossings filled up.
+CROSSINGS_FULL = 6

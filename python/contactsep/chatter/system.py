@@ -16,6 +16,7 @@ its static sag is a constant offset absorbed by the preload).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,6 +49,16 @@ class Member:
         return q @ self.x
 
 
+@functools.lru_cache(maxsize=256)
+def _modes(end: str, n: int, xi: float):
+    """k_jL and X_j(xi L) of an end condition (cached: a design sweep
+    asks for the same few again and again; read-only arrays)."""
+    kl = beams.eigenvalues(end, n)
+    values = beams.mode_shapes(end, n, [xi])[:, 0]
+    kl.flags.writeable = values.flags.writeable = False
+    return kl, values
+
+
 def _member(design: Design, i: str, n: int, q0=None) -> Member:
     length = float(getattr(design, "L" + i))
     width = float(getattr(design, "b" + i))
@@ -59,8 +70,7 @@ def _member(design: Design, i: str, n: int, q0=None) -> Member:
     if x is None:
         x = length / 2.0 if i == "2" else length
     mass, a = member_constants(length, width, thick, gamma, modulus)
-    kl = beams.eigenvalues(end, n)
-    values = beams.mode_shapes(end, n, [float(x) / length])[:, 0]
+    kl, values = _modes(str(end), n, float(x) / length)
     p = kl**2 * a / length**2
     q = np.zeros(n) if q0 is None else q0
     return Member(p=p, x=values, mass=mass, q0=q, v0=np.zeros(n))
@@ -73,8 +83,7 @@ def release_state(design: Design, n: int) -> np.ndarray:
     x1 = length if design.x1 is None else float(design.x1)
     xi = 1.0 if (design.release == "tip" and end == "clamped-free") \
         else x1 / length
-    kl = beams.eigenvalues(end, n)
-    load = beams.mode_shapes(end, n, [xi])[:, 0]
+    kl, load = _modes(str(end), n, xi)
     return float(design.ys) * load / (kl**4
                                       * beams.static_flexibility(end, xi))
 

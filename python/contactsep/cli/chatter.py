@@ -3,42 +3,90 @@
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
+import math
 import sys
 
+from contactsep import output
+from contactsep.cli.design_options import add_design_options, \
+    design_overrides
 from contactsep.constants import LISTING_TAU_S
+from contactsep.errors import InputError
+
+EPILOG = """examples:
+  contactsep chatter --model hertz --n-modes 16
+  contactsep chatter --model hertz --n-modes 32 --d 0.5 --preload 0.2 --json
+  contactsep chatter --model newton --n-modes 16 --png gaps.png --csv gaps.csv
+"""
 
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep chatter``."""
+    from contactsep.chatter import circuit
+    from contactsep.chatter.simulate import DEFAULT_BUTTON_RADIUS, \
+        DEFAULT_DT, DEFAULT_NU
+
     parser = commands.add_parser(
         "chatter", help="simulate repeated impacts and circuit opening",
-        description="Simulate the thesis rig (any field changed) from the "
-                    "release: Appendix E against a rigid separator (appE), "
-                    "the three beams with Newton's impact law by "
-                    "Moreau-Jean (newton), or with Hertz contact (hertz). "
-                    "Prints when and for how long the circuit opens.")
-    parser.add_argument("--d", type=float, default=0.25,
-                        help="separator thickness (in)")
-    parser.add_argument("--n-modes", type=int, default=4)
-    parser.add_argument("--model", choices=("appE", "newton", "hertz"),
-                        default="newton")
-    parser.add_argument("--damping", choices=("none", "flores"),
-                        default="none", help="Hertz damping")
-    parser.add_argument("--dt", type=float, default=None,
-                        help="time step (s); default per model")
-    parser.add_argument("--t-end", type=float, default=LISTING_TAU_S,
-                        help="window from the release (s)")
-    parser.add_argument("--e", type=float, default=None,
-                        help="coefficient of restitution (thesis: 0.375)")
-    parser.add_argument("--ys", type=float, default=None,
-                        help="release height above the separator (in)")
-    parser.add_argument("--preload", type=float, default=0.0,
-                        help="force pressing the lower contact against "
-                             "the separator at the start (lb; default 0)")
-    parser.add_argument("--json", action="store_true")
-    parser.add_argument("--png", metavar="FILE",
-                        help="plot both gaps, open-circuit intervals shaded")
+        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG,
+        description="Simulate the thesis rig, any design field changed, "
+                    "from the release:\nAppendix E against a rigid "
+                    "separator (appE), the three beams with Newton's\n"
+                    "impact law (newton) or with Hertz contact (hertz). "
+                    "Prints when and for how\nlong the circuit opens: the "
+                    "openings, and the discontinuity events\n(openings of "
+                    "at least --min-open).")
+    run_group = parser.add_argument_group("simulation")
+    run_group.add_argument("--model", choices=("appE", "newton", "hertz"),
+                           default="newton", help="default newton")
+    run_group.add_argument("--damping", choices=("none", "flores"),
+                           default="none",
+                           help="Hertz damping (default none: elastic)")
+    run_group.add_argument(
+        "--dt", type=float, default=None, metavar="S",
+        help=f"time step (s; default newton {DEFAULT_DT['newton']:g}, "
+             f"hertz {DEFAULT_DT['hertz']:g}: converged, docs/chatter.md)")
+    run_group.add_argument("--t-end", type=float, default=LISTING_TAU_S,
+                           metavar="S", help="window from the release (s; "
+                                             f"default {LISTING_TAU_S:g})")
+    run_group.add_argument("--preload", type=float, default=0.0,
+                           metavar="LB",
+                           help="force pressing the lower contact against "
+                                "the separator at the start (lb; default 0)")
+    run_group.add_argument("--open-threshold", type=float,
+                           default=circuit.OPEN_THRESHOLD, metavar="IN",
+                           help="gap above which a contact is open (in; "
+                                f"default {circuit.OPEN_THRESHOLD:g})")
+    run_group.add_argument("--min-open", type=float,
+                           default=circuit.MIN_OPEN, metavar="S",
+                           help="shortest circuit opening that counts as a "
+                                "discontinuity event (s; default "
+                                f"{circuit.MIN_OPEN:g}; 0: every opening)")
+    run_group.add_argument("--stepper", choices=("adaptive", "fixed"),
+                           default="adaptive",
+                           help="adaptive (default) or the fixed-step "
+                                "reference (Moreau-Jean, Hertz splitting)")
+    run_group.add_argument("--nu", type=float, default=DEFAULT_NU,
+                           help="Poisson's ratio of the Hertz constant "
+                                f"(default {DEFAULT_NU:g})")
+    run_group.add_argument("--button-radius", type=float,
+                           default=DEFAULT_BUTTON_RADIUS, metavar="IN",
+                           help="contact button radius of the Hertz "
+                                f"constant (in; default "
+                                f"{DEFAULT_BUTTON_RADIUS:g})")
+    out_group = parser.add_argument_group("output")
+    out_group.add_argument("--json", action="store_true",
+                           help="print the inputs and the summary as JSON")
+    out_group.add_argument("--csv", metavar="FILE",
+                           help="write the gap histories: t_s, "
+                                "gap_upper_in, gap_lower_in, circuit_open")
+    out_group.add_argument("--png", metavar="FILE",
+                           help="plot both gaps, each on its own axis, "
+                                "the open circuit shaded")
+    out_group.add_argument("--dpi", type=int, default=100,
+                           help="resolution of --png (default 100)")
+    add_design_options(parser)
     parser.set_defaults(handler=run)
 
 
@@ -46,27 +94,106 @@ def run(args: argparse.Namespace) -> int:
     from contactsep.chatter import simulate
     from contactsep.model import thesis_design
 
-    overrides = {k: getattr(args, k) for k in ("e", "ys")
-                 if getattr(args, k) is not None}
-    design = thesis_design(d=args.d, n_modes=args.n_modes, **overrides)
+    if args.png and importlib.util.find_spec("matplotlib") is None:
+        raise InputError("--png needs matplotlib (pip install "
+                         "'contactsep[plot]')")
+    design = thesis_design(**design_overrides(args))
     result = simulate(design, model=args.model, damping=args.damping,
-                      dt=args.dt, t_end=args.t_end, preload=args.preload)
-    summary = result.to_json_dict()
+                      dt=args.dt, t_end=args.t_end, preload=args.preload,
+                      open_threshold=args.open_threshold,
+                      min_open=args.min_open, stepper=args.stepper,
+                      nu=args.nu, button_radius=args.button_radius)
     if args.json:
-        json.dump(summary, sys.stdout, indent=2)
-        sys.stdout.write("\n")
+        output.write_text(sys.stdout, json.dumps(
+            result.to_json_dict(), indent=2, allow_nan=False) + "\n")
     else:
-        lists = ("circuit_open_intervals", "impacts", "rest_intervals")
-        for key, value in summary.items():
-            if key not in lists:
-                print(f"{key:>22} = {value}")
-        print(f"{'open intervals':>22} = "
-              f"{len(result.circuit_open_intervals)}")
-        for key in lists[1:]:
-            if key in summary:
-                print(f"{key:>22} = {len(summary[key])} (--json lists "
-                      f"them)")
+        output.write_text(sys.stdout, summary_text(result))
+    if args.csv:
+        write_csv(result, args.csv)
     if args.png:
         from contactsep.studies.plots import save_chatter_png
-        save_chatter_png(result, args.png)
+        save_chatter_png(result, args.png, dpi=args.dpi)
     return 0
+
+
+def _unit(field: str) -> str:
+    """The unit of a numeric Design field."""
+    if field.startswith("gamma"):
+        return "lb/in^3"
+    if field[0] == "E" and field[1:].isdigit():
+        return "psi"
+    if field == "tau":
+        return "s"
+    if field in ("ys", "gap", "Lc") or field[0] in "Lbhx":
+        return "in"
+    return ""
+
+
+def _g(value, digits=6) -> str:
+    """A number to ``digits`` significant digits ('-' for NaN)."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    return f"{value:.{digits}g}"
+
+
+def summary_text(result) -> str:
+    """The inputs and the summary, with units, 6 significant digits, and
+    the circuit's open intervals."""
+    inputs = result.inputs()
+    lines = [f"model {result.model}, N = {result.n_modes}, "
+             f"dt = {_g(result.dt)} s ({result.stepper}), window 0 to "
+             f"{_g(result.t_end_s)} s",
+             f"preload {_g(result.preload_lb)} lb, damping "
+             f"{result.damping}, open above {_g(result.open_threshold_in)}"
+             f" in, events last >= {_g(result.min_open_s)} s"]
+    design = inputs["design"] or {}
+    lines.append("design: " + ", ".join(
+        f"{k} {v:g} {_unit(k)}".rstrip() if isinstance(v, float)
+        else f"{k} {v}" for k, v in design.items() if v is not None))
+    rows = [("first impact", result.first_impact_s, "s"),
+            ("first impulse", result.first_impulse_lb_s, "lb s"),
+            ("max lower gap", result.max_lower_gap_in, "in"),
+            ("energy end / start", result.energy_ratio, ""),
+            ("circuit open, total", result.circuit_open_s, "s"),
+            ("first opening", result.first_circuit_open_s, "s"),
+            ("longest opening", result.longest_open_s, "s"),
+            ("openings", len(result.circuit_open_intervals), ""),
+            ("discontinuity events", result.n_events, ""),
+            ("chatters", "yes" if result.chatters else "no", "")]
+    single = result.single_impulse
+    rows += [("eq. 23 y3 max, as printed", single.get("y3_max_in"), "in"),
+             ("eq. 23 y3 max, psi/M3", single.get("y3_max_impulse_form_in"),
+              "in")]
+    for label, value, unit in rows:
+        shown = _g(value) if isinstance(value, float) else str(value)
+        lines.append(f"  {label:<28} {shown:>12} {unit}".rstrip())
+    if result.rigid_stop is not None:
+        r = result.rigid_stop
+        lines.append(f"  {'impacts, rests':<28} {len(r.impact_t):>12} "
+                     f"{len(r.rest_intervals)} (--json lists them)")
+    lines.append("circuit open (s), events marked *:")
+    for start, end in result.circuit_open_intervals:
+        mark = "*" if end - start >= result.min_open_s else " "
+        lines.append(f"  {mark} {_g(start):>12} to {_g(end):>12}  "
+                     f"({_g((end - start) * 1e6, 4)} us)")
+    if not len(result.circuit_open_intervals):
+        lines.append("  never")
+    return "\n".join(lines) + "\n"
+
+
+def write_csv(result, path) -> None:
+    """The sampled gaps, one row a sample; replaced only when finished."""
+    import numpy as np
+
+    threshold = result.open_threshold_in
+    is_open = (result.gap_upper > threshold) & (result.gap_lower > threshold)
+    inputs = json.dumps(result.to_json_dict()["inputs"], allow_nan=False)
+    with output.open_output(path) as out:
+        out.write("# contactsep chatter: gap histories (in) at the samples; "
+                  "circuit_open = 1 where both gaps exceed the threshold\n")
+        out.write(f"# inputs: {inputs}\n")
+        out.write("t_s,gap_upper_in,gap_lower_in,circuit_open\n")
+        rows = np.column_stack([result.t, result.gap_upper,
+                                result.gap_lower])
+        for (t, upper, lower), flag in zip(rows, is_open):
+            out.write(f"{t:.9g},{upper:.9g},{lower:.9g},{int(flag)}\n")

@@ -183,19 +183,42 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         plt.close(fig)
 
 
-def save_chatter_png(result, path) -> None:
-    """Both gaps against time, the open-circuit intervals shaded."""
+def save_chatter_png(result, path, dpi: int = 100) -> None:
+    """The two gaps against time, each on its own axis (the lower one,
+    which decides opening, is small), the open circuit shaded; written
+    to a temporary file beside ``path`` and renamed when finished."""
+    import os
+    import tempfile
+
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7.0, 4.0), dpi=80)
-    ax.plot(result.t, result.gap_upper, lw=0.8, label="upper gap")
-    ax.plot(result.t, result.gap_lower, lw=0.8, label="lower gap")
-    for start, end in result.circuit_open_intervals:
-        ax.axvspan(start, end, color="red", alpha=0.15, lw=0)
-    ax.set(xlabel="time from release (s)", ylabel="gap (in)",
-           title=f"{result.model}, N = {result.n_modes}: circuit open "
-                 f"{result.circuit_open_s * 1e3:.2f} ms (shaded)")
-    ax.legend(fontsize=8)
-    ax.grid(True, lw=0.3)
+    fig, (upper, lower) = plt.subplots(
+        2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
+        gridspec_kw={"height_ratios": (1, 1)})
+    scale = 1e3
+    upper.plot(result.t, result.gap_upper * scale, lw=0.7, color="C0")
+    lower.plot(result.t, result.gap_lower * scale, lw=0.7, color="C1")
+    for ax in (upper, lower):
+        for start, end in result.circuit_open_intervals:
+            ax.axvspan(start, end, color="red", alpha=0.12, lw=0)
+        ax.axhline(result.open_threshold_in * scale, color="0.5", lw=0.6,
+                   ls="--")
+        ax.grid(True, lw=0.3)
+    upper.set(ylabel="upper gap (0.001 in)",
+              title=f"{result.model}, N = {result.n_modes}: circuit open "
+                    f"{result.circuit_open_s * 1e3:.3g} ms (shaded), "
+                    f"{result.n_events} events >= "
+                    f"{result.min_open_s * 1e6:.3g} us")
+    lower.set(xlabel="time from release (s)",
+              ylabel="lower gap (0.001 in)")
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, temporary = tempfile.mkstemp(suffix=".png", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as out:
+            fig.savefig(out, format="png")
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+    finally:
+        plt.close(fig)

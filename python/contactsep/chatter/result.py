@@ -1,0 +1,151 @@
+"""``ChatterResult``: one simulation's inputs, its sampled gaps and the
+summary a designer reads (docs/chatter.md)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactsep.chatter import circuit
+
+
+def plain(value):
+    """A JSON-ready copy: NumPy scalars and arrays to Python, NaN and
+    infinities to None (strict JSON)."""
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [plain(v) for v in np.asarray(value, dtype=object).tolist()]
+    if isinstance(value, (np.generic,)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def design_dict(design) -> dict:
+    """Every field of a single Design, JSON-ready."""
+    return {f.name: plain(getattr(design, f.name))
+            for f in dataclasses.fields(design)}
+
+
+@dataclass(frozen=True, repr=False)
+class ChatterResult:
+    """A simulation of the contact system over 0 <= t <= t_end_s from the
+    release.  Gaps are positive when open (in); times in s; impulses in
+    lb s; energies in in lb.  ``repr`` is a one-line summary."""
+
+    model: str
+    n_modes: int
+    #: Time step (s; 0 for appE, event-driven).
+    dt: float
+    #: Sample times (s) and both gaps (in) at them.
+    t: np.ndarray
+    gap_upper: np.ndarray
+    gap_lower: np.ndarray
+    #: Total mechanical energy at the samples (in lb).
+    energy: np.ndarray
+    #: Open intervals ((k, 2), s) of each contact and of the circuit,
+    #: with exact open and close instants (circuit.py).
+    upper_open_intervals: np.ndarray
+    lower_open_intervals: np.ndarray
+    circuit_open_intervals: np.ndarray
+    #: Total time the circuit is open, its first opening (NaN: never)
+    #: and its longest (0: never); every opening counts.
+    circuit_open_s: float
+    first_circuit_open_s: float
+    longest_open_s: float
+    #: The discontinuity events: openings of at least min_open_s
+    #: ((k, 2) start, end), their number, and whether there is one.
+    events: np.ndarray
+    n_events: int
+    chatters: bool
+    #: Largest lower gap (in): how far the lower contact separates.
+    max_lower_gap_in: float
+    #: The first impact of the upper contact: time and impulse (the
+    #: impulse of its first contact episode).
+    first_impact_s: float
+    first_impulse_lb_s: float
+    #: Energy at the end over energy at the release.
+    energy_ratio: float
+    #: The thesis's single-impulse predictions for the same design.
+    single_impulse: dict = field(default_factory=dict)
+    #: Force pressing the lower contact on the separator at the start (lb);
+    #: the energies then include the preload's strain energy.
+    preload_lb: float = 0.0
+    #: The settings: window (s), open threshold (in), detection time of
+    #: an event (s), Hertz damping, stepper ("adaptive" or "fixed").
+    t_end_s: float = 0.060
+    open_threshold_in: float = circuit.OPEN_THRESHOLD
+    min_open_s: float = circuit.MIN_OPEN
+    damping: str = "none"
+    stepper: str = "fixed"
+    #: The simulated design (a contactsep.Design).
+    design: object = None
+    #: Work done: flight steps, fixed steps and flow evaluations of the
+    #: adaptive stepper; steps of a fixed-step one.
+    work: dict = field(default_factory=dict)
+    #: appE only: every event (impact times, impulses, velocities before
+    #: and after, energy after each; resting intervals), see
+    #: :class:`contactsep.chatter.rigid_stop.RigidStopResult`.
+    rigid_stop: object = None
+
+    def __repr__(self) -> str:
+        first = ("never" if math.isnan(self.first_circuit_open_s)
+                 else f"{self.first_circuit_open_s:.6g} s")
+        return (f"ChatterResult(model={self.model!r}, "
+                f"n_modes={self.n_modes}, dt={self.dt:.3g}, "
+                f"circuit_open_s={self.circuit_open_s:.6g}, "
+                f"first_open={first}, n_events={self.n_events}, "
+                f"max_lower_gap_in={self.max_lower_gap_in:.6g}, "
+                f"{len(self.t)} samples)")
+
+    def inputs(self) -> dict:
+        """What was simulated: the design and the settings."""
+        return {"design": design_dict(self.design)
+                if self.design is not None else None,
+                "model": self.model, "n_modes": self.n_modes,
+                "dt_s": self.dt, "t_end_s": self.t_end_s,
+                "preload_lb": self.preload_lb, "damping": self.damping,
+                "stepper": self.stepper,
+                "open_threshold_in": self.open_threshold_in,
+                "min_open_s": self.min_open_s}
+
+    def to_json_dict(self) -> dict:
+        """Inputs and summary (no sampled arrays), strict-JSON-ready."""
+        return plain({
+            "inputs": self.inputs(),
+            "first_impact_s": self.first_impact_s,
+            "first_impulse_lb_s": self.first_impulse_lb_s,
+            "energy_ratio": self.energy_ratio,
+            "max_lower_gap_in": self.max_lower_gap_in,
+            "chatters": self.chatters,
+            "n_events": self.n_events,
+            "events": self.events,
+            "circuit_open_s": self.circuit_open_s,
+            "first_circuit_open_s": self.first_circuit_open_s,
+            "longest_open_s": self.longest_open_s,
+            "circuit_open_intervals": self.circuit_open_intervals,
+            "upper_open_s": circuit.total(self.upper_open_intervals),
+            "lower_open_s": circuit.total(self.lower_open_intervals),
+            "single_impulse": self.single_impulse,
+            "work": self.work,
+            **self._rigid_stop_events(),
+        })
+
+    def _rigid_stop_events(self) -> dict:
+        """appE: its impacts and rests (times s, impulses lb s, contact
+        velocities in/s, energy after each impact in lb)."""
+        r = self.rigid_stop
+        if r is None:
+            return {}
+        return {"impacts": [
+            {"t_s": float(t), "impulse_lb_s": float(psi),
+             "v_before_in_s": float(a), "v_after_in_s": float(b),
+             "energy_after_in_lb": float(w)}
+            for t, psi, a, b, w in zip(r.impact_t, r.impulse, r.v_before,
+                                       r.v_after, r.energy_after)],
+            "rest_intervals": r.rest_intervals.tolist()}
