@@ -293,6 +293,25 @@ def open_output(path: str | os.PathLike, binary: bool = False
         raise kept
 
 
+def check_targets(outputs: dict, inputs: dict | None = None) -> None:
+    """Before a command does any work: every output (label -> path, None
+    for none) a file that can be written (not a directory), no two of
+    them one file, none of them an input (label -> path) the command
+    reads.  An InputError or OSError names the label and the path."""
+    seen = {}
+    for label, path in outputs.items():
+        if path is None:
+            continue
+        target_info(path)
+        for other, earlier in {**seen, **(inputs or {})}.items():
+            if same_file(path, earlier):
+                what = f"the same file as {other} {earlier}" if \
+                    other in seen else f"the {other} file the command reads"
+                raise InputError(f"{label} {path}: {what}; write each "
+                                 f"output to its own file")
+        seen[label] = path
+
+
 def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
     """True when two paths name one file (links followed; a file not yet
     written by its resolved path)."""

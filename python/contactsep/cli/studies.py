@@ -164,24 +164,10 @@ def _save(study, out: Path, dpi: int) -> None:
 
 
 def check_targets(args: argparse.Namespace, targets: dict) -> None:
-    """Before any work: every output (option -> path) a file that can be
-    written (not a directory), no two of them one file, none of them the
-    --design file the command reads."""
-    seen = {}
+    """Before any work: the outputs (option -> path) can be written, no
+    two are one file, none is the --design file the command reads."""
     design = getattr(args, "design", None)
-    for option, path in targets.items():
-        if path is None:
-            continue
-        output.target_info(path)
-        for other, earlier in seen.items():
-            if output.same_file(path, earlier):
-                raise InputError(f"{option} {path}: the same file as "
-                                 f"{other} {earlier}; give each output "
-                                 f"its own")
-        if design and output.same_file(path, design):
-            raise InputError(f"{option} {path}: the --design file the "
-                             f"command reads; write elsewhere")
-        seen[option] = path
+    output.check_targets(targets, {"--design": design} if design else {})
 
 
 def _study_targets(args, names) -> dict:

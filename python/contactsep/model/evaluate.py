@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import time
 from dataclasses import dataclass
 
 import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.model import status as status_codes
-from contactsep.model.design import Design, outside_domain, pack
+from contactsep.model.design import Design, Packed, outside_domain, pack
 
 BACKENDS = ("compiled", "numpy")
 
@@ -117,14 +118,16 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     """Evaluate the general model (eq. 23) on a design or a batch.
 
     ``backend="compiled"`` runs the Fortran kernel (one call for the whole
-    batch); ``"numpy"`` the NumPy twin.  Per-design failures are statuses.
+    batch, or for pieces of about PIECE_S seconds of a batch that takes
+    longer: a signal is seen between them); ``"numpy"`` the NumPy twin.
+    Per-design failures are statuses.
     """
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
     packed = pack(design)
-    out = _refuse_outside_domain(packed,
-                                 _backend(backend).evaluate_packed(packed))
+    out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
+                                                    packed))
     shape = packed.shape
     fields = {}
     for key in _SCALARS:
@@ -133,6 +136,43 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
     return Evaluation(**fields)
+
+
+#: Seconds of compiled work a piece of a batch is sized for: Python sees
+#: Ctrl-C and SIGTERM only between compiled calls (a study of 57 designs
+#: at N = 100,000 was one call, deaf for minutes).
+PIECE_S = 0.5
+#: Modes x designs of the first piece, before one is timed.
+FIRST_PIECE_COST = 4096
+
+
+def _in_pieces(backend, packed: Packed) -> dict:
+    """backend.evaluate_packed(packed), in pieces sized by the time the
+    ones before took (the results do not depend on the pieces)."""
+    m = packed.size
+    n_max = int(packed.ints[:, 3:].max()) if m else 1
+    size = max(1, FIRST_PIECE_COST // max(n_max, 1))
+    if size >= m:
+        return backend.evaluate_packed(packed)
+    parts, first = [], 0
+    while first < m:
+        last = min(m, first + size)
+        start = time.perf_counter()
+        parts.append(backend.evaluate_packed(Packed(
+            real=packed.real[first:last], ints=packed.ints[first:last],
+            options=packed.options, shape=(last - first,))))
+        seconds = time.perf_counter() - start
+        size = int(max(1, min(8 * size,
+                              size * PIECE_S / max(seconds, 1e-6))))
+        first = last
+    out = {}
+    for key in parts[0]:
+        values = [np.asarray(part[key]) for part in parts]
+        if values[0].ndim == 2:       # per mode: pad to the batch's N
+            values = [np.pad(v, ((0, 0), (0, n_max - v.shape[1])),
+                             constant_values=np.nan) for v in values]
+        out[key] = np.concatenate(values)
+    return out
 
 
 def _refuse_outside_domain(packed, out: dict) -> dict:
