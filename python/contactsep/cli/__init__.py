@@ -102,8 +102,17 @@ _LAYERS = ("restored", "model", "studies", "chatter")
 
 def _one_line_warning(message, category, filename, lineno, file=None,
                       line=None) -> None:
-    """Warnings as one line on stderr: ``contactsep: warning: ...``."""
-    print(f"contactsep: warning: {message}", file=sys.stderr)
+    """Warnings as one line on stderr: ``contactsep: warning: ...``, each
+    text once a command (compare solved each data set twice and said
+    the same twice)."""
+    text = f"contactsep: warning: {output.one_line(Warning(message))}"
+    if text not in _WARNED:
+        _WARNED.add(text)
+        print(text, file=sys.stderr)
+
+
+#: The warnings this command has printed.
+_WARNED: set = set()
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -125,6 +134,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
+    _WARNED.clear()
     warnings.showwarning = _one_line_warning
     try:
         args = parser.parse_args(argv)

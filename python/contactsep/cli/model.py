@@ -95,8 +95,17 @@ def run(args: argparse.Namespace) -> int:
     design = thesis_design(**design_overrides(args))
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
+    if code == status.NO_IMPACT:
+        raise InputError(f"no impact: the upper contact released from ys "
+                         f"= {float(design.ys):g} in never reaches the "
+                         f"separator's surface at gap = "
+                         f"{float(design.gap):g} in within one period of "
+                         f"its first mode (a gap at or above ys, or below "
+                         f"the swing)")
     if code != status.OK:
-        raise InputError(status.MESSAGES[code])
+        problems = design.problems()
+        raise InputError(problems[0] if problems else
+                         status.MESSAGES[code])
     if result.at_window_end:
         warnings.warn("the largest separation is at the end of the window "
                       "(increase --tau)", ContactsepWarning)
