@@ -71,6 +71,11 @@ class _Parser(argparse.ArgumentParser):
         return args
 
     def error(self, message: str):
+        # 'argument --dt: found ...' as every other error names an
+        # option: '--dt: found ...'; the rest with its subcommand
+        option = re.match(r"argument (\S+?)(/\S+)?: ", message)
+        if option:
+            raise UsageError(f"{option.group(1)}: {message[option.end():]}")
         command = self.prog.partition(" ")[2]
         raise UsageError(f"{command}: {message}" if command else message)
 

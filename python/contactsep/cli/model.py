@@ -96,12 +96,8 @@ def run(args: argparse.Namespace) -> int:
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
     if code == status.NO_IMPACT:
-        raise InputError(f"no impact: the upper contact released from ys "
-                         f"= {float(design.ys):g} in never reaches the "
-                         f"separator's surface at gap = "
-                         f"{float(design.gap):g} in within one period of "
-                         f"its first mode (a gap at or above ys, or below "
-                         f"the swing)")
+        raise InputError(status.no_impact(float(design.ys),
+                                          float(design.gap)))
     if code != status.OK:
         problems = design.problems()
         raise InputError(problems[0] if problems else

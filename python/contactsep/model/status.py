@@ -21,3 +21,11 @@ MESSAGES = {
     INVALID_INPUT: "invalid input: a value out of range",
     NOT_FINITE: "a result is not finite (overflow)",
 }
+
+
+def no_impact(ys: float, gap: float) -> str:
+    """NO_IMPACT's message for one design, naming its ys and gap."""
+    return (f"no impact: the upper contact released from ys = {ys:g} in "
+            f"never reaches the separator's surface at gap = {gap:g} in "
+            f"within one period of its first mode (a gap at or above ys, "
+            f"or below the swing)")

@@ -232,10 +232,8 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
 def save_chatter_png(result, path, dpi: int = 100) -> None:
     """The two gaps against time, each on its own axis (the lower one,
     which decides opening, is small), the open circuit shaded; written
-    to a temporary file beside ``path`` and renamed when finished."""
-    import os
-    import tempfile
-
+    to a temporary file beside ``path`` and renamed when finished (a
+    device written in place: :func:`contactsep.output.open_output`)."""
     plt = _pyplot()
     fig, (upper, lower) = plt.subplots(
         2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
@@ -257,14 +255,8 @@ def save_chatter_png(result, path, dpi: int = 100) -> None:
     lower.set(xlabel="time from release (s)",
               ylabel="lower gap (0.001 in)")
     fig.tight_layout()
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, temporary = tempfile.mkstemp(suffix=".png", dir=directory)
     try:
-        with os.fdopen(fd, "wb") as out:
+        with output.open_output(path, binary=True) as out:
             fig.savefig(out, format="png")
-        os.replace(temporary, path)
-    except BaseException:
-        os.unlink(temporary)
-        raise
     finally:
         plt.close(fig)
