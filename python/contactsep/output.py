@@ -39,7 +39,7 @@ import sys
 import tempfile
 from typing import Iterator, TextIO
 
-from contactsep.errors import DeckError, InputError
+from contactsep.errors import DeckError, InputError, printable
 
 #: Characters written at a time: a listing of tens of megabytes is never
 #: encoded whole.
@@ -324,20 +324,6 @@ def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
         return False
 
 
-def _printable(message: str) -> str:
-    """One line: line ends and TABs become blanks, other control
-    characters are named by their code."""
-    out = []
-    for char in message:
-        if char in "\n\r\t\v\f":
-            out.append(" ")
-        elif char.isprintable():
-            out.append(char)
-        else:
-            out.append(f"<0x{ord(char):02X}>")
-    return "".join(out)
-
-
 def _silence_stdout() -> None:
     """After a failed write, point stdout at the null device so that the
     interpreter's last flush cannot print a second message."""
@@ -359,7 +345,7 @@ def one_line(error: BaseException) -> str:
             message += f": {os.fsdecode(error.filename)}"
     else:
         message = str(error)
-    return _printable(message)
+    return printable(message)
 
 
 def report(prog: str, error: BaseException) -> None:

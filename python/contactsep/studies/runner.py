@@ -188,9 +188,12 @@ def _results_local(spec, bounds: Chunks, workers, stop):
             raise
         # the pool starts its processes at the first chunk: one that
         # could not start (a process limit) leaves the others waiting
-        # for work forever, and the interpreter's exit waiting for them
+        # for work forever, and the interpreter's exit waiting for them.
+        # Killed, not terminated: a SIGTERM can reach one before its
+        # initializer, while it still has this process's handlers
         for process in (getattr(pool, "_processes", None) or {}).values():
-            process.terminate()
+            process.kill()
+            process.join()
         raise InputError(f"--workers {workers}: the worker processes could "
                          f"not be started ({error.strerror or error}); try "
                          f"fewer") from None
