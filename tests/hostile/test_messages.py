@@ -8,6 +8,8 @@ from __future__ import annotations
 import pytest
 from hostile_cli import main, refusal, run, strict_json
 
+import contactsep
+from contactsep import studies
 from contactsep.errors import InputError
 from contactsep.restored import cards, thesis_decks
 
@@ -122,3 +124,22 @@ def test_simulate_names_its_argument(kwargs, message):
     with pytest.raises(InputError) as info:
         simulate(thesis_design(n_modes=2), **kwargs)
     assert str(info.value) == message or str(info.value).startswith(message)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: contactsep.thesis_design(bogus=1),
+     "bogus: not a design field"),
+    (lambda: studies.fig8(ys=[0.3, 0.6]),
+     "study fig8: ys: found [0.3, 0.6], expected one value"),
+    (lambda: studies.table2(e="abc"),
+     "e: found 'abc', expected a number"),
+    (lambda: contactsep.evaluate("a design"),
+     "design: expected a contactsep.Design, found str"),
+])
+def test_the_api_names_what_it_refuses(call, message):
+    """Studies and thesis_design raised TypeErrors from deep inside
+    (Design.__init__() got an unexpected keyword argument; only
+    0-dimensional arrays can be converted to Python scalars)."""
+    with pytest.raises(InputError) as info:
+        call()
+    assert str(info.value).startswith(message), str(info.value)

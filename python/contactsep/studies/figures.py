@@ -60,7 +60,7 @@ def _notes(design, *extra, per_row=()) -> tuple:
 def fig5(*, backend="compiled", **overrides) -> Study:
     """Figure 5: max y3 against separator thickness d = 0.10..1.00 in, for
     y_s = 0.25, 0.5, 0.75 in (``ys=`` given: that one curve)."""
-    refuse_fixed("fig5", overrides, FIXED["fig5"])
+    refuse_fixed("fig5", overrides, FIXED["fig5"], arrays=("ys",))
     ys = np.atleast_1d(overrides.pop("ys", FIG5_DEFLECTIONS))[:, None]
     d = FIG5_THICKNESSES[None, :]
     design = thesis_design(d=d, ys=ys, **overrides)

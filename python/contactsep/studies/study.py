@@ -114,9 +114,18 @@ def _problems(design, one: dict) -> list[str]:
     return []
 
 
-def refuse_fixed(study: str, overrides: dict, fixed: dict) -> None:
+def refuse_fixed(study: str, overrides: dict, fixed: dict,
+                 arrays: tuple = ()) -> None:
     """A study sets some fields itself (``fixed``: field -> why); an
-    override of one is refused with an InputError naming it."""
+    override of one is refused with an InputError naming it, and so is
+    an array for any other field (a study's rows are its own axes; a
+    sweep varies any field), but those in ``arrays``."""
+    for name, value in overrides.items():
+        if name not in arrays and not isinstance(value, tuple) and \
+                np.ndim(value) != 0:
+            raise InputError(f"study {study}: {name}: found {value!r}, "
+                             f"expected one value (a study varies its own "
+                             f"axes; contactsep sweep varies any field)")
     for name, why in fixed.items():
         if name in overrides:
             label = f"{OUTPUT_NAMES[name]}/{name}" if name in OUTPUT_NAMES \
