@@ -1,6 +1,7 @@
-"""Where the command's output goes, and how it stops (issue 9).
+"""Where the command's output goes, and how it stops (issues 9, 18).
 
-``-o PATH`` (:func:`open_output`):
+``-o PATH`` and every file a command writes (:func:`open_output`, or a
+:class:`Replacement` kept open across a sweep's chunks):
 
 * a regular file, new or existing, is written to a temporary file beside
   it (``.NAME.XXXX.tmp``) and renamed into place when the command ends, so
@@ -16,7 +17,11 @@
 * anything that is not a regular file (``/dev/null``, a FIFO,
   ``/dev/stdout``, a terminal) is opened and written directly, never
   replaced; a directory is refused;
-* messages name the path as the user gave it, never the temporary file.
+* messages name the path as the user gave it, never the temporary file;
+* ``Replacement(path, lock=True)`` (sweeps) refuses a target another
+  command is writing (``.NAME.lock`` beside it, held with flock);
+* :func:`check_targets`, before any work: no output a directory, no two
+  outputs one file, no output a file the command reads.
 
 JSON (:func:`json_text`, :func:`write_json`) is strict: NaN and the
 infinities are written as null, never as the NaN or Infinity that

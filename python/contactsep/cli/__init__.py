@@ -63,11 +63,10 @@ class _Parser(argparse.ArgumentParser):
         args, extras = self.parse_known_args(args, namespace)
         if extras:
             command = getattr(args, "command", None)
-            raise UsageError(
-                (f"{command}: " if command else "")
-                + f"unrecognized arguments: {' '.join(extras)} "
-                f"(contactsep {command or ''} --help lists the "
-                f"options)".replace("  ", " "))
+            where = f"contactsep {command}" if command else "contactsep"
+            raise UsageError((f"{command}: " if command else "")
+                             + f"unrecognized arguments: {' '.join(extras)}"
+                             f" ({where} --help lists the options)")
         return args
 
     def error(self, message: str):

@@ -155,7 +155,8 @@ def _relation_rules(col: dict, ints: np.ndarray):
         yield f"x{m}", wrong, \
             lambda row, m=m, low=low, high=high, end=end: (
                 f"{low[row]:.6g} < x{m} "
-                f"{'<' if end[row] != 1 else '<='} {high[row]:.6g} in: "
+                f"{'<=' if end[row] == END_CODES['clamped-free'] else '<'} "
+                f"{high[row]:.6g} in: "
                 f"inside the span of the {_end_name(end[row])} "
                 f"{_MEMBER_NAMES[m]} (end{m}), at least "
                 f"{SUPPORT_CLEARANCE:g} L{m} from a clamped end")
