@@ -23,6 +23,9 @@
 * :func:`check_targets`, before any work: no output a directory, no two
   outputs one file, no output a file the command reads.
 
+Long compiled calls (:func:`interruptible`) run in a forked child, so
+that Ctrl-C and SIGTERM stop them at once.
+
 JSON (:func:`json_text`, :func:`write_json`) is strict: NaN and the
 infinities are written as null, never as the NaN or Infinity that
 ``json.load`` in other languages refuses.
@@ -39,9 +42,12 @@ import errno
 import json
 import math
 import os
+import pickle
+import signal
 import stat
 import sys
 import tempfile
+import threading
 from typing import Iterator, TextIO
 
 from contactsep.errors import DeckError, InputError, printable
@@ -327,6 +333,54 @@ def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
         return os.path.samefile(a, b)
     except OSError:
         return False
+
+
+def interruptible(long: bool, function, *args):
+    """``function(*args)``; when the call is ``long``, in a child process.
+
+    A compiled call is one that Python cannot interrupt: Ctrl-C and
+    SIGTERM wait for it to return (a chatter run at N = 1024 takes a
+    minute, one design of the model at N = 100,000 six seconds).  In a child
+    (forked: nothing is pickled but the answer) they stop the wait at
+    once; the child ends with the parent's Ctrl-C (it shares the terminal)
+    or is killed.  Exceptions come back as they were raised.  With other
+    threads running (fork would copy their locks), or without fork, the
+    call runs here."""
+    if not long or not hasattr(os, "fork") or \
+            threading.active_count() > 1:
+        return function(*args)
+    read_fd, write_fd = os.pipe()
+    pid = os.fork()
+    if pid == 0:                        # the child: never returns
+        try:
+            os.close(read_fd)
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            try:
+                answer = (True, function(*args))
+            except BaseException as error:   # noqa: BLE001 - sent back
+                answer = (False, error)
+            with os.fdopen(write_fd, "wb") as pipe:
+                pickle.dump(answer, pipe, protocol=pickle.HIGHEST_PROTOCOL)
+        finally:
+            os._exit(0)
+    os.close(write_fd)
+    try:
+        with os.fdopen(read_fd, "rb") as pipe:
+            data = pipe.read()
+    except BaseException:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        raise
+    _, code = os.waitpid(pid, 0)
+    if not data:
+        raise InputError(f"the computation's process ended without an "
+                         f"answer (status {code}: killed, or out of "
+                         f"memory)")
+    ok, value = pickle.loads(data)
+    if not ok:
+        raise value
+    return value
 
 
 def _silence_stdout() -> None:

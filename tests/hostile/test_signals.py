@@ -18,7 +18,7 @@ import time
 import numpy as np
 import pytest
 
-from contactsep.chatter import runners
+from contactsep import output
 from contactsep.model import evaluate, thesis_design
 
 evaluate_module = importlib.import_module("contactsep.model.evaluate")
@@ -62,7 +62,7 @@ LONG = [
     (["chatter", "--model", "hertz", "--n-modes", "1024"], 2.0, SIGTERM),
     (["chatter", "--model", "newton", "--n-modes", "1024"], 2.0, CTRL_C),
     (["chatter", "--model", "appE", "--n-modes", "128"], 2.0, CTRL_C),
-    (["study", "fig5", "--n-modes", "20000"], 2.0, CTRL_C),
+    (["study", "fig5", "--n-modes", "100000"], 2.0, CTRL_C),
     (["sweep", "--vary", "h2=0.1:0.5:1000", "--n-modes", "300",
       "--workers", "2", "--csv", "s.csv"], 3.0, SIGTERM),
 ]
@@ -94,13 +94,13 @@ def _fail():
 
 
 def test_a_run_in_a_child_answers_raises_and_is_killed_on_a_signal():
-    """runners.interruptible: the answer and the exceptions come back;
+    """output.interruptible: the answer and the exceptions come back;
     a signal in the parent (here an alarm that raises) kills the child
     at once and propagates."""
-    assert runners.interruptible(True, _sleep_then, 0.0, {"a": [1]}) == \
+    assert output.interruptible(True, _sleep_then, 0.0, {"a": [1]}) == \
         {"a": [1]}
     with pytest.raises(ValueError, match="from the child"):
-        runners.interruptible(True, _fail)
+        output.interruptible(True, _fail)
 
     def alarm(signum, frame):
         raise KeyboardInterrupt
@@ -110,7 +110,7 @@ def test_a_run_in_a_child_answers_raises_and_is_killed_on_a_signal():
         signal.setitimer(signal.ITIMER_REAL, 0.3)
         start = time.monotonic()
         with pytest.raises(KeyboardInterrupt):
-            runners.interruptible(True, _sleep_then, 60.0, None)
+            output.interruptible(True, _sleep_then, 60.0, None)
         assert time.monotonic() - start < PROMPT
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)

@@ -5,10 +5,6 @@ contact's open intervals, the largest lower gap, the first impact)."""
 from __future__ import annotations
 
 import importlib
-import os
-import pickle
-import signal
-import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,53 +56,6 @@ class Run:
     max_lower_gap_in: float
     first: tuple              # (time s, impulse lb s); NaN: none
     work: dict
-
-
-def interruptible(long: bool, function, *args):
-    """``function(*args)``; when the run is ``long``, in a child process.
-
-    A compiled stepper is one call that Python cannot interrupt: Ctrl-C
-    and SIGTERM wait for it to return (a minute at N = 1024).  In a child
-    (forked: nothing is pickled but the answer) they stop the wait at
-    once; the child ends with the parent's Ctrl-C (it shares the terminal)
-    or is killed.  Exceptions come back as they were raised.  With other
-    threads running (fork would copy their locks), or without fork, the
-    call runs here."""
-    if not long or not hasattr(os, "fork") or \
-            threading.active_count() > 1:
-        return function(*args)
-    read_fd, write_fd = os.pipe()
-    pid = os.fork()
-    if pid == 0:                        # the child: never returns
-        try:
-            os.close(read_fd)
-            signal.signal(signal.SIGINT, signal.SIG_DFL)
-            signal.signal(signal.SIGTERM, signal.SIG_DFL)
-            try:
-                answer = (True, function(*args))
-            except BaseException as error:   # noqa: BLE001 - sent back
-                answer = (False, error)
-            with os.fdopen(write_fd, "wb") as pipe:
-                pickle.dump(answer, pipe, protocol=pickle.HIGHEST_PROTOCOL)
-        finally:
-            os._exit(0)
-    os.close(write_fd)
-    try:
-        with os.fdopen(read_fd, "rb") as pipe:
-            data = pipe.read()
-    except BaseException:
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
-        raise
-    _, code = os.waitpid(pid, 0)
-    if not data:
-        raise StepperError(f"the simulation's process ended without an "
-                           f"answer (status {code}: killed, or out of "
-                           f"memory)")
-    ok, value = pickle.loads(data)
-    if not ok:
-        raise value
-    return value
 
 
 def _api():

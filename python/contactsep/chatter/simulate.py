@@ -21,6 +21,7 @@ import warnings
 
 import numpy as np
 
+from contactsep import output
 from contactsep.chatter import circuit, runners, system
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
@@ -253,7 +254,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
             raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
                                f"event-driven (the exact modal flow "
                                f"between impacts) and takes no step")
-        return runners.interruptible(
+        return output.interruptible(
             int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
             backend, settings)
     dt = DEFAULT_DT[model] if dt is None else _real("dt", dt, "s")
@@ -295,8 +296,8 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     else:
         run, args = runners.hertz_fixed, (law, dt, steps, stride,
                                           open_threshold, backend)
-    run = runners.interruptible(steps * modes >= FORKED_WORK, run, stack,
-                                *args)
+    run = output.interruptible(steps * modes >= FORKED_WORK, run, stack,
+                               *args)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
     return ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
