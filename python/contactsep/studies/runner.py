@@ -122,7 +122,7 @@ def _quiet_worker() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _timed_chunk(spec, first, last) -> tuple[dict, float]:
+def evaluate_chunk_timed(spec, first, last) -> tuple[dict, float]:
     """A chunk's columns and the seconds it took (chunks are sized by
     the time per design: Chunks.record)."""
     start = time.perf_counter()
@@ -135,7 +135,7 @@ def _evaluate_to_file(spec, first, last, directory) -> tuple[str, float]:
     short path, written to the pipe at once (a worker killed while it
     sent megabytes of columns would leave the pool reading the rest of
     the message forever), and no pickling of the columns."""
-    columns, seconds = _timed_chunk(spec, first, last)
+    columns, seconds = evaluate_chunk_timed(spec, first, last)
     path = os.path.join(directory, f"{first}.npz")
     np.savez(path, **{k: np.ascontiguousarray(v) for k, v in columns.items()})
     return path, seconds
@@ -152,7 +152,7 @@ def _results_local(spec, bounds: Chunks, workers, stop):
     if workers <= 1:
         for first, last in bounds:
             stop.check()
-            columns, seconds = _timed_chunk(spec, first, last)
+            columns, seconds = evaluate_chunk_timed(spec, first, last)
             bounds.record(last - first, seconds)
             yield columns
         return
@@ -209,8 +209,8 @@ def _results_dask(spec, bounds: Chunks, address, stop):
     try:
         window = collections.deque()
         for first, last in bounds:
-            window.append(client.submit(_timed_chunk, spec, first, last,
-                                        pure=False))
+            window.append(client.submit(evaluate_chunk_timed, spec, first,
+                                        last, pure=False))
             if len(window) >= 8:
                 columns, seconds = _wait(window.popleft(), stop)
                 bounds.record(len(columns["status"]), seconds)
