@@ -70,9 +70,15 @@ OTHER = [pytest.param(args, after, CTRL_C if how is SIGTERM else SIGTERM,
                       marks=pytest.mark.slow) for args, after, how in LONG]
 
 
-@pytest.mark.parametrize("args, after, how", LONG + OTHER,
-                         ids=lambda v: " ".join(v) if isinstance(v, list)
-                         else None)
+def _id(value):
+    if isinstance(value, list):
+        return " ".join(value)
+    if isinstance(value, tuple):
+        return "ctrl-c" if value == CTRL_C else "sigterm"
+    return f"{value:g}s"
+
+
+@pytest.mark.parametrize("args, after, how", LONG + OTHER, ids=_id)
 def test_a_long_command_stops_at_once(tmp_path, args, after, how):
     signum, status, group = how
     code, took, err = _stop(args, signum, after, tmp_path, group)
