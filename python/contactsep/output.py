@@ -340,12 +340,13 @@ def interruptible(long: bool, function, *args):
 
     A compiled call is one that Python cannot interrupt: Ctrl-C and
     SIGTERM wait for it to return (a chatter run at N = 1024 takes a
-    minute, one design of the model at N = 100,000 six seconds).  In a child
-    (forked: nothing is pickled but the answer) they stop the wait at
-    once; the child ends with the parent's Ctrl-C (it shares the terminal)
-    or is killed.  Exceptions come back as they were raised.  With other
-    threads running (fork would copy their locks), or without fork, the
-    call runs here."""
+    minute, one design of the model at N = 100,000 six seconds).  In a
+    child (forked: nothing is pickled but the answer) they stop the wait
+    at once; the child ends with the parent's Ctrl-C (it shares the
+    terminal) or is killed.  Exceptions come back as they were raised
+    (one that cannot be pickled, as an InputError with its message).
+    With other threads running (fork would copy their locks), or without
+    fork, the call runs here."""
     if not long or not hasattr(os, "fork") or \
             threading.active_count() > 1:
         return function(*args)
@@ -356,12 +357,9 @@ def interruptible(long: bool, function, *args):
             os.close(read_fd)
             signal.signal(signal.SIGINT, signal.SIG_DFL)
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
-            try:
-                answer = (True, function(*args))
-            except BaseException as error:   # noqa: BLE001 - sent back
-                answer = (False, error)
+            data = _answer(function, args)
             with os.fdopen(write_fd, "wb") as pipe:
-                pickle.dump(answer, pipe, protocol=pickle.HIGHEST_PROTOCOL)
+                pipe.write(data)
         finally:
             os._exit(0)
     os.close(write_fd)
@@ -373,14 +371,29 @@ def interruptible(long: bool, function, *args):
         os.waitpid(pid, 0)
         raise
     _, code = os.waitpid(pid, 0)
-    if not data:
+    try:
+        ok, value = pickle.loads(data)
+    except Exception:                    # noqa: BLE001 - no whole answer
         raise InputError(f"the computation's process ended without an "
                          f"answer (status {code}: killed, or out of "
-                         f"memory)")
-    ok, value = pickle.loads(data)
+                         f"memory)") from None
     if not ok:
         raise value
     return value
+
+
+def _answer(function, args) -> bytes:
+    """The pickled (True, result) or (False, exception) of a call."""
+    try:
+        answer = (True, function(*args))
+    except BaseException as error:       # noqa: BLE001 - sent back
+        answer = (False, error)
+    try:
+        return pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:                    # noqa: BLE001 - said instead
+        return pickle.dumps((False, InputError(one_line(answer[1]) if not
+                                               answer[0] else "the answer "
+                                               "could not be sent back")))
 
 
 def _silence_stdout() -> None:

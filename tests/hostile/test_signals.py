@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from contactsep import output
+from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
 
 evaluate_module = importlib.import_module("contactsep.model.evaluate")
@@ -99,6 +100,15 @@ def _fail():
     raise ValueError("from the child")
 
 
+class _Unpicklable(Exception):
+    def __reduce__(self):
+        raise TypeError("not picklable")
+
+
+def _fail_unpicklably():
+    raise _Unpicklable("a message")
+
+
 def test_a_run_in_a_child_answers_raises_and_is_killed_on_a_signal():
     """output.interruptible: the answer and the exceptions come back;
     a signal in the parent (here an alarm that raises) kills the child
@@ -107,6 +117,12 @@ def test_a_run_in_a_child_answers_raises_and_is_killed_on_a_signal():
         {"a": [1]}
     with pytest.raises(ValueError, match="from the child"):
         output.interruptible(True, _fail)
+    with pytest.raises(InputError, match="^a message$"):
+        output.interruptible(True, _fail_unpicklably)
+    # a large answer comes back whole
+    big = np.arange(3_000_000.0)
+    np.testing.assert_array_equal(
+        output.interruptible(True, _sleep_then, 0.0, big), big)
 
     def alarm(signum, frame):
         raise KeyboardInterrupt
