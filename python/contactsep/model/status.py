@@ -12,6 +12,9 @@ NO_IMPACT = 1
 INVALID_INPUT = 2
 #: A result overflowed.
 NOT_FINITE = 3
+#: The extremes of y3 could not be resolved to 1e-12 within the search's
+#: work budget (too many modes for the window, or a window too long).
+UNRESOLVED = 4
 
 #: Code -> one-line meaning.
 MESSAGES = {
@@ -20,6 +23,9 @@ MESSAGES = {
                "period of the upper contact's first mode",
     INVALID_INPUT: "invalid input: a value out of range",
     NOT_FINITE: "a result is not finite (overflow)",
+    UNRESOLVED: "the extremes of y3 could not be resolved to 1e-12 of "
+                "sum |c_j| within the search's work budget: shorten tau "
+                "or use fewer modes",
 }
 
 
