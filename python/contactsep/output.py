@@ -43,6 +43,7 @@ import json
 import math
 import os
 import pickle
+import select
 import signal
 import stat
 import sys
@@ -335,51 +336,98 @@ def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
         return False
 
 
+#: Checks a long wait calls now and then (:func:`stop_checks`): each
+#: raises when a stop was asked for (a sweep notes its signals and acts
+#: on them at such points).
+_STOP_CHECKS: list = []
+
+
+@contextlib.contextmanager
+def stop_checks(check) -> Iterator[None]:
+    """Within the block, :func:`interruptible`'s wait calls ``check()``
+    every quarter second (and when its child dies)."""
+    _STOP_CHECKS.append(check)
+    try:
+        yield
+    finally:
+        _STOP_CHECKS.remove(check)
+
+
+def _check_stops() -> None:
+    for check in list(_STOP_CHECKS):
+        check()
+
+
 def interruptible(long: bool, function, *args):
     """``function(*args)``; when the call is ``long``, in a child process.
 
     A compiled call is one that Python cannot interrupt: Ctrl-C and
     SIGTERM wait for it to return (a chatter run at N = 1024 takes a
-    minute, one design of the model at N = 100,000 six seconds).  In a
-    child (forked: nothing is pickled but the answer) they stop the wait
-    at once; the child ends with the parent's Ctrl-C (it shares the
-    terminal) or is killed.  Exceptions come back as they were raised
-    (one that cannot be pickled, as an InputError with its message).
-    With other threads running (fork would copy their locks), or without
-    fork, the call runs here."""
+    minute, one design of the model seconds).  In a child (forked:
+    nothing is pickled but the answer) they stop the wait at once, as
+    does a stop noted by a :func:`stop_checks` check; the child ends with
+    the parent's Ctrl-C (it shares the terminal), with the parent (Linux:
+    PR_SET_PDEATHSIG), or is killed.  Exceptions come back as they were
+    raised (one that cannot be pickled, as an InputError with its
+    message).  With other threads running (fork would copy their locks),
+    or without fork, the call runs here."""
     if not long or not hasattr(os, "fork") or \
             threading.active_count() > 1:
         return function(*args)
     read_fd, write_fd = os.pipe()
+    parent = os.getpid()
     pid = os.fork()
     if pid == 0:                        # the child: never returns
         try:
             os.close(read_fd)
             signal.signal(signal.SIGINT, signal.SIG_DFL)
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            _die_with(parent)
             data = _answer(function, args)
             with os.fdopen(write_fd, "wb") as pipe:
                 pipe.write(data)
         finally:
             os._exit(0)
     os.close(write_fd)
+    chunks = []
     try:
-        with os.fdopen(read_fd, "rb") as pipe:
-            data = pipe.read()
+        with os.fdopen(read_fd, "rb", buffering=0) as pipe:
+            while True:
+                _check_stops()
+                ready, _, _ = select.select([pipe], [], [], 0.25)
+                if ready:
+                    chunk = pipe.read(1 << 20)
+                    if not chunk:
+                        break
+                    chunks.append(chunk)
     except BaseException:
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
         raise
     _, code = os.waitpid(pid, 0)
     try:
-        ok, value = pickle.loads(data)
+        ok, value = pickle.loads(b"".join(chunks))
     except Exception:                    # noqa: BLE001 - no whole answer
+        _check_stops()      # a Ctrl-C that ended the child ends this too
         raise InputError(f"the computation's process ended without an "
                          f"answer (status {code}: killed, or out of "
                          f"memory)") from None
     if not ok:
         raise value
     return value
+
+
+def _die_with(parent: int) -> None:
+    """In a child: be killed when ``parent`` ends (Linux), so that a
+    sweep's worker killed outright leaves no computation behind."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)        # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:               # it ended before prctl
+        os._exit(1)
 
 
 def _answer(function, args) -> bytes:

@@ -97,13 +97,10 @@ def run(args: argparse.Namespace) -> int:
     design = thesis_design(**design_overrides(args))
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
-    if code == status.NO_IMPACT:
-        raise InputError(status.no_impact(float(design.ys),
-                                          float(design.gap)))
     if code != status.OK:
         problems = design.problems()
         raise InputError(problems[0] if problems else
-                         status.MESSAGES[code])
+                         status.explain(code, design))
     if result.at_window_end:
         warnings.warn("the largest separation is at the end of the window "
                       "(increase --tau)", ContactsepWarning)

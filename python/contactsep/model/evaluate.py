@@ -12,7 +12,13 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model import status as status_codes
-from contactsep.model.design import Design, Packed, outside_domain, pack
+from contactsep.model.design import (
+    REAL_COLUMNS,
+    Design,
+    Packed,
+    outside_domain,
+    pack,
+)
 
 BACKENDS = ("compiled", "numpy")
 
@@ -154,10 +160,19 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
 PIECE_S = 0.5
 #: Modes x designs of the first piece, before one is timed.
 FIRST_PIECE_COST = 4096
-#: From this many modes one design takes about a second or more (6 s at
-#: 100,000): each piece runs in a child process, which a signal ends at
-#: once (output.interruptible).
-FORKED_MODES = 20_000
+#: From this many modes, or this window (s), one design may take a
+#: second or more (the extremum search's budget allows ~20 s; the thesis
+#: design takes 1.4 s at tau = 1e4 s, 0.7 s at N = 800: docs/model.md):
+#: such a batch starts with a piece of one design, and each piece runs
+#: in a child process, which a signal ends at once (output.interruptible).
+COSTLY_MODES = 200
+COSTLY_TAU_S = 1.0
+
+
+def costly(n_max: int, tau_max: float) -> bool:
+    """True when a design of up to ``n_max`` modes and a window up to
+    ``tau_max`` (s) may take seconds (COSTLY_MODES, COSTLY_TAU_S)."""
+    return n_max >= COSTLY_MODES or not tau_max < COSTLY_TAU_S
 
 
 def _in_pieces(backend, packed: Packed) -> dict:
@@ -165,8 +180,9 @@ def _in_pieces(backend, packed: Packed) -> dict:
     ones before took (the results do not depend on the pieces)."""
     m = packed.size
     n_max = int(packed.ints[:, 3:].max()) if m else 1
-    size = max(1, FIRST_PIECE_COST // max(n_max, 1))
-    forked = n_max >= FORKED_MODES
+    tau = packed.real[:, REAL_COLUMNS.index("tau")]
+    forked = m > 0 and costly(n_max, float(np.max(tau)))
+    size = 1 if forked else max(1, FIRST_PIECE_COST // max(n_max, 1))
     if size >= m and not forked:
         return backend.evaluate_packed(packed)
     parts, first = [], 0

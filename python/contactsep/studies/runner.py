@@ -20,6 +20,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import ContactsepWarning, InputError
+from contactsep.model.evaluate import costly
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
@@ -104,13 +105,17 @@ class _StopRequests:
 
 
 def _wait(future, stop: _StopRequests):
-    """A chunk's columns, listening for a stop every quarter second."""
+    """A chunk's columns, listening for a stop every quarter second (a
+    chunk that failed because the same Ctrl-C ended it: the stop)."""
     while True:
         stop.check()
         try:
             return future.result(timeout=0.25)
         except TimeoutError:
             continue
+        except BaseException:
+            stop.check()
+            raise
 
 
 def _quiet_worker() -> None:
@@ -187,19 +192,22 @@ def _results_local(spec, bounds: Chunks, workers, stop):
         if started:
             raise
         # the pool starts its processes at the first chunk: one that
-        # could not start (a process limit) leaves the others waiting
-        # for work forever, and the interpreter's exit waiting for them.
-        # Killed, not terminated: a SIGTERM can reach one before its
-        # initializer, while it still has this process's handlers
-        for process in (getattr(pool, "_processes", None) or {}).values():
-            process.kill()
-            process.join()
+        # could not start (a process limit) left the others waiting for
+        # work forever, and the interpreter's exit waiting for them
         raise InputError(f"--workers {workers}: the worker processes could "
                          f"not be started ({error.strerror or error}); try "
                          f"fewer") from None
     finally:
-        # stopped early (a signal, a writer's error, a dead worker): the
-        # queued chunks are dropped and the running ones finished
+        if not finished:
+            # stopped early (a signal, a writer's error, a dead worker,
+            # a pool that could not start): the chunks still running are
+            # dropped, so their workers are stopped now rather than
+            # waited for (a design may take seconds).  Killed, not
+            # terminated: a SIGTERM can reach one before its initializer,
+            # while it still has this process's handlers
+            for process in list((getattr(pool, "_processes", None)
+                                 or {}).values()):
+                process.kill()
         pool.shutdown(wait=started, cancel_futures=not finished)
         shutil.rmtree(directory, ignore_errors=True)
 
@@ -307,14 +315,15 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     check_run(chunk_size=chunk_size, workers=workers, threshold=threshold)
     if workers is None:
         workers = usable_cores()
-    bounds = Chunks(spec.size, chunk_size, spec.max_modes)
+    bounds = Chunks(spec.size, chunk_size, spec.max_modes,
+                    costly(spec.max_modes, spec.max_tau))
     if spec.size <= bounds.next:
         workers = 1
     summary = Summary(threshold=threshold)
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()
-    with _StopRequests() as stop:
+    with _StopRequests() as stop, output.stop_checks(stop.check):
         results = _results_dask(spec, bounds, scheduler, stop) \
             if scheduler else _results_local(spec, bounds, workers, stop)
         ended = None

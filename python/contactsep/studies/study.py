@@ -91,13 +91,8 @@ def evaluate_all(design, backend: str):
                       .rstrip() if isinstance(v, float) else f"{k} = {v}"
                       for k, v in one.items())
     problems = _problems(design, one)
-    if problems:
-        why = problems[0]
-    elif code == status.NO_IMPACT:
-        row = design.replace(**one)
-        why = status.no_impact(float(row.ys), float(row.gap))
-    else:
-        why = status.MESSAGES[code]
+    why = problems[0] if problems else \
+        status.explain(code, design.replace(**one))
     raise InputError(f"{int(np.sum(failed))} of {failed.size} designs of "
                      f"the study failed"
                      + (f"; the first ({shown})" if shown else "")

@@ -182,6 +182,21 @@ class SweepSpec:
                    for c in counts)
 
     @property
+    def max_tau(self) -> float:
+        """The longest window of any design (s): a normal distribution's
+        as its mean + 8 sd."""
+        taus = [self.base.get("tau",
+                              Design.__dataclass_fields__["tau"].default)]
+        for name, values in self.vary:
+            if name == "tau":
+                taus += [values.start, values.stop] if isinstance(
+                    values, LinearAxis) else np.asarray(values).tolist()
+        for name, kind, a, b in self.sample:
+            if name == "tau":
+                taus.append(b if kind == "uniform" else a + 8 * b)
+        return float(np.max(taus))
+
+    @property
     def fields(self) -> tuple:
         """Names of the varied and sampled fields (output columns)."""
         return tuple(n for n, _ in self.vary) + tuple(
@@ -296,12 +311,15 @@ class Chunks:
     from the time per design measured so far (:meth:`record`).  The
     results do not depend on the chunking."""
 
-    def __init__(self, size: int, chunk_size: int, modes: int) -> None:
+    def __init__(self, size: int, chunk_size: int, modes: int,
+                 costly: bool = False) -> None:
         self.size = size
         # the kernel's per-mode arrays: p1, p2, p3, c3 (8 bytes each)
         per_design = 8 * (4 * modes + 64)
         self.limit = max(1, min(chunk_size, CHUNK_MEMORY // per_design))
-        self.next = max(1, min(self.limit, FIRST_CHUNK_COST // modes))
+        # a design that may take seconds (model.evaluate.costly): one
+        self.next = 1 if costly else \
+            max(1, min(self.limit, FIRST_CHUNK_COST // modes))
         self._seconds_per_design = None
 
     def record(self, designs: int, seconds: float) -> None:
