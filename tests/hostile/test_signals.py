@@ -72,6 +72,10 @@ LONG = [
     (["study", "fig5", "--n-modes", "100000"], 2.0, CTRL_C),
     (["sweep", "--vary", "h2=0.1:0.5:1000", "--n-modes", "300",
       "--workers", "2", "--csv", "s.csv"], 3.0, SIGTERM),
+    # designs of seconds each (issue 17's search over a long window)
+    (["model", "--tau", "1e5"], 1.5, SIGTERM),
+    (["sweep", "--vary", "h2=0.1:0.5:1000", "--tau", "1e4", "--workers",
+      "2", "--csv", "s.csv"], 3.0, SIGTERM),
 ]
 OTHER = [pytest.param(args, after, CTRL_C if how is SIGTERM else SIGTERM,
                       marks=pytest.mark.slow) for args, after, how in LONG]
