@@ -155,7 +155,7 @@ def test_invalid_rows_through_twin_evaluate_packed():
 @pytest.mark.parametrize("changes, message", [
     (dict(e=1.5), "^e: found 1.5, expected 0 <= e <= 1$"),
     (dict(end2="free-free"), "^end2: found 'free-free', expected one of "),
-    (dict(x3=20.0), r"^x3: found 20.0, expected 0 < x3 <= L3$"),
+    (dict(x3=20.0), r"^x3: found 20.0, expected 0 < x3 <= L3 = 19 in$"),
     (dict(n_modes=0), "^n_modes: found 0, expected an integer >= 1"),
     (dict(impact_velocity="fast"),
      "^impact_velocity: found 'fast', expected one of exact, listing$")])

@@ -337,8 +337,9 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         deadline = time.monotonic() + 60
-        while (not csv_path.exists() or csv_path.stat().st_size < 10_000) \
-                and time.monotonic() < deadline:
+        # the rows go to a temporary file beside the target until the end
+        while sum(p.stat().st_size for p in tmp_path.glob(".out.csv.*.tmp")
+                  ) < 10_000 and time.monotonic() < deadline:
             time.sleep(0.1)
         # the workers' chunk files were in the test's scratch directory
         assert [p.name for p in scratch.iterdir()
@@ -364,7 +365,13 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
             pass
         process.wait()
     assert not list(scratch.iterdir())
-    assert csv_path.read_text().endswith("\n")
+    # the finished chunks, in place, whole lines, and a last line that
+    # says the sweep stopped; no temporary file or lock left
+    text = csv_path.read_text()
+    assert text.endswith("\n") and text.splitlines()[-1].startswith(
+        ("# interrupted after ", "# stopped (a worker process died"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv",
+                                                          "scratch"]
 
 
 def test_a_linear_axis_is_numpys_linspace():

@@ -98,7 +98,9 @@ def run(args: argparse.Namespace) -> int:
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
     if code != status.OK:
-        raise InputError(status.MESSAGES[code])
+        problems = design.problems()
+        raise InputError(problems[0] if problems else
+                         status.explain(code, design))
     if result.at_window_end:
         warnings.warn("the largest separation is at the end of the window "
                       "(increase --tau)", ContactsepWarning)

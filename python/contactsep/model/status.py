@@ -27,3 +27,22 @@ MESSAGES = {
                 "sum |c_j| within the search's work budget: shorten tau "
                 "or use fewer modes",
 }
+
+
+def no_impact(ys: float, gap: float) -> str:
+    """NO_IMPACT's message for one design, naming its ys and gap."""
+    return (f"no impact: the upper contact released from ys = {ys:g} in "
+            f"never reaches the separator's surface at gap = {gap:g} in "
+            f"within one period of its first mode (a gap at or above ys, "
+            f"or below the swing)")
+
+
+def explain(code: int, design) -> str:
+    """The message of one design's status, naming the fields that led to
+    it where one did (NO_IMPACT: ys and gap; UNRESOLVED: tau and N)."""
+    if code == NO_IMPACT:
+        return no_impact(float(design.ys), float(design.gap))
+    if code == UNRESOLVED:
+        return (f"tau: found {float(design.tau):g} s with N = "
+                f"{design.n_modes}: {MESSAGES[code]}")
+    return MESSAGES[code]

@@ -125,7 +125,7 @@ def parse_value(field: str, text, label: str):
     """
     if field in CHOICES:
         allowed = CHOICES[field]
-        word = text.strip() if isinstance(text, str) else text
+        word = text.strip() if isinstance(text, str) else None
         if field.startswith("end"):
             word = beams.ALIASES.get(word, word)
         if word not in allowed:
