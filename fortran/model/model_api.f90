@@ -2,7 +2,9 @@
 module model_api
   use contactsep_kinds, only: wp
   use model_batch, only: design_result, batch_memory, mode_tables, &
-      evaluate_design
+      evaluate_design, finish_design
+  use model_extremes, only: extremes, extremes_workspace
+  use model_status, only: status_ok
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value
   implicit none
   private
@@ -13,7 +15,7 @@ contains
   !> Evaluate m designs (columns of real_in, ints_in; options shared).
   subroutine evaluate_batch(m, n_max, real_in, ints_in, options, t1, &
       v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
-      status, m1, m2, m3, p1, p2, p3, c3)
+      max_tied, min_tied, status, m1, m2, m3, p1, p2, p3, c3)
     !> Number of designs, and the largest mode count of any member.
     integer, intent(in) :: m, n_max
     !> Designs, one per column (see model_batch), and integer columns.
@@ -26,38 +28,75 @@ contains
     real(wp), intent(out) :: m1(m), m2(m), m3(m)
     !> 1 where the maximum sits at the end of the window.
     integer, intent(out) :: at_end(m)
+    !> 1 where a later point ties with the maximum (minimum) within 1e-12.
+    integer, intent(out) :: max_tied(m), min_tied(m)
     !> Per-design status code (model_status).
     integer, intent(out) :: status(m)
     !> Frequencies and lower-contact coefficients, NaN past a member's N.
     real(wp), intent(out) :: p1(n_max, m), p2(n_max, m), p3(n_max, m)
     real(wp), intent(out) :: c3(n_max, m)
     real(wp) :: kl(n_max, 4), sigma(n_max, 4), g(n_max, 4)
-    integer :: ints(6)
-    type(design_result) :: res
+    ! designs are evaluated up to y3's coefficients a chunk at a time, then
+    ! the chunk's extremes are searched together (model_extremes)
+    integer, parameter :: chunk = 1024
+    type(design_result) :: res(chunk)
+    real(wp) :: tau(chunk)
+    integer :: n3(chunk), ints(6)
+    logical :: search(chunk), resolved(chunk), ends(chunk)
+    logical :: ties(chunk, 2)
     type(batch_memory) :: memory
-    integer :: i
+    type(extremes_workspace) :: ws
+    integer :: first, last, i, k
 
     call mode_tables(n_max, kl, sigma, g)
-    do i = 1, m
-      ints = ints_in(:, i)
-      ! a mode count past the output room is refused, not written past
-      if (any(ints(4:6) > n_max)) ints(4:6) = 0
-      call evaluate_design(real_in(:, i), ints, options, kl, sigma, g, &
-          memory, res, p1(:, i), p2(:, i), p3(:, i), c3(:, i))
-      t1(i) = res%t1
-      v_impact(i) = res%v_impact
-      psi(i) = res%psi
-      v0(i) = res%v0
-      r(i) = res%r
-      y3_max(i) = res%y3_max
-      t_max(i) = res%t_max
-      y3_min(i) = res%y3_min
-      t_min(i) = res%t_min
-      m1(i) = res%m1
-      m2(i) = res%m2
-      m3(i) = res%m3
-      at_end(i) = merge(1, 0, res%at_end)
-      status(i) = res%status
+    do first = 1, m, chunk
+      last = min(first + chunk - 1, m)
+      do i = first, last
+        k = i - first + 1
+        ints = ints_in(:, i)
+        ! a mode count past the output room is refused, not written past
+        if (any(ints(4:6) > n_max)) ints(4:6) = 0
+        call evaluate_design(real_in(:, i), ints, options, kl, sigma, g, &
+            memory, res(k), p1(:, i), p2(:, i), p3(:, i), c3(:, i))
+        search(k) = res(k)%status == status_ok
+        n3(k) = ints(6)
+        tau(k) = real_in(22, i)
+      end do
+      k = last - first + 1
+      call extremes(c3(:, first:last), p3(:, first:last), n3(1:k), &
+          tau(1:k), search(1:k), ws, y3_max(first:last), &
+          t_max(first:last), y3_min(first:last), t_min(first:last), &
+          ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
+      do i = first, last
+        k = i - first + 1
+        if (search(k)) then
+          res(k)%y3_max = y3_max(i)
+          res(k)%t_max = t_max(i)
+          res(k)%y3_min = y3_min(i)
+          res(k)%t_min = t_min(i)
+          res(k)%at_end = ends(k)
+          res(k)%max_tied = ties(k, 1)
+          res(k)%min_tied = ties(k, 2)
+        end if
+        call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
+            p3(:, i), c3(:, i))
+        t1(i) = res(k)%t1
+        v_impact(i) = res(k)%v_impact
+        psi(i) = res(k)%psi
+        v0(i) = res(k)%v0
+        r(i) = res(k)%r
+        y3_max(i) = res(k)%y3_max
+        t_max(i) = res(k)%t_max
+        y3_min(i) = res(k)%y3_min
+        t_min(i) = res(k)%t_min
+        m1(i) = res(k)%m1
+        m2(i) = res(k)%m2
+        m3(i) = res(k)%m3
+        at_end(i) = merge(1, 0, res(k)%at_end)
+        max_tied(i) = merge(1, 0, res(k)%max_tied)
+        min_tied(i) = merge(1, 0, res(k)%min_tied)
+        status(i) = res(k)%status
+      end do
     end do
   end subroutine evaluate_batch
 

@@ -11,17 +11,16 @@ module model_batch
       ieee_is_finite
   use contactsep_kinds, only: wp
   use model_status, only: status_ok, status_no_impact, &
-      status_invalid_input, status_not_finite
+      status_invalid_input, status_not_finite, status_unresolved
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value, &
       static_flexibility, clamped_free
   use model_members, only: member_constants, frequency
   use model_impact, only: release_amplitudes, first_impact, impact_velocity
   use model_responses, only: impulse, separator_velocity, &
       lower_coefficients, mass_ratio
-  use model_extremes, only: extremes
   implicit none
   private
-  public :: mode_tables, evaluate_design, design_is_valid
+  public :: mode_tables, evaluate_design, finish_design, design_is_valid
 
   !> Number of real columns of a design row.
   integer, parameter, public :: n_real = 23
@@ -31,7 +30,7 @@ module model_batch
   type, public :: design_result
     real(wp) :: t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min
     real(wp) :: m1, m2, m3
-    logical :: at_end = .false.
+    logical :: at_end = .false., max_tied = .false., min_tied = .false.
     integer :: status = status_ok
   end type design_result
 
@@ -86,7 +85,9 @@ contains
         .and. all(ints(4:6) >= 1)
   end function design_is_valid
 
-  !> Evaluate one design; p1, p2, p3, c3 get its live modes (rest NaN).
+  !> Evaluate one design up to the coefficients of y3 (its extremes are
+  !> searched for a whole block of designs, then finish_design); p1, p2,
+  !> p3, c3 get its live modes (rest NaN).
   pure subroutine evaluate_design(row, ints, options, kl, sigma, g, &
       memory, res, p1, p2, p3, c3)
     real(wp), intent(in) :: row(n_real)
@@ -112,6 +113,8 @@ contains
     res%r = nan; res%y3_max = nan; res%t_max = nan; res%y3_min = nan
     res%t_min = nan; res%m1 = nan; res%m2 = nan; res%m3 = nan
     res%at_end = .false.
+    res%max_tied = .false.
+    res%min_tied = .false.
     if (.not. design_is_valid(row, ints)) then
       res%status = status_invalid_input
       return
@@ -185,15 +188,29 @@ contains
     call lower_coefficients(gain, x3v(1:n3), p3(1:n3), c3(1:n3))
     res%r = mass_ratio(m2_v0, s2, res%m3, s3)
     res%m2 = m2_psi
-    call extremes(c3(1:n3), p3(1:n3), row(22), res%y3_max, res%t_max, &
-        res%y3_min, res%t_min, res%at_end)
-    if (.not. all(ieee_is_finite([res%t1, res%v_impact, res%psi, res%v0, &
-        res%r, res%y3_max, res%t_max, res%y3_min, res%t_min, res%m1, &
-        res%m2, res%m3]))) then
+  end subroutine evaluate_design
+
+  !> A design's status once the extremes of y3 are in res (model_extremes;
+  !> resolved false when that search gave up): unresolved or not finite
+  !> designs get NaN results.
+  pure subroutine finish_design(res, resolved, p1, p2, p3, c3)
+    type(design_result), intent(inout) :: res
+    logical, intent(in) :: resolved
+    real(wp), intent(inout) :: p1(:), p2(:), p3(:), c3(:)
+    real(wp) :: nan
+
+    if (res%status /= status_ok) return
+    nan = ieee_value(0.0_wp, ieee_quiet_nan)
+    if (.not. resolved) then
+      res%status = status_unresolved
+      call clear(res, p1, p2, p3, c3, nan)
+    else if (.not. all(ieee_is_finite([res%t1, res%v_impact, res%psi, &
+        res%v0, res%r, res%y3_max, res%t_max, res%y3_min, res%t_min, &
+        res%m1, res%m2, res%m3]))) then
       res%status = status_not_finite
       call clear(res, p1, p2, p3, c3, nan)
     end if
-  end subroutine evaluate_design
+  end subroutine finish_design
 
   !> X_j(xi), j = 1..n, of end condition `end`: point `which` of the
   !> memory, recomputed only when (end, n, xi) changed.
@@ -229,6 +246,8 @@ contains
     res%r = nan; res%y3_max = nan; res%t_max = nan; res%y3_min = nan
     res%t_min = nan; res%m1 = nan; res%m2 = nan; res%m3 = nan
     res%at_end = .false.
+    res%max_tied = .false.
+    res%min_tied = .false.
     p1 = nan
     p2 = nan
     p3 = nan

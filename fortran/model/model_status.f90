@@ -14,4 +14,7 @@ module model_status
   integer, parameter, public :: status_invalid_input = 2
   !> A result overflowed.
   integer, parameter, public :: status_not_finite = 3
+  !> The extremes of y3 could not be resolved to 1e-12 within the search's
+  !> work budget (too many modes for the window, or a window too long).
+  integer, parameter, public :: status_unresolved = 4
 end module model_status

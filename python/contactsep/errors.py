@@ -75,11 +75,29 @@ class DeckError(ValueError):
         super().__init__(message)
 
 
+def printable(message: str) -> str:
+    """One line: line ends and TABs become blanks, other control
+    characters are named by their code."""
+    out = []
+    for char in message:
+        if char in "\n\r\t\v\f":
+            out.append(" ")
+        elif char.isprintable():
+            out.append(char)
+        else:
+            out.append(f"<0x{ord(char):02X}>")
+    return "".join(out)
+
+
 class InputError(ValueError):
     """Input the package refuses (a design, a study or sweep option, a
     simulation setting); the message is one printable line naming the
-    field, what was found and what is expected.  Each layer raises it or
-    a subclass of its own."""
+    field, what was found and what is expected (whatever the user typed
+    in it: :func:`printable`).  Each layer raises it or a subclass of its
+    own."""
+
+    def __init__(self, message: str = "", *args) -> None:
+        super().__init__(printable(str(message)), *args)
 
 
 class ContactsepWarning(UserWarning):

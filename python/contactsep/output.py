@@ -1,6 +1,7 @@
-"""Where the command's output goes, and how it stops (issue 9).
+"""Where the command's output goes, and how it stops (issues 9, 18).
 
-``-o PATH`` (:func:`open_output`):
+``-o PATH`` and every file a command writes (:func:`open_output`, or a
+:class:`Replacement` kept open across a sweep's chunks):
 
 * a regular file, new or existing, is written to a temporary file beside
   it (``.NAME.XXXX.tmp``) and renamed into place when the command ends, so
@@ -16,7 +17,14 @@
 * anything that is not a regular file (``/dev/null``, a FIFO,
   ``/dev/stdout``, a terminal) is opened and written directly, never
   replaced; a directory is refused;
-* messages name the path as the user gave it, never the temporary file.
+* messages name the path as the user gave it, never the temporary file;
+* ``Replacement(path, lock=True)`` (sweeps) refuses a target another
+  command is writing (``.NAME.lock`` beside it, held with flock);
+* :func:`check_targets`, before any work: no output a directory, no two
+  outputs one file, no output a file the command reads.
+
+Long compiled calls (:func:`interruptible`) run in a forked child, so
+that Ctrl-C and SIGTERM stop them at once.
 
 JSON (:func:`json_text`, :func:`write_json`) is strict: NaN and the
 infinities are written as null, never as the NaN or Infinity that
@@ -34,12 +42,16 @@ import errno
 import json
 import math
 import os
+import pickle
+import select
+import signal
 import stat
 import sys
 import tempfile
+import threading
 from typing import Iterator, TextIO
 
-from contactsep.errors import DeckError, InputError
+from contactsep.errors import DeckError, InputError, printable
 
 #: Characters written at a time: a listing of tens of megabytes is never
 #: encoded whole.
@@ -141,74 +153,295 @@ def write_json(stream: TextIO, value, indent: int | None = 2) -> None:
     write_text(stream, json_text(value, indent) + "\n")
 
 
+class Replacement:
+    """A file that replaces ``path`` only when it is finished (module
+    docstring): ``stream`` writes a temporary file beside the target,
+    :meth:`commit` renames it into place, :meth:`discard` removes it.  A
+    device, FIFO or terminal is written in place (commit and discard
+    close it); a directory is refused.
+
+    ``lock=True`` (sweeps, which write for minutes): a second command
+    writing the same file is refused at once, while this one runs
+    (``.NAME.lock`` beside the target, held with flock and removed at the
+    end), instead of two temporary files racing to be renamed.
+    """
+
+    def __init__(self, path: str | os.PathLike, binary: bool = False,
+                 lock: bool = False) -> None:
+        self.path = os.fspath(path)
+        how, text = ("wb", {}) if binary else \
+            ("w", {"encoding": "ascii", "newline": ""})
+        self._target = os.path.realpath(self.path)
+        self._temp = None
+        self._lock = None
+        info = target_info(self.path)
+        if info is not None and not stat.S_ISREG(info.st_mode):
+            try:
+                self.stream = open(self._target, how, **text)
+            except OSError as error:
+                raise _named(error, self.path) from None
+            return
+        directory, name = os.path.split(self._target)
+        if lock:
+            self._lock = _lock(os.path.join(directory, f".{name}.lock"),
+                               self.path)
+        try:
+            fd, self._temp = tempfile.mkstemp(prefix=f".{name}.",
+                                              suffix=".tmp",
+                                              dir=directory or ".")
+        except OSError as error:
+            self._unlock()
+            raise _named(error, self.path) from None
+        try:
+            if info is not None:
+                mode = stat.S_IMODE(info.st_mode)
+            else:
+                umask = os.umask(0)
+                os.umask(umask)
+                mode = 0o666 & ~umask
+            os.fchmod(fd, mode)
+            self.stream = os.fdopen(fd, how, **text)
+        except BaseException:
+            os.close(fd)
+            self.discard()
+            raise
+
+    def commit(self) -> None:
+        """Close; a temporary file replaces the target."""
+        try:
+            self.stream.close()
+            if self._temp is not None:
+                os.replace(self._temp, self._target)
+                self._temp = None
+        except OSError as error:
+            self.discard()
+            raise _named(error, self.path) from None
+        self._unlock()
+
+    def discard(self) -> None:
+        """Close; the target stays as it was (a device: as written)."""
+        with contextlib.suppress(OSError, AttributeError):
+            self.stream.close()
+        if self._temp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(self._temp)
+            self._temp = None
+        self._unlock()
+
+    def _unlock(self) -> None:
+        if self._lock is not None:
+            lock_path, fd = self._lock
+            with contextlib.suppress(OSError):
+                os.unlink(lock_path)
+            os.close(fd)
+            self._lock = None
+
+
+def target_info(path: str | os.PathLike) -> os.stat_result | None:
+    """stat() of the file ``path`` names (links followed), None if there
+    is none yet; a directory is refused (OSError naming ``path``)."""
+    path = os.fspath(path)
+    try:
+        info = os.stat(os.path.realpath(path))
+    except FileNotFoundError:
+        return None
+    except OSError as error:
+        raise _named(error, path) from None
+    if stat.S_ISDIR(info.st_mode):
+        raise OSError(errno.EISDIR, "Is a directory, not a file", path)
+    return info
+
+
+def _lock(lock_path: str, path: str) -> tuple[str, int]:
+    """Hold ``lock_path`` (flock, exclusive, created if need be); a lock
+    held by another process is refused with an InputError naming
+    ``path``.  The inode check: a holder that just finished unlinked the
+    file this process opened, so lock the one now at the path instead."""
+    import fcntl
+    while True:
+        try:
+            fd = os.open(lock_path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC,
+                         0o600)
+        except OSError as error:
+            raise _named(error, path) from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            raise InputError(f"{path}: in use: another contactsep command "
+                             f"is writing it (it holds "
+                             f"{os.path.basename(lock_path)}); wait for it "
+                             f"or write elsewhere") from None
+        try:
+            same = os.path.samestat(os.fstat(fd), os.stat(lock_path))
+        except FileNotFoundError:
+            same = False
+        if same:
+            return lock_path, fd
+        os.close(fd)
+
+
 @contextlib.contextmanager
 def open_output(path: str | os.PathLike, binary: bool = False
                 ) -> Iterator[TextIO]:
     """A text stream (a binary one with ``binary``) to ``path`` for
-    ``-o`` and every file a command writes (module docstring)."""
-    path = os.fspath(path)
-    how, text = ("wb", {}) if binary else \
-        ("w", {"encoding": "ascii", "newline": ""})
-    target = os.path.realpath(path)
-    try:
-        info = os.stat(target)
-    except FileNotFoundError:
-        info = None
-    except OSError as error:
-        raise _named(error, path) from None
-    if info is not None and stat.S_ISDIR(info.st_mode):
-        raise OSError(errno.EISDIR, "Is a directory, not a file", path)
-    if info is not None and not stat.S_ISREG(info.st_mode):
-        try:
-            with open(target, how, **text) as out:
-                yield out
-        except OSError as error:
-            raise _named(error, path) from None
-        return
-    directory, name = os.path.split(target)
-    try:
-        fd, temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp",
-                                    dir=directory or ".")
-    except OSError as error:
-        raise _named(error, path) from None
+    ``-o`` and every file a command writes (module docstring): a
+    :class:`Replacement` committed when the block ends."""
+    out = Replacement(path, binary)
     kept: BaseException | None = None
     try:
-        if info is not None:
-            mode = stat.S_IMODE(info.st_mode)
-        else:
-            umask = os.umask(0)
-            os.umask(umask)
-            mode = 0o666 & ~umask
-        os.fchmod(fd, mode)
-        with os.fdopen(fd, how, **text) as out:
-            try:
-                yield out
-            except (DeckError, InputError) as error:
-                # the deck's fault, not the output's: keep what was done
-                kept = error
-        os.replace(temp, target)
+        try:
+            yield out.stream
+        except (DeckError, InputError) as error:
+            # the deck's fault, not the output's: keep what was done
+            kept = error
+        out.commit()
     except BaseException as error:
-        with contextlib.suppress(OSError):
-            os.unlink(temp)
+        out.discard()
         if isinstance(error, OSError):
-            raise _named(error, path) from None
+            raise _named(error, out.path) from None
         raise
     if kept is not None:
         raise kept
 
 
-def _printable(message: str) -> str:
-    """One line: line ends and TABs become blanks, other control
-    characters are named by their code."""
-    out = []
-    for char in message:
-        if char in "\n\r\t\v\f":
-            out.append(" ")
-        elif char.isprintable():
-            out.append(char)
-        else:
-            out.append(f"<0x{ord(char):02X}>")
-    return "".join(out)
+def check_targets(outputs: dict, inputs: dict | None = None) -> None:
+    """Before a command does any work: every output (label -> path, None
+    for none) a file that can be written (not a directory), no two of
+    them one file, none of them an input (label -> path) the command
+    reads.  An InputError or OSError names the label and the path."""
+    seen = {}
+    for label, path in outputs.items():
+        if path is None:
+            continue
+        target_info(path)
+        for other, earlier in {**seen, **(inputs or {})}.items():
+            if same_file(path, earlier):
+                what = f"the same file as {other} {earlier}" if \
+                    other in seen else f"the {other} file the command reads"
+                raise InputError(f"{label} {path}: {what}; write each "
+                                 f"output to its own file")
+        seen[label] = path
+
+
+def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:
+    """True when two paths name one file (links followed; a file not yet
+    written by its resolved path)."""
+    a, b = os.path.realpath(first), os.path.realpath(second)
+    if a == b:
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+#: Checks a long wait calls now and then (:func:`stop_checks`): each
+#: raises when a stop was asked for (a sweep notes its signals and acts
+#: on them at such points).
+_STOP_CHECKS: list = []
+
+
+@contextlib.contextmanager
+def stop_checks(check) -> Iterator[None]:
+    """Within the block, :func:`interruptible`'s wait calls ``check()``
+    every quarter second (and when its child dies)."""
+    _STOP_CHECKS.append(check)
+    try:
+        yield
+    finally:
+        _STOP_CHECKS.remove(check)
+
+
+def _check_stops() -> None:
+    for check in list(_STOP_CHECKS):
+        check()
+
+
+def interruptible(long: bool, function, *args):
+    """``function(*args)``; when the call is ``long``, in a child process.
+
+    A compiled call is one that Python cannot interrupt: Ctrl-C and
+    SIGTERM wait for it to return (a chatter run at N = 1024 takes a
+    minute, one design of the model seconds).  In a child (forked:
+    nothing is pickled but the answer) they stop the wait at once, as
+    does a stop noted by a :func:`stop_checks` check; the child ends with
+    the parent's Ctrl-C (it shares the terminal), with the parent (Linux:
+    PR_SET_PDEATHSIG), or is killed.  Exceptions come back as they were
+    raised (one that cannot be pickled, as an InputError with its
+    message).  With other threads running (fork would copy their locks),
+    or without fork, the call runs here."""
+    if not long or not hasattr(os, "fork") or \
+            threading.active_count() > 1:
+        return function(*args)
+    read_fd, write_fd = os.pipe()
+    parent = os.getpid()
+    pid = os.fork()
+    if pid == 0:                        # the child: never returns
+        try:
+            os.close(read_fd)
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            _die_with(parent)
+            data = _answer(function, args)
+            with os.fdopen(write_fd, "wb") as pipe:
+                pipe.write(data)
+        finally:
+            os._exit(0)
+    os.close(write_fd)
+    chunks = []
+    try:
+        with os.fdopen(read_fd, "rb", buffering=0) as pipe:
+            while True:
+                _check_stops()
+                ready, _, _ = select.select([pipe], [], [], 0.25)
+                if ready:
+                    chunk = pipe.read(1 << 20)
+                    if not chunk:
+                        break
+                    chunks.append(chunk)
+    except BaseException:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        raise
+    _, code = os.waitpid(pid, 0)
+    try:
+        ok, value = pickle.loads(b"".join(chunks))
+    except Exception:                    # noqa: BLE001 - no whole answer
+        _check_stops()      # a Ctrl-C that ended the child ends this too
+        raise InputError(f"the computation's process ended without an "
+                         f"answer (status {code}: killed, or out of "
+                         f"memory)") from None
+    if not ok:
+        raise value
+    return value
+
+
+def _die_with(parent: int) -> None:
+    """In a child: be killed when ``parent`` ends (Linux), so that a
+    sweep's worker killed outright leaves no computation behind."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)        # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:               # it ended before prctl
+        os._exit(1)
+
+
+def _answer(function, args) -> bytes:
+    """The pickled (True, result) or (False, exception) of a call."""
+    try:
+        answer = (True, function(*args))
+    except BaseException as error:       # noqa: BLE001 - sent back
+        answer = (False, error)
+    try:
+        return pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:                    # noqa: BLE001 - said instead
+        return pickle.dumps((False, InputError(one_line(answer[1]) if not
+                                               answer[0] else "the answer "
+                                               "could not be sent back")))
 
 
 def _silence_stdout() -> None:
@@ -223,17 +456,24 @@ def _silence_stdout() -> None:
             os.close(null)
 
 
-def report(prog: str, error: BaseException) -> None:
-    """Print ``prog: error: <message>``: one printable line."""
+def one_line(error: BaseException) -> str:
+    """An error's message as one printable line (an OSError's strerror
+    and the path it names)."""
     if isinstance(error, OSError) and error.strerror:
         message = error.strerror
         if error.filename is not None:
             message += f": {os.fsdecode(error.filename)}"
     else:
         message = str(error)
+    return printable(message)
+
+
+def report(prog: str, error: BaseException) -> None:
+    """Print ``prog: error: <message>``: one printable line."""
+    message = one_line(error)
     _silence_stdout()
     with contextlib.suppress(OSError, ValueError):
-        sys.stderr.write(f"{prog}: error: {_printable(message)}\n")
+        sys.stderr.write(f"{prog}: error: {message}\n")
         sys.stderr.flush()
 
 

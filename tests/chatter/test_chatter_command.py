@@ -100,7 +100,7 @@ def test_bad_input_is_one_line_naming_the_option(capsys):
     assert err.startswith("contactsep: error: --d: found -0.1")
     assert err.count("\n") == 1
     assert main(["chatter", "--min-open", "-1"]) == 2
-    assert "min_open: found -1.0" in capsys.readouterr().err
+    assert "--min-open: found -1.0" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("field", [f.name for f in
@@ -115,7 +115,8 @@ def test_every_design_field_is_an_option(field):
              "impact_velocity": "listing", "lower_response": "impulse",
              "lc_reading": "frequencies", "release": "contact",
              "e": "0.5", "x1": "18", "x2": "1.0", "x3": "18", "Lc": "2.0",
-             "gap": "0.0"}.get(field, "0.3")
+             "gap": "0.0", "L1": "18", "E1": "3e7", "E2": "3e7",
+             "E3": "3e7"}.get(field, "0.3")
     option = {"h2": "--d", "n_modes": "--n-modes",
               "impact_velocity": "--impact-velocity",
               "lower_response": "--lower-response",

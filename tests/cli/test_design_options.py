@@ -120,7 +120,8 @@ def test_the_json_design_reads_back(capsys, tmp_path):
 
 def test_model_json_keys_carry_their_units(capsys):
     data = model_json([], capsys)
-    bare = {"R", "at_window_end", "status", "design"}
+    bare = {"R", "at_window_end", "t_max_tied", "t_min_tied", "status",
+            "design"}
     for key in data:
         assert key in bare or UNIT_KEY.fullmatch(key), key
     for key in data["design"]:

@@ -125,9 +125,10 @@ def test_first_impact_is_the_first_crossing():
         assert abs(y1 - design.gap) < 1e-12 * design.ys
 
 
+@pytest.mark.parametrize("backend", ["compiled", "numpy"])
 @pytest.mark.parametrize("n", [4, 30])
-def test_extremes_against_brute_force(n):
-    ev = evaluate(thesis_design(n_modes=n, x3=0.9 * 19), backend=BACKEND)
+def test_extremes_against_brute_force(n, backend):
+    ev = evaluate(thesis_design(n_modes=n, x3=0.9 * 19), backend=backend)
     t = np.linspace(0, 0.06, 2_000_001)
     y = ev.y3(t)
     curvature = np.sum(np.abs(ev.c3) * ev.p3**2)

@@ -251,7 +251,10 @@ def test_invalid_designs_mid_batch_keep_the_others():
         Packed(real=real, ints=ints, options=packed.options, shape=(40,)))
     broken = sorted(list(bad) + [20, 21])
     assert np.all(mixed["status"][broken] == status.INVALID_INPUT)
-    assert np.all(np.isnan(mixed["v0"][broken]))
+    for key in RELATIVE[:8] + ("y3_max", "t_max", "y3_min", "t_min"):
+        assert np.all(np.isnan(mixed[key][broken])), key
+    for key in ("at_window_end", "t_max_tied", "t_min_tied"):
+        assert not np.any(mixed[key][broken]), key
     keep = np.setdiff1d(np.arange(40), broken)
     for key, value in clean.items():
         if key in ("p1", "p2", "p3", "c3"):

@@ -106,3 +106,23 @@ def test_more_modes_than_the_limit_are_refused_at_once(n_modes):
     with pytest.raises(DesignError, match="at most 100,000"):
         thesis_design(n_modes=n_modes)
     assert thesis_design(n_modes=100_000).n_modes == 100_000
+
+
+def test_unset_x3_is_the_lower_contacts_tip_not_the_upper_ones():
+    """L1 != L3 with x3 unset: the lower contact is touched at its own tip
+    L3 (the thesis rig has L1 = L3, which would hide x3 taken from L1)."""
+    d = thesis_design(L1=15.0, L3=19.0)
+    col = dict(zip(REAL_COLUMNS, pack(d).real[0]))
+    assert (col["x1"], col["x3"]) == (15.0, 19.0)
+    for backend in ("compiled", "numpy"):
+        unset = evaluate(d, backend=backend)
+        tip = evaluate(d.replace(x3=19.0), backend=backend)
+        wrong = evaluate(d.replace(x3=15.0), backend=backend)
+        assert float(unset.y3_max) == float(tip.y3_max)
+        assert float(unset.psi) == float(tip.psi)
+        # and the other reading would change the answer
+        assert abs(float(wrong.y3_max) / float(tip.y3_max) - 1) > 0.1
+    # the same for the upper contact, and the separator's mid-span
+    d = thesis_design(L1=17.0, L2=3.0, x3=12.0)
+    col = dict(zip(REAL_COLUMNS, pack(d).real[0]))
+    assert (col["x1"], col["x2"], col["x3"]) == (17.0, 1.5, 12.0)

@@ -18,6 +18,7 @@ import pytest
 
 from contactsep.chatter import simulate
 from contactsep.chatter.runners import StepperError
+from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import thesis_design
 from contactsep.studies import chatter_sweep, runner, sweep
@@ -114,9 +115,10 @@ def test_rows_are_simulate_design_by_design(model):
 
 def test_p_open_and_the_statistics_are_direct_counts():
     out = Collect()
-    # preloads up to 30 lb: some designs stay closed, so p_open is
-    # neither 0 nor 1 (the chart: 0.1-20 lb at N = 32)
-    spec = sweep.make_spec(vary=["d=0.5,0.75", "preload=0,2,30"],
+    # preloads up to 20 lb: some designs stay closed, so p_open is
+    # neither 0 nor 1 (the chart: 0.1-20 lb at N = 32); the simulation
+    # takes at most 27 lb (the lower contact bent by its length)
+    spec = sweep.make_spec(vary=["d=0.5,0.75", "preload=0,2,20"],
                            sample=["ys=uniform(0.2,0.8)"], samples=3,
                            base={"n_modes": 4}, model="hertz")
     summary = runner.run_sweep(spec, writers=[out], workers=1,
@@ -310,3 +312,21 @@ def test_a_sampled_preload_below_zero_is_a_status():
     assert 0 < negative.sum() < 6
     assert np.array_equal(t["status"] == 2, negative)
     assert all(math.isnan(v) for v in t["circuit_open_s"][negative])
+
+
+def test_a_preload_past_the_simulations_limit_is_a_status():
+    """The simulation takes at most the preload that bends the lower
+    contact by its length: L3 / (L3^3 / 3 E I) = 3 E I / L3^2 = 27.05 lb
+    for the thesis rig (the N-mode flexibility is within 0.1 % of the
+    beam's at N = 4)."""
+    design = thesis_design(n_modes=4)
+    inertia = float(design.b3) * float(design.h3) ** 3 / 12.0
+    limit = 3.0 * float(design.E3) * inertia / float(design.L3) ** 2
+    assert largest_preload(design) == pytest.approx(limit, rel=1e-3)
+    out = Collect()
+    spec = sweep.make_spec(vary=[("preload", np.array(
+        [0.99 * limit, 1.01 * limit]))], base={"n_modes": 4},
+        model="hertz")
+    summary = runner.run_sweep(spec, writers=[out], workers=1)
+    assert out.table()["status"].tolist() == [0, 2]
+    assert summary["n"] == 1 and summary["n_failed_by_status"] == {2: 1}

@@ -172,7 +172,7 @@ def test_the_chart_refuses_its_own_fields():
     (["study", "preload", "--ys", "0.3"], "study preload sets ys itself"),
     (["study", "preload", "--backend", "numpy"],
      "study preload runs the chatter simulation"),
-    (["study", "preload", "--workers", "0"], "--workers: found 0"),
+    (["study", "preload", "--workers", "0"], "--workers: found '0'"),
     (["study", "preload", "--model", "newton", "--damping", "flores"],
      "damping: the Hertz contact's"),
     (["study", "fig5", "--damping", "flores"],

@@ -18,6 +18,7 @@ import pytest
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
 from contactsep.model import evaluate, thesis_design
+from contactsep.model.design import SIZE_RANGE
 from contactsep.studies import runner, sweep
 from contactsep.studies.stats import wilson_interval
 
@@ -86,15 +87,17 @@ def test_failed_designs_are_counted_warned_and_left_out(tmp_path, capsys):
     _, rows = read_csv(path)
     d = np.array([float(r["d_in"]) for r in rows])
     codes = np.array([int(r["status"]) for r in rows])
-    # a separator of thickness <= 0 is the one way these designs fail
-    assert np.array_equal(codes != 0, d <= 0) and np.all(codes[d <= 0] == 2)
-    bad = int(np.sum(d <= 0))
+    # a separator thinner than the model's domain (<= 0 included) is
+    # the one way these designs fail
+    thin = d < SIZE_RANGE[0]
+    assert np.array_equal(codes != 0, thin) and np.all(codes[thin] == 2)
+    bad = int(np.sum(thin))
     assert 0 < bad < 2000
     assert summary["n_failed"] == bad and summary["n"] == 2000 - bad
     assert summary["n_failed_by_status"] == {"2": bad}
     y = np.array([float(r["y3_max_in"]) for r in rows])
-    assert np.all(np.isnan(y[d <= 0]))
-    exceed = int(np.sum(y[d > 0] > 0.12))
+    assert np.all(np.isnan(y[thin]))
+    exceed = int(np.sum(y[~thin] > 0.12))
     assert summary["p_exceed"] == exceed / (2000 - bad)
     assert summary["p_exceed_ci95"] == list(wilson_interval(exceed,
                                                            2000 - bad))

@@ -21,17 +21,36 @@ import warnings
 
 import numpy as np
 
+from contactsep import output
 from contactsep.chatter import circuit, runners, system
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
+from contactsep.model.design import SIZE_RANGE
 
 MODELS = ("appE", "newton", "hertz")
 #: Most modes per member, and most time steps, a run may take.
 MAX_MODES = 1024
 MAX_STEPS = 1e9
+#: Most steps x modes (all three members) a newton or hertz run may take:
+#: the default run at N = 1024 is 3.7e9 (about a minute).
+MAX_WORK = 1e10
+#: Most modes appE takes: its event search grows steeply with N (0.7 s
+#: at N = 64, 1.9 s at 96, 25 s at 128; N = 1024 ran for 9 minutes).
+APPE_MAX_MODES = 128
+#: Longest window (s): 170 times the listing's TAU.
+MAX_T_END = 10.0
+#: Most sample intervals of the gaps (each sample holds t, two gaps and
+#: the energy, and more on their way out: about 200 MB at the limit;
+#: 10^9 asked for gigabytes).
+MAX_SAMPLES = 4_000_000
+#: A run of at least this many steps x modes (or appE with more modes
+#: than FORKED_APPE_MODES) runs in a child process, so that Ctrl-C and
+#: SIGTERM stop it at once instead of after the compiled call returns.
+FORKED_WORK = 3e8
+FORKED_APPE_MODES = 48
 DAMPINGS = ("none", "flores")
 STEPPERS = ("adaptive", "fixed")
 #: Default steps of the adaptive steppers (docs/chatter.md,
@@ -72,10 +91,31 @@ def _stack(design):
     return m, p, h, q0, np.zeros_like(q0), (upper, sep, lower)
 
 
+def _largest_preload(design, sep, lower) -> float:
+    # a preload that bends a member by more than its length is no small
+    # deflection (1e300 lb gave a lower gap of -1.3e285 in)
+    return min(float(design.L2) / system.flexibility(sep),
+               float(design.L3) / system.flexibility(lower))
+
+
+def largest_preload(design) -> float:
+    """The largest preload (lb) :func:`simulate` takes for ``design``:
+    the force that bends the separator or the lower contact, at its
+    contact point, by its length (27.05 lb for the thesis rig's lower
+    contact: 0.70 in/lb at its tip)."""
+    _, sep, lower = members(design)
+    return _largest_preload(design, sep, lower)
+
+
 def _system(design, preload, law) -> runners.System:
     """The stacked system, the lower contact preloaded if asked."""
     m, p, h, q0, v0, (upper, sep, lower) = _stack(design)
     g0 = np.zeros(2)
+    most = _largest_preload(design, sep, lower)
+    if preload > most:
+        raise ChatterError(f"preload: found {preload!r}, expected at most "
+                           f"{most:.6g} lb (it would bend the separator or "
+                           f"the lower contact by more than its length)")
     if preload > 0.0:
         depth = 0.0 if law is None else (preload / law.k) ** (2.0 / 3.0)
         q_sep, q_low, g0 = system.preload_state(sep, lower, preload, depth)
@@ -100,11 +140,25 @@ def _single_impulse(design) -> dict:
             "y3_max_impulse_form_in": float(impulse.y3_max)}
 
 
+def _real(name: str, value, unit: str) -> float:
+    """A real number for argument ``name`` (never a bool, None or a
+    string), or a ChatterError naming it."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+            value, (int, float, np.integer, np.floating)):
+        raise ChatterError(f"{name}: found {value!r}, expected a number"
+                           + (f" ({unit})" if unit else ""))
+    return float(value)
+
+
 def _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper):
     """Refuse, before any work, every setting that cannot run."""
     def refuse(message):
         raise ChatterError(message)
+    from contactsep.model import Design
+    if not isinstance(design, Design):
+        refuse(f"design: found {type(design).__name__}, expected a "
+               f"contactsep.Design")
     if model not in MODELS:
         refuse(f"model: found {model!r}, expected one of "
                f"{', '.join(MODELS)}")
@@ -116,38 +170,65 @@ def _check(design, model, damping, backend, preload, samples, theta, nu,
     if stepper not in STEPPERS:
         refuse(f"stepper: found {stepper!r}, expected one of "
                f"{', '.join(STEPPERS)}")
+    preload = _real("preload", preload, "lb")
+    theta = _real("theta", theta, "")
+    nu = _real("nu", nu, "")
+    button_radius = _real("button_radius", button_radius, "in")
+    t_end = _real("t_end", t_end, "s")
+    open_threshold = _real("open_threshold", open_threshold, "in")
+    min_open = _real("min_open", min_open, "s")
     if not (preload >= 0.0 and math.isfinite(preload)):
         refuse(f"preload: found {preload!r}, expected a force >= 0 lb")
     if model == "appE" and preload != 0.0:
         refuse("preload: appE has no lower contact (the upper contact "
                "against a rigid stop); use 0")
-    if not (isinstance(samples, (int, np.integer)) and samples >= 1):
-        refuse(f"samples: found {samples!r}, expected an integer >= 1")
+    if isinstance(samples, (bool, np.bool_)) or not isinstance(
+            samples, (int, np.integer)) or not 1 <= samples <= MAX_SAMPLES:
+        refuse(f"samples: found {samples!r}, expected an integer from 1 "
+               f"to {MAX_SAMPLES:,}")
     if not 0.5 <= theta <= 1.0:
         refuse(f"theta: found {theta!r}, expected 1/2 <= theta <= 1 "
                f"(Moreau-Jean's theta-method)")
-    if not (-1.0 < nu <= 0.5 and button_radius > 0.0
-            and math.isfinite(button_radius)):
-        refuse(f"nu, button_radius: found {nu!r}, {button_radius!r}, "
-               f"expected -1 < nu <= 0.5 and a radius > 0 in")
-    if not (t_end > 0.0 and math.isfinite(t_end)):
-        refuse(f"t_end: found {t_end!r}, expected a time > 0")
-    if not (open_threshold >= 0.0 and math.isfinite(open_threshold)):
-        refuse(f"open_threshold: found {open_threshold!r}, expected a "
-               f"gap >= 0 in")
-    if not (min_open >= 0.0 and math.isfinite(min_open)):
-        refuse(f"min_open: found {min_open!r}, expected a time >= 0 s")
+    if not -1.0 < nu <= 0.5:
+        refuse(f"nu: found {nu!r}, expected -1 < nu <= 0.5")
+    low, high = SIZE_RANGE
+    if not low <= button_radius <= high:
+        refuse(f"button_radius: found {button_radius!r}, expected {low:g} "
+               f"to {high:g} in")
+    if not (0.0 < t_end <= MAX_T_END):
+        refuse(f"t_end: found {t_end!r}, expected a time > 0 and at most "
+               f"{MAX_T_END:g} s")
+    if not 0.0 <= min_open <= t_end:
+        refuse(f"min_open: found {min_open!r}, expected 0 to t_end = "
+               f"{t_end:g} s")
     if design.shape != ():
         refuse("design: chatter simulates one design, not a batch")
-    if isinstance(design.n_modes, tuple):
-        refuse("n_modes: one N for all members")
-    if int(design.n_modes) > MAX_MODES:
-        refuse(f"n_modes: found {int(design.n_modes)}, expected at most "
-               f"{MAX_MODES} modes per member (a run costs steps x 3N; "
-               f"N = 64 converges the Hertz answers, docs/chatter.md)")
     if not float(design.ys) > 0.0:
         refuse(f"ys: found {float(design.ys)!r}, expected a release "
                f"height > 0 above the separator")
+    if not 0.0 <= open_threshold < float(design.ys):
+        refuse(f"open_threshold: found {open_threshold!r}, expected 0 <= "
+               f"open_threshold < ys = {float(design.ys):g} in (a threshold "
+               f"at the release height never sees the upper contact open)")
+    if isinstance(design.n_modes, tuple):
+        refuse("n_modes: one N for all members")
+    limit = APPE_MAX_MODES if model == "appE" else MAX_MODES
+    if int(design.n_modes) > limit:
+        refuse(f"n_modes: found {int(design.n_modes)}, expected at most "
+               f"{limit} modes per member for {model} (a run costs steps x "
+               f"3N, appE's event search more; N = 64 converges the Hertz "
+               f"answers, docs/chatter.md)")
+    if float(design.gap) != 0.0:
+        refuse(f"gap: found {float(design.gap)!r}, expected 0: the "
+               f"simulation releases the upper contact ys above the "
+               f"separator's surface (give ys - gap as ys)")
+    if design.Lc is not None:
+        refuse(f"Lc: found {design.Lc!r}, expected None: the simulation's "
+               f"separator is the beam of length L2 (L_c is the single-"
+               f"impulse model's equivalent length)")
+    if damping == "flores" and not float(design.e) > 0.0:
+        refuse("e: found 0.0, expected e > 0 with Flores damping (its "
+               "constant is 8(1 - e)/(5 e V))")
 
 
 def simulate(design, model="newton", damping="none", dt=None, *,
@@ -182,14 +263,23 @@ def simulate(design, model="newton", damping="none", dt=None, *,
                     min_open_s=float(min_open), design=design,
                     single_impulse=single)
     if model == "appE":
-        return _appendix_e(design, backend, settings)
-    dt = DEFAULT_DT[model] if dt is None else float(dt)
+        if dt is not None:
+            raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
+                               f"event-driven (the exact modal flow "
+                               f"between impacts) and takes no step")
+        return output.interruptible(
+            int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
+            backend, settings)
+    dt = DEFAULT_DT[model] if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
-    if t_end / dt > MAX_STEPS:
+    modes = 3 * int(design.n_modes)
+    least = t_end / min(MAX_STEPS, MAX_WORK / modes)
+    if dt < least:
         raise ChatterError(f"dt: found {dt!r}, expected at least "
-                           f"{t_end / MAX_STEPS:.3g} s "
-                           f"(at most {MAX_STEPS:.0e} steps a run)")
+                           f"{least:.3g} s at N = {int(design.n_modes)} (at "
+                           f"most {MAX_STEPS:.0e} steps and {MAX_WORK:.0e} "
+                           f"steps x modes a run)")
     if dt > COARSE_DT * DEFAULT_DT[model]:
         warnings.warn(f"dt: {dt:g} s is {dt / DEFAULT_DT[model]:.3g} times "
                       f"the converged default {DEFAULT_DT[model]:g} s: the "
@@ -207,19 +297,20 @@ def simulate(design, model="newton", damping="none", dt=None, *,
                                      **flores)
     stack = _system(design, preload, law)
     if model == "newton" and stepper == "adaptive" and backend == "compiled":
-        run = runners.newton_adaptive(stack, float(design.e), dt, steps,
-                                      stride, open_threshold)
+        run, args = runners.newton_adaptive, (float(design.e), dt, steps,
+                                              stride, open_threshold)
     elif model == "newton":
-        run = (runners.moreau_jean if backend == "compiled"
-               else runners.moreau_jean_numpy)(
-            stack, float(design.e), dt, theta, steps, stride,
-            open_threshold)
+        run = runners.moreau_jean if backend == "compiled" \
+            else runners.moreau_jean_numpy
+        args = (float(design.e), dt, theta, steps, stride, open_threshold)
     elif stepper == "adaptive" and backend == "compiled":
-        run = runners.hertz_adaptive(stack, law, dt, steps, stride,
-                                     open_threshold)
+        run, args = runners.hertz_adaptive, (law, dt, steps, stride,
+                                             open_threshold)
     else:
-        run = runners.hertz_fixed(stack, law, dt, steps, stride,
-                                  open_threshold, backend)
+        run, args = runners.hertz_fixed, (law, dt, steps, stride,
+                                          open_threshold, backend)
+    run = output.interruptible(steps * modes >= FORKED_WORK, run, stack,
+                               *args)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
     return ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,

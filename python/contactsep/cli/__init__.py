@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import signal
 import sys
 import warnings
@@ -40,8 +41,51 @@ def _version() -> str:
     return __version__
 
 
+class UsageError(InputError):
+    """A command line argparse cannot read (an unknown option, a missing
+    value, a value of the wrong type): reported as every error is, in
+    one line, instead of argparse's usage and ``prog: error:`` lines."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors raised as :class:`UsageError` and values
+    that start with a minus sign read as values when they are numbers in
+    any of Python's spellings (``--d -inf``, ``--gap -1e-3``; argparse
+    takes only ``-1`` and ``-.5`` and says '--d: expected one argument')."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
+
+    def parse_args(self, args=None, namespace=None):
+        # argparse's own, except that extra words are reported with the
+        # subcommand they were given to
+        args, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = getattr(args, "command", None)
+            where = f"contactsep {command}" if command else "contactsep"
+            raise UsageError((f"{command}: " if command else "")
+                             + f"unrecognized arguments: {' '.join(extras)}"
+                             f" ({where} --help lists the options)")
+        return args
+
+    def error(self, message: str):
+        # 'argument --dt: found ...' as every other error names an
+        # option: '--dt: found ...'; the rest with its subcommand
+        option = re.match(r"argument (\S+?)(/\S+)?: ", message)
+        if option:
+            raise UsageError(f"{option.group(1)}: {message[option.end():]}")
+        command = self.prog.partition(" ")[2]
+        raise UsageError(f"{command}: {message}" if command else message)
+
+
+_NEGATIVE_NUMBER = re.compile(
+    r"^-(\d[\d_]*(\.[\d_]*)?|\.\d[\d_]*)(e[-+]?\d+)?$|^-(inf|infinity|nan)$",
+    re.IGNORECASE)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="contactsep",
         description="Contact separation due to impact in a redundant "
                     "contact system: the thesis program of Appendix G.")
@@ -62,8 +106,17 @@ _LAYERS = ("restored", "model", "studies", "chatter")
 
 def _one_line_warning(message, category, filename, lineno, file=None,
                       line=None) -> None:
-    """Warnings as one line on stderr: ``contactsep: warning: ...``."""
-    print(f"contactsep: warning: {message}", file=sys.stderr)
+    """Warnings as one line on stderr: ``contactsep: warning: ...``, each
+    text once a command (compare solved each data set twice and said
+    the same twice)."""
+    text = f"contactsep: warning: {output.one_line(Warning(message))}"
+    if text not in _WARNED:
+        _WARNED.add(text)
+        print(text, file=sys.stderr)
+
+
+#: The warnings this command has printed.
+_WARNED: set = set()
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -85,11 +138,11 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    _WARNED.clear()
     warnings.showwarning = _one_line_warning
-    handler = args.handler
     try:
-        status = handler(args)
+        args = parser.parse_args(argv)
+        status = args.handler(args)
         sys.stdout.flush()
         return status
     except BrokenPipeError:

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
-import json
 import math
 import sys
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, \
-    design_overrides
+from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.values import finite, integer
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 
@@ -24,8 +23,11 @@ EPILOG = """examples:
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep chatter``."""
     from contactsep.chatter import circuit
-    from contactsep.chatter.simulate import DEFAULT_BUTTON_RADIUS, \
-        DEFAULT_DT, DEFAULT_NU
+    from contactsep.chatter.simulate import (
+        DEFAULT_BUTTON_RADIUS,
+        DEFAULT_DT,
+        DEFAULT_NU,
+    )
 
     parser = commands.add_parser(
         "chatter", help="simulate repeated impacts and circuit opening",
@@ -44,21 +46,22 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="none",
                            help="Hertz damping (default none: elastic)")
     run_group.add_argument(
-        "--dt", type=float, default=None, metavar="S",
+        "--dt", type=finite("s"), default=None, metavar="S",
         help=f"time step (s; default newton {DEFAULT_DT['newton']:g}, "
              f"hertz {DEFAULT_DT['hertz']:g}: converged, docs/chatter.md)")
-    run_group.add_argument("--t-end", type=float, default=LISTING_TAU_S,
+    run_group.add_argument("--t-end", type=finite("s"),
+                           default=LISTING_TAU_S,
                            metavar="S", help="window from the release (s; "
                                              f"default {LISTING_TAU_S:g})")
-    run_group.add_argument("--preload", type=float, default=0.0,
+    run_group.add_argument("--preload", type=finite("lb"), default=0.0,
                            metavar="LB",
                            help="force pressing the lower contact against "
                                 "the separator at the start (lb; default 0)")
-    run_group.add_argument("--open-threshold", type=float,
+    run_group.add_argument("--open-threshold", type=finite("in"),
                            default=circuit.OPEN_THRESHOLD, metavar="IN",
                            help="gap above which a contact is open (in; "
                                 f"default {circuit.OPEN_THRESHOLD:g})")
-    run_group.add_argument("--min-open", type=float,
+    run_group.add_argument("--min-open", type=finite("s"),
                            default=circuit.MIN_OPEN, metavar="S",
                            help="shortest circuit opening that counts as a "
                                 "discontinuity event (s; default "
@@ -67,10 +70,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="adaptive",
                            help="adaptive (default) or the fixed-step "
                                 "reference (Moreau-Jean, Hertz splitting)")
-    run_group.add_argument("--nu", type=float, default=DEFAULT_NU,
+    run_group.add_argument("--nu", type=finite(), default=DEFAULT_NU,
                            help="Poisson's ratio of the Hertz constant "
                                 f"(default {DEFAULT_NU:g})")
-    run_group.add_argument("--button-radius", type=float,
+    run_group.add_argument("--button-radius", type=finite("in"),
                            default=DEFAULT_BUTTON_RADIUS, metavar="IN",
                            help="contact button radius of the Hertz "
                                 f"constant (in; default "
@@ -84,7 +87,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     out_group.add_argument("--png", metavar="FILE",
                            help="plot both gaps, each on its own axis, "
                                 "the open circuit shaded")
-    out_group.add_argument("--dpi", type=int, default=100,
+    out_group.add_argument("--dpi", type=integer(10, 1200), default=100,
                            help="resolution of --png (default 100)")
     add_design_options(parser)
     parser.set_defaults(handler=run)
@@ -98,14 +101,22 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--png needs matplotlib (pip install "
                          "'contactsep[plot]')")
     design = thesis_design(**design_overrides(args))
-    result = simulate(design, model=args.model, damping=args.damping,
-                      dt=args.dt, t_end=args.t_end, preload=args.preload,
-                      open_threshold=args.open_threshold,
-                      min_open=args.min_open, stepper=args.stepper,
-                      nu=args.nu, button_radius=args.button_radius)
+    output.check_targets({"--csv": args.csv, "--png": args.png},
+                         {"--design": args.design} if args.design else {})
+    try:
+        result = simulate(design, model=args.model, damping=args.damping,
+                          dt=args.dt, t_end=args.t_end, preload=args.preload,
+                          open_threshold=args.open_threshold,
+                          min_open=args.min_open, stepper=args.stepper,
+                          nu=args.nu, button_radius=args.button_radius)
+    except InputError as error:
+        # the simulation names its arguments; the command, its options
+        name, sep, rest = str(error).partition(":")
+        if sep and name in _OPTIONS:
+            raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
+        raise
     if args.json:
-        output.write_text(sys.stdout, json.dumps(
-            result.to_json_dict(), indent=2, allow_nan=False) + "\n")
+        output.write_json(sys.stdout, result.to_json_dict())
     else:
         output.write_text(sys.stdout, summary_text(result))
     if args.csv:
@@ -114,6 +125,11 @@ def run(args: argparse.Namespace) -> int:
         from contactsep.studies.plots import save_chatter_png
         save_chatter_png(result, args.png, dpi=args.dpi)
     return 0
+
+
+#: simulate()'s arguments that are options of the command.
+_OPTIONS = ("dt", "t_end", "preload", "open_threshold", "min_open", "nu",
+            "button_radius")
 
 
 def _unit(field: str) -> str:
@@ -187,7 +203,7 @@ def write_csv(result, path) -> None:
 
     threshold = result.open_threshold_in
     is_open = (result.gap_upper > threshold) & (result.gap_lower > threshold)
-    inputs = json.dumps(result.to_json_dict()["inputs"], allow_nan=False)
+    inputs = output.json_text(result.to_json_dict()["inputs"], indent=None)
     with output.open_output(path) as out:
         out.write("# contactsep chatter: gap histories (in) at the samples; "
                   "circuit_open = 1 where both gaps exceed the threshold\n")

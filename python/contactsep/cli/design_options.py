@@ -27,6 +27,7 @@ import argparse
 import dataclasses
 import json
 
+from contactsep import output
 from contactsep.errors import InputError
 from contactsep.studies import fields as F
 
@@ -48,6 +49,8 @@ class _Given(argparse.Action):
     them (so that every error is one line naming the option)."""
 
     def __call__(self, parser, namespace, values, option_string=None):
+        if isinstance(values, list):    # argparse's '--end1=--'
+            values = " ".join(values)
         given = list(getattr(namespace, _GIVEN, None) or [])
         given.append((self.const, option_string, values))
         setattr(namespace, _GIVEN, given)
@@ -132,13 +135,25 @@ def fields_from_file(args: argparse.Namespace) -> set:
     return set(getattr(args, _FROM_FILE, ()))
 
 
+#: The largest --design file read (a design is a few hundred bytes; the
+#: output of model --json with N = 100,000 modes about 10 MB).
+MAX_DESIGN_BYTES = 16 << 20
+
+
 def _read_design_file(path: str) -> dict:
+    with open(path, "rb") as handle:
+        raw = handle.read(MAX_DESIGN_BYTES + 1)
+    if len(raw) > MAX_DESIGN_BYTES:
+        raise InputError(f"--design {path}: larger than "
+                         f"{MAX_DESIGN_BYTES >> 20} MB, not a design")
     try:
-        with open(path, encoding="utf-8") as handle:
-            data = json.load(handle)
+        data = json.loads(raw.decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise InputError(f"--design {path}: not a JSON file "
-                         f"({error})") from None
+                         f"({output.one_line(error)})") from None
+    except RecursionError:
+        raise InputError(f"--design {path}: not a design (JSON nested "
+                         f"too deeply)") from None
     if isinstance(data, dict) and isinstance(data.get("design"), dict):
         data = data["design"]
     if not isinstance(data, dict):

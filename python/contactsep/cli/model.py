@@ -71,6 +71,8 @@ def results_dict(design, result) -> dict:
     for name, key, _, _ in RESULTS:
         data[key] = float(getattr(result, name))
     data["at_window_end"] = bool(result.at_window_end)
+    data["t_max_tied"] = bool(result.t_max_tied)
+    data["t_min_tied"] = bool(result.t_min_tied)
     data["status"] = int(result.status)
     counts = design.n_modes if isinstance(design.n_modes, tuple) \
         else (design.n_modes,) * 3
@@ -96,10 +98,16 @@ def run(args: argparse.Namespace) -> int:
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
     if code != status.OK:
-        raise InputError(status.MESSAGES[code])
+        problems = design.problems()
+        raise InputError(problems[0] if problems else
+                         status.explain(code, design))
     if result.at_window_end:
         warnings.warn("the largest separation is at the end of the window "
                       "(increase --tau)", ContactsepWarning)
+    for name in ("max", "min"):
+        if bool(getattr(result, f"t_{name}_tied")):
+            warnings.warn(f"a later peak comes within 1e-12 of y3_{name}: "
+                          f"t_{name} is the earliest", ContactsepWarning)
     if args.json:
         output.write_json(sys.stdout, results_dict(design, result))
         return 0

@@ -125,6 +125,9 @@ def _compare(args: argparse.Namespace) -> int:
     report = compare.compare_deck(Path(args.deck), stream=sys.stdout)
     if report.error is not None:
         raise report.error
+    if report.compared_nothing:
+        raise CommandError(f"nothing compared: no data set of {args.deck} "
+                           f"could be compared (the lines above say why)")
     return EXIT_OK if report.passed else EXIT_TOLERANCE
 
 

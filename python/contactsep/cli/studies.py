@@ -14,7 +14,18 @@ from contactsep.cli.design_options import (
     fields_from_file,
 )
 from contactsep.cli.help import examples
+from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
+from contactsep.studies.chatter_sweep import (
+    CHUNK_SIZE as CHATTER_CHUNK_SIZE,
+)
+from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+from contactsep.studies.sweep import (
+    CHUNK_SIZE,
+    MAX_CHUNK_SIZE,
+    MAX_DESIGNS,
+    TARGET_CHUNK_S,
+)
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100
@@ -66,7 +77,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     study.add_argument("--out", metavar="DIR",
                        help="write NAME.csv and NAME.png into DIR (for "
                             "all: every study's; needs contactsep[plot])")
-    study.add_argument("--dpi", type=int, default=DEFAULT_DPI,
+    study.add_argument("--dpi", type=integer(10, 1200), default=DEFAULT_DPI,
                        help=f"PNG resolution, dots per inch of the 6 x 4 in "
                             f"figure (default {DEFAULT_DPI})")
     _backend(study)
@@ -77,10 +88,12 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="preload only: the Hertz contact's damping "
                             "(default none: elastic; flores: calibrated "
                             "to e)")
-    study.add_argument("--workers", type=int, default=None,
-                       help="preload and conclusionN only: local "
-                            "processes for the simulations (default: all "
-                            "cores)")
+    study.add_argument("--workers", type=integer(1, max_workers()),
+                       default=None,
+                       help=f"preload and conclusionN only: local "
+                            f"processes for the simulations (default: the "
+                            f"usable cores; at most {WORKERS_PER_CORE} a "
+                            f"core)")
     add_design_options(study)
     study.set_defaults(handler=run_study)
 
@@ -120,11 +133,13 @@ def register(commands: argparse._SubParsersAction) -> None:
                        metavar="'NAME=normal(MEAN,SD)'|'NAME=uniform(LO,HI)'",
                        help="a distribution of a numeric field (repeatable;"
                             " quote it for the shell)")
-    sweep.add_argument("--samples", type=int, default=None, metavar="K",
+    sweep.add_argument("--samples", type=integer(1, MAX_DESIGNS),
+                       default=None, metavar="K",
                        help="samples per grid point (default 1000)")
-    sweep.add_argument("--seed", type=int, default=0,
+    sweep.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
                        help="seed of the samples (default 0)")
-    sweep.add_argument("--threshold", type=float, default=None, metavar="T",
+    sweep.add_argument("--threshold", type=finite("in"), default=None,
+                       metavar="T",
                        help="report p_exceed = P(max y3 > T) and its 95 %% "
                             "Wilson interval (T in inches; eq23)")
     chatter = sweep.add_argument_group(
@@ -139,16 +154,23 @@ def register(commands: argparse._SubParsersAction) -> None:
     chatter.add_argument("--damping", metavar="{none,flores}",
                          help="Hertz contact damping (default none)")
     sweep.add_argument("--csv", metavar="FILE",
-                       help="one row per design, written as the sweep goes")
+                       help="one row per design, written as the sweep goes "
+                            "to a temporary file beside FILE that replaces "
+                            "it at the end")
     sweep.add_argument("--parquet", metavar="FILE",
                        help="also write Parquet (needs pyarrow)")
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
-    sweep.add_argument("--chunk-size", type=int, default=None,
-                       help="designs per chunk (default 100000; chatter "
-                            "models 8)")
-    sweep.add_argument("--workers", type=int, default=None,
-                       help="local processes (default: all cores)")
+    sweep.add_argument("--chunk-size", type=integer(1, MAX_CHUNK_SIZE),
+                       default=None,
+                       help=f"most designs per chunk (default {CHUNK_SIZE}, "
+                            f"chatter models {CHATTER_CHUNK_SIZE}; "
+                            f"chunks are sized to about "
+                            f"{TARGET_CHUNK_S:g} s of work below it)")
+    sweep.add_argument("--workers", type=integer(1, max_workers()),
+                       default=None,
+                       help=f"local processes (default: the usable cores; "
+                            f"at most {WORKERS_PER_CORE} a core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the chunks on this Dask scheduler")
     sweep.add_argument("--progress", choices=("auto", "always", "never"),
@@ -195,10 +217,6 @@ def _compute(name: str, args, overrides: dict):
                              "any design)")
         from contactsep.studies.chatter import chatter_table
         return chatter_table()
-    if name not in STUDIES:
-        raise InputError(f"study {name!r}: expected one of "
-                         f"{', '.join(STUDIES)}, chatter, "
-                         f"{', '.join(searches)} or all")
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
 
 
@@ -210,9 +228,6 @@ def _search_study(name: str, args, overrides: dict):
     if args.backend:
         raise InputError(f"study {name} runs the chatter simulation (no "
                          f"--backend)")
-    if args.workers is not None and args.workers < 1:
-        raise InputError(f"--workers: found {args.workers}, expected at "
-                         f"least 1")
     overrides = dict(overrides)
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
@@ -230,18 +245,43 @@ def _save(study, out: Path, dpi: int) -> None:
     print(f"{study.name}: {out / study.name}.csv, {out / study.name}.png")
 
 
+def check_targets(args: argparse.Namespace, targets: dict) -> None:
+    """Before any work: the outputs (option -> path) can be written, no
+    two are one file, none is the --design file the command reads."""
+    design = getattr(args, "design", None)
+    output.check_targets(targets, {"--design": design} if design else {})
+
+
+def _study_targets(args, names) -> dict:
+    targets = {"--csv": args.csv, "--png": args.png}
+    if args.out:
+        out = Path(args.out)
+        if out.exists() and not out.is_dir():
+            raise InputError(f"--out {args.out}: not a directory")
+        for name in names:
+            targets[f"--out ({name}.csv)"] = out / f"{name}.csv"
+            targets[f"--out ({name}.png)"] = out / f"{name}.png"
+    return targets
+
+
 def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
+    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
 
-    if args.dpi < 10 or args.dpi > 1200:
-        raise InputError(f"--dpi: found {args.dpi}, expected 10 to 1200")
+    names = list(STUDIES) if args.name == "all" else [args.name]
+    searches = ("preload", *CONCLUSIONS)
+    if args.name not in (*STUDIES, "chatter", *searches, "all"):
+        raise InputError(f"study {args.name!r}: expected one of "
+                         f"{', '.join(STUDIES)}, chatter, "
+                         f"{', '.join(searches)} or all")
+    if args.name == "all" and (not args.out or args.csv or args.png):
+        raise InputError("study all writes with --out DIR (not --csv "
+                         "or --png)")
     overrides = design_overrides(args)
+    check_targets(args, _study_targets(args, names))
     if args.png or args.out:
         _need_matplotlib()          # before anything is computed
     if args.name == "all":
-        if not args.out or args.csv or args.png:
-            raise InputError("study all writes with --out DIR (not --csv "
-                             "or --png)")
         # every study first: a refused option stops before any file
         done = [_compute(name, args, overrides) for name in STUDIES]
         out = Path(args.out)
@@ -310,12 +350,7 @@ def _settings(args: argparse.Namespace) -> dict:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
-    from contactsep.studies.runner import (
-        CsvWriter,
-        ParquetWriter,
-        check_threshold,
-    )
-    from contactsep.studies.runner import run_sweep as run
+    from contactsep.studies import runner
     from contactsep.studies.sweep import make_spec, parse_sample, parse_vary
 
     vary = [parse_vary(text) for text in args.vary]
@@ -328,17 +363,32 @@ def run_sweep(args: argparse.Namespace) -> int:
                      seed=args.seed, base=base,
                      backend=args.backend or "compiled", model=args.model,
                      settings=_settings(args))
-    check_threshold(spec, args.threshold)   # before a file is opened
-    writers = []
+    runner.check_run(chunk_size=args.chunk_size, workers=args.workers,
+                     threshold=args.threshold)
+    runner.check_threshold(spec, args.threshold)
     if args.parquet:
-        writers.append(ParquetWriter(args.parquet, spec))
-    if args.csv:
-        writers.append(CsvWriter(args.csv, spec))
+        runner.require_pyarrow()
+    check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
     progress = {"auto": None, "always": True, "never": False}[args.progress]
-    summary = run(spec, writers=writers, threshold=args.threshold,
-                  chunk_size=args.chunk_size,
-                  workers=args.workers, scheduler=args.scheduler,
-                  progress=progress)
+    # every option checked: only now the scheduler and the files
+    scheduler = runner.connect(args.scheduler) if args.scheduler else None
+    writers = []
+    try:
+        if args.parquet:
+            writers.append(runner.ParquetWriter(args.parquet, spec))
+        if args.csv:
+            writers.append(runner.CsvWriter(args.csv, spec))
+        summary = runner.run_sweep(
+            spec, writers=writers, threshold=args.threshold,
+            chunk_size=args.chunk_size, workers=args.workers,
+            scheduler=scheduler, progress=progress)
+    except BaseException:
+        for writer in writers:
+            writer.abort()      # a no-op for a writer run_sweep closed
+        raise
+    finally:
+        if scheduler is not None:
+            scheduler.close()
     if args.json:
         output.write_json(sys.stdout, summary)
     else:

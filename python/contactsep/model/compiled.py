@@ -19,11 +19,14 @@ def evaluate_packed(packed: Packed) -> dict:
         return twin.evaluate_packed(packed)
     n_max = int(packed.ints[:, 3:].max())
     (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
-     status, m1, m2, m3, p1, p2, p3, c3) = _KERNEL.evaluate_batch(
-        max(n_max, 1), packed.real.T, packed.ints.T, packed.options)
+     max_tied, min_tied, status, m1, m2, m3, p1, p2, p3,
+     c3) = _KERNEL.evaluate_batch(max(n_max, 1), packed.real.T,
+                                  packed.ints.T, packed.options)
     return dict(t1=t1, v_impact=v_impact, psi=psi, v0=v0, R=r,
                 y3_max=y3_max, t_max=t_max, y3_min=y3_min, t_min=t_min,
-                at_window_end=at_end.astype(bool), status=status,
+                at_window_end=at_end.astype(bool),
+                t_max_tied=max_tied.astype(bool),
+                t_min_tied=min_tied.astype(bool), status=status,
                 M1=m1, M2=m2, M3=m3, p1=p1.T, p2=p2.T, p3=p3.T, c3=c3.T)
 
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep import beams
-from contactsep.constants import LISTING_TAU_S
+from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT, LISTING_TAU_S
 from contactsep.errors import InputError
 
 #: Most modes per member: the sums cost more than N per design (6 s at
@@ -45,6 +45,150 @@ _OPTIONS = {"impact_velocity": IMPACT_VELOCITIES,
             "lc_reading": LC_READINGS, "release": RELEASES}
 
 
+#: The model's domain (docs/model.md, "Domain"): a design outside it is
+#: refused (a scalar design when it is made, a design of a batch with
+#: status 2), because the beams are no longer beams there, or the
+#: kernel's arithmetic (squared displacements, a time resolution of
+#: 1e-16 s, mode shapes near a support) no longer gives true digits.
+#: Lengths, widths and thicknesses (in): 2.5 um to 830 ft.
+SIZE_RANGE = (1e-4, 1e4)
+#: Weight densities (lb/in^3): aerogel to 12 times osmium (aluminium is
+#: 0.1; its 170 lb/ft^3 typed here is refused).
+DENSITY_RANGE = (1e-5, 10.0)
+#: Young's moduli (psi): the softest rubber to 6 times diamond.
+MODULUS_RANGE = (1.0, 1e9)
+#: The release deflection |ys| as a fraction of L1 (the gap: |gap| <= L1).
+DEFLECTION_RANGE = (1e-9, 1.0)
+#: A contact point's least distance from a clamped end, as a fraction of
+#: the member's length: the mode shapes there (~ (x/L)^2) lose
+#: 1e-16 / (x/L)^2 of their value to round-off (3e-11 at the limit).
+SUPPORT_CLEARANCE = 1e-3
+_MEMBER_NAMES = {"1": "upper contact", "2": "separator",
+                 "3": "lower contact"}
+
+
+def _check_number(name: str, value) -> None:
+    """A real field holds a number or an array of numbers (None only for
+    the optional fields): never a string, a bool or a complex number."""
+    if value is None:
+        if name in _OPTIONAL:
+            return
+        raise DesignError(f"{name}: found None, expected a number")
+    try:
+        kind = np.asarray(value).dtype.kind
+    except (TypeError, ValueError, OverflowError):
+        kind = "O"
+    if kind not in "iuf":
+        raise DesignError(f"{name}: found {value!r}, expected a number or "
+                          f"an array of numbers")
+
+
+def _largest(array: np.ndarray) -> int:
+    return max(int(v) for v in np.ravel(array).tolist())
+
+
+def _between(low, high, unit: str):
+    return lambda row: f"{low:.6g} to {high:.6g} {unit}".rstrip()
+
+
+def _rules(real: np.ndarray, ints: np.ndarray):
+    """(field, wrong rows, expected(row) -> text) of every check: each
+    field on its own first (the kernel's ranges, then the domain's), then
+    the relations between fields."""
+    col = {name: real[:, k] for k, name in enumerate(REAL_COLUMNS)}
+    with np.errstate(invalid="ignore"):
+        yield from _field_rules(col)
+        yield from _relation_rules(col, ints)
+
+
+def _field_rules(col: dict):
+    def outside(v, low, high):
+        return ~((v >= low) & (v <= high))
+
+    limits = {}
+    for m in "123":
+        limits.update({f"L{m}": SIZE_RANGE, f"b{m}": SIZE_RANGE,
+                       f"h{m}": SIZE_RANGE, f"gamma{m}": DENSITY_RANGE,
+                       f"E{m}": MODULUS_RANGE})
+    units = {"L": "in", "b": "in", "h": "in", "E": "psi",
+             "g": f"lb/in^3 (a density in lb/ft^3 is "
+                  f"{CUBIC_INCHES_PER_CUBIC_FOOT:g} times larger)"}
+    for name in REAL_COLUMNS:
+        v = col[name]
+        if name in _POSITIVE:
+            yield name, ~(np.isfinite(v) & (v > 0.0)), \
+                lambda row: "a finite number > 0"
+            if name in limits:
+                yield name, outside(v, *limits[name]), \
+                    _between(*limits[name], units[name[0]])
+        elif name == "Lc":
+            yield name, ~(np.isfinite(v) & (v >= 0.0)), \
+                lambda row: "a length > 0 (or None)"
+            yield name, ~((v == 0.0) | ~outside(v, *SIZE_RANGE)), \
+                _between(*SIZE_RANGE, "in (or None)")
+        elif name == "e":
+            yield name, ~(np.isfinite(v) & (v >= 0.0) & (v <= 1.0)), \
+                lambda row: "0 <= e <= 1"
+        elif name not in ("x1", "x2", "x3"):
+            yield name, ~np.isfinite(v), lambda row: "a finite number"
+
+
+def _relation_rules(col: dict, ints: np.ndarray):
+    for k, m in enumerate("123"):
+        length = col[f"L{m}"]
+        yield f"h{m}", ~(col[f"h{m}"] <= length), \
+            lambda row, m=m, L=length: (
+                f"at most L{m} = {L[row]:.6g} in (a beam is longer than "
+                f"it is thick)")
+        end = ints[:, k]
+        x = col[f"x{m}"]
+        yield f"x{m}", ~(np.isfinite(x) & (x > 0.0) & (x <= length)), \
+            lambda row, m=m, L=length: f"0 < x{m} <= L{m} = {L[row]:.6g} in"
+        # a clamped end's modes grow like (x/L)^2: nearer than the
+        # clearance they are round-off (1e-16 / (x/L)^2 relative)
+        low = np.where(end == END_CODES["pinned-pinned"], 0.0,
+                       SUPPORT_CLEARANCE * length)
+        high = np.where(end == END_CODES["clamped-clamped"],
+                        length - SUPPORT_CLEARANCE * length, length)
+        supported = end != END_CODES["clamped-free"]
+        wrong = ~((x > low) & ((x < high) | (~supported & (x <= high))))
+        yield f"x{m}", wrong, \
+            lambda row, m=m, low=low, high=high, end=end: (
+                f"{low[row]:.6g} < x{m} "
+                f"{'<=' if end[row] == END_CODES['clamped-free'] else '<'} "
+                f"{high[row]:.6g} in: "
+                f"inside the span of the {_end_name(end[row])} "
+                f"{_MEMBER_NAMES[m]} (end{m}), at least "
+                f"{SUPPORT_CLEARANCE:g} L{m} from a clamped end")
+    length = col["L1"]
+    low, high = DEFLECTION_RANGE
+    ys = np.abs(col["ys"])
+    yield "ys", ~((ys >= low * length) & (ys <= high * length)), \
+        lambda row: (f"{low * length[row]:.6g} <= |ys| <= "
+                     f"{high * length[row]:.6g} in ({low:g} L1 to L1)")
+    yield "gap", ~(np.abs(col["gap"]) <= length), \
+        lambda row: f"|gap| <= L1 = {length[row]:.6g} in"
+
+
+def _end_name(code) -> str:
+    return beams.END_CONDITIONS[int(code) - 1] if 1 <= code <= 4 \
+        else str(code)
+
+
+#: End condition name -> the kernel's code.
+END_CODES = {name: k + 1 for k, name in enumerate(beams.END_CONDITIONS)}
+
+
+def outside_domain(real: np.ndarray, ints: np.ndarray) -> np.ndarray:
+    """Boolean (M,): designs that fail a check of :meth:`Design.problems`
+    (the kernel's own checks and the model's domain); evaluate gives them
+    status 2, as the kernel gives the designs it refuses itself."""
+    bad = np.zeros(real.shape[0], dtype=bool)
+    for _, wrong, _ in _rules(real, ints):
+        bad |= wrong
+    return bad
+
+
 class DesignError(InputError):
     """A design the model cannot take; the message names the field."""
 
@@ -56,8 +200,12 @@ class Design:
     Any numeric field, the end conditions and ``n_modes`` may hold arrays;
     they broadcast like NumPy and the Design is then a batch.  Defaults are
     the thesis experiment with the 0.25 in separator (Chapters V and VI).
-    A scalar design is checked at once (:class:`DesignError`); in a batch a
-    value out of range gives that design status 2 at evaluation instead.
+    A scalar design is checked at once (:class:`DesignError`, naming the
+    field): its types (numbers, never strings, bools or None where a
+    number is needed), ranges, and the model's domain (SIZE_RANGE,
+    DENSITY_RANGE, MODULUS_RANGE, DEFLECTION_RANGE, SUPPORT_CLEARANCE;
+    docs/model.md, "Domain").  In a batch a value out of range or outside
+    the domain gives that design status 2 at evaluation instead.
 
     Fields (unit; default).  Member 1 is the upper contact, 2 the
     separator, 3 the lower contact; x is measured from each member's
@@ -181,14 +329,7 @@ class Design:
                     f"{name}: found {getattr(self, name)!r}, expected "
                     f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
-            value = getattr(self, name)
-            if value is None and name in _OPTIONAL:
-                continue
-            try:
-                np.asarray(value, dtype=np.float64)
-            except (TypeError, ValueError):
-                raise DesignError(f"{name}: found {value!r}, expected a "
-                                  f"number or an array of numbers") from None
+            _check_number(name, getattr(self, name))
         n = self._n_array()
         try:
             self.shape
@@ -198,10 +339,6 @@ class Design:
         if not np.all(n >= 1):
             raise DesignError(f"n_modes: found {self.n_modes!r}, expected "
                               f"an integer >= 1 (or three of them)")
-        if not np.all(n <= MAX_MODES):
-            raise DesignError(f"n_modes: found {int(np.max(n))}, expected at "
-                              f"most {MAX_MODES:,} (cost grows faster than "
-                              f"N: 6 s a design at the limit)")
         if self.shape == ():
             problems = self.problems()
             if problems:
@@ -209,16 +346,30 @@ class Design:
 
     def _n_array(self) -> np.ndarray:
         n = self.n_modes
-        if isinstance(n, tuple):
-            if len(n) != 3:
-                raise DesignError(f"n_modes: found {n!r}, expected an "
-                                  f"integer or a tuple (n1, n2, n3)")
-            n = np.stack(np.broadcast_arrays(*n), axis=-1)
-        array = np.asarray(n)
-        if array.dtype.kind not in "iu" and not (
-                array.dtype.kind == "f" and np.all(array == np.round(array))):
+        if isinstance(n, tuple) and len(n) != 3:
+            raise DesignError(f"n_modes: found {n!r}, expected an "
+                              f"integer or a tuple (n1, n2, n3)")
+        try:
+            array = np.stack(np.broadcast_arrays(*map(np.asarray, n)),
+                             axis=-1) if isinstance(n, tuple) \
+                else np.asarray(n)
+        except (TypeError, ValueError, OverflowError):
+            array = np.asarray(None)
+        # Python ints past 2^64 make an object array: too many modes,
+        # not a wrong type
+        huge = array.dtype.kind == "O" and all(
+            isinstance(v, int) and not isinstance(v, bool)
+            for v in array.ravel().tolist())
+        whole = array.dtype.kind in "iu" or (
+            array.dtype.kind == "f" and np.all(np.isfinite(array))
+            and np.all(array == np.round(array)))
+        if not (whole or huge):
             raise DesignError(f"n_modes: found {self.n_modes!r}, expected "
                               f"an integer >= 1 (or three of them)")
+        if huge or np.any(array > MAX_MODES):
+            raise DesignError(f"n_modes: found {_largest(array)}, expected "
+                              f"at most {MAX_MODES:,} (cost grows faster "
+                              f"than N: 6 s a design at the limit)")
         return array.astype(np.int64)
 
     @property
@@ -241,38 +392,21 @@ class Design:
         return dataclasses.replace(self, **changes)
 
     def problems(self) -> list[str]:
-        """One message per kind of out-of-range value (empty: all good)."""
+        """One message per kind of out-of-range value (empty: all good):
+        the kernel's own checks, then the model's domain (DOMAIN)."""
         packed = pack(self)
-        bad = invalid_rows(packed.real, packed.ints)
-        if not np.any(bad):
-            return []
         messages = []
-        real = packed.real
-        for k, name in enumerate(REAL_COLUMNS):
-            column = real[:, k]
-            if name in _POSITIVE:
-                wrong = ~(np.isfinite(column) & (column > 0.0))
-                expect = "a finite number > 0"
-            elif name in ("x1", "x2", "x3"):
-                length = real[:, REAL_COLUMNS.index("L" + name[1])]
-                wrong = ~(np.isfinite(column) & (column > 0.0)
-                          & (column <= length))
-                expect = f"0 < {name} <= L{name[1]}"
-            elif name == "Lc":
-                wrong = ~(np.isfinite(column) & (column >= 0.0))
-                expect = "a length > 0 (or None)"
-            elif name == "e":
-                wrong = ~(np.isfinite(column) & (column >= 0.0)
-                          & (column <= 1.0))
-                expect = "0 <= e <= 1"
-            else:
-                wrong = ~np.isfinite(column)
-                expect = "a finite number"
+        for name, wrong, expect in _rules(packed.real, packed.ints):
             if np.any(wrong):
-                found = column[np.argmax(wrong)]
-                messages.append(f"{name}: found {float(found)!r}, "
-                                f"expected {expect}")
-        return messages or ["invalid design"]
+                row = int(np.argmax(wrong))
+                found = float(packed.real[row, REAL_COLUMNS.index(name)])
+                default = " (its default)" if getattr(self, name) is None \
+                    else ""
+                messages.append(f"{name}: found {found!r}{default}, "
+                                f"expected {expect(row)}")
+        if not messages and np.any(invalid_rows(packed.real, packed.ints)):
+            messages.append("invalid design")
+        return messages
 
 
 @dataclass(frozen=True)

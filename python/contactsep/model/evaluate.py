@@ -4,18 +4,27 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model import status as status_codes
-from contactsep.model.design import Design, pack
+from contactsep.model.design import (
+    REAL_COLUMNS,
+    Design,
+    Packed,
+    outside_domain,
+    pack,
+)
 
 BACKENDS = ("compiled", "numpy")
 
 _SCALARS = ("t1", "v_impact", "psi", "v0", "R", "y3_max", "t_max",
-            "y3_min", "t_min", "at_window_end", "status", "M1", "M2", "M3")
+            "y3_min", "t_min", "at_window_end", "t_max_tied", "t_min_tied",
+            "status", "M1", "M2", "M3")
 _PER_MODE = ("p1", "p2", "p3", "c3")
 
 
@@ -41,16 +50,24 @@ class Evaluation:
     """Mass ratio of eq. 24, (M2/sum X2j^2)/(M3/sum X3j^2)."""
     y3_max: np.ndarray
     """Largest lower-contact displacement away from the separator over
-    0 <= t <= tau (in)."""
+    0 <= t <= tau (in): the maximum of the N-mode y3, true to 1e-12 of
+    sum |c3_j| (not a grid value)."""
     t_max: np.ndarray
-    """Time of y3_max after the impact (s)."""
+    """Time of y3_max after the impact (s); of several peaks within
+    1e-12 sum |c3_j| of each other, the earliest."""
     y3_min: np.ndarray
     """Smallest lower-contact displacement (in; negative: through the
-    separator's original position)."""
+    separator's original position), true to 1e-12 of sum |c3_j|."""
     t_min: np.ndarray
-    """Time of y3_min after the impact (s)."""
+    """Time of y3_min after the impact (s); the earliest of ties."""
     at_window_end: np.ndarray
     """True where y3_max sits at t = tau: the window cuts the maximum."""
+    t_max_tied: np.ndarray
+    """True where another point, more than half the shortest period
+    (pi / max p3_j) after t_max, comes within 1e-12 sum |c3_j| of y3_max:
+    t_max is the earliest of peaks the search cannot rank."""
+    t_min_tied: np.ndarray
+    """The same for y3_min and t_min."""
     status: np.ndarray
     """Per-design status code (0 = ok; see contactsep.model.status)."""
     M1: np.ndarray
@@ -117,13 +134,16 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     """Evaluate the general model (eq. 23) on a design or a batch.
 
     ``backend="compiled"`` runs the Fortran kernel (one call for the whole
-    batch); ``"numpy"`` the NumPy twin.  Per-design failures are statuses.
+    batch, or for pieces of about PIECE_S seconds of a batch that takes
+    longer: a signal is seen between them); ``"numpy"`` the NumPy twin.
+    Per-design failures are statuses.
     """
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
     packed = pack(design)
-    out = _backend(backend).evaluate_packed(packed)
+    out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
+                                                    packed))
     shape = packed.shape
     fields = {}
     for key in _SCALARS:
@@ -132,3 +152,77 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
     return Evaluation(**fields)
+
+
+#: Seconds of compiled work a piece of a batch is sized for: Python sees
+#: Ctrl-C and SIGTERM only between compiled calls (a study of 57 designs
+#: at N = 100,000 was one call, deaf for minutes).
+PIECE_S = 0.5
+#: Modes x designs of the first piece, before one is timed.
+FIRST_PIECE_COST = 4096
+#: From this many modes, or this window (s), one design may take a
+#: second or more (the extremum search's budget allows ~20 s; the thesis
+#: design takes 1.4 s at tau = 1e4 s, 0.7 s at N = 800: docs/model.md):
+#: such a batch starts with a piece of one design, and each piece runs
+#: in a child process, which a signal ends at once (output.interruptible).
+COSTLY_MODES = 200
+COSTLY_TAU_S = 1.0
+
+
+def costly(n_max: int, tau_max: float) -> bool:
+    """True when a design of up to ``n_max`` modes and a window up to
+    ``tau_max`` (s) may take seconds (COSTLY_MODES, COSTLY_TAU_S)."""
+    return n_max >= COSTLY_MODES or not tau_max < COSTLY_TAU_S
+
+
+def _in_pieces(backend, packed: Packed) -> dict:
+    """backend.evaluate_packed(packed), in pieces sized by the time the
+    ones before took (the results do not depend on the pieces)."""
+    m = packed.size
+    n_max = int(packed.ints[:, 3:].max()) if m else 1
+    tau = packed.real[:, REAL_COLUMNS.index("tau")]
+    forked = m > 0 and costly(n_max, float(np.max(tau)))
+    size = 1 if forked else max(1, FIRST_PIECE_COST // max(n_max, 1))
+    if size >= m and not forked:
+        return backend.evaluate_packed(packed)
+    parts, first = [], 0
+    while first < m:
+        last = min(m, first + size)
+        start = time.perf_counter()
+        parts.append(output.interruptible(
+            forked, backend.evaluate_packed, Packed(
+                real=packed.real[first:last], ints=packed.ints[first:last],
+                options=packed.options, shape=(last - first,))))
+        seconds = time.perf_counter() - start
+        size = int(max(1, min(8 * size,
+                              size * PIECE_S / max(seconds, 1e-6))))
+        first = last
+    out = {}
+    for key in parts[0]:
+        values = [np.asarray(part[key]) for part in parts]
+        if values[0].ndim == 2:       # per mode: pad to the batch's N
+            values = [np.pad(v, ((0, 0), (0, n_max - v.shape[1])),
+                             constant_values=np.nan) for v in values]
+        out[key] = np.concatenate(values)
+    return out
+
+
+def _refuse_outside_domain(packed, out: dict) -> dict:
+    """Designs outside the model's domain (the kernel computes them, but
+    not to true digits) get status 2 and NaN results, as the kernel gives
+    any other invalid design."""
+    bad = outside_domain(packed.real, packed.ints) & (
+        np.asarray(out["status"]) == status_codes.OK)
+    if not np.any(bad):
+        return out
+    out = dict(out)
+    for key, value in out.items():
+        value = np.array(value)
+        if key == "status":
+            value[bad] = status_codes.INVALID_INPUT
+        elif value.dtype.kind == "f":
+            value[bad] = np.nan
+        elif value.dtype.kind == "b":
+            value[bad] = False
+        out[key] = value
+    return out

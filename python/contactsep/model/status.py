@@ -12,6 +12,9 @@ NO_IMPACT = 1
 INVALID_INPUT = 2
 #: A result overflowed.
 NOT_FINITE = 3
+#: The extremes of y3 could not be resolved to 1e-12 within the search's
+#: work budget (too many modes for the window, or a window too long).
+UNRESOLVED = 4
 
 #: Code -> one-line meaning.
 MESSAGES = {
@@ -20,4 +23,26 @@ MESSAGES = {
                "period of the upper contact's first mode",
     INVALID_INPUT: "invalid input: a value out of range",
     NOT_FINITE: "a result is not finite (overflow)",
+    UNRESOLVED: "the extremes of y3 could not be resolved to 1e-12 of "
+                "sum |c_j| within the search's work budget: shorten tau "
+                "or use fewer modes",
 }
+
+
+def no_impact(ys: float, gap: float) -> str:
+    """NO_IMPACT's message for one design, naming its ys and gap."""
+    return (f"no impact: the upper contact released from ys = {ys:g} in "
+            f"never reaches the separator's surface at gap = {gap:g} in "
+            f"within one period of its first mode (a gap at or above ys, "
+            f"or below the swing)")
+
+
+def explain(code: int, design) -> str:
+    """The message of one design's status, naming the fields that led to
+    it where one did (NO_IMPACT: ys and gap; UNRESOLVED: tau and N)."""
+    if code == NO_IMPACT:
+        return no_impact(float(design.ys), float(design.gap))
+    if code == UNRESOLVED:
+        return (f"tau: found {float(design.tau):g} s with N = "
+                f"{design.n_modes}: {MESSAGES[code]}")
+    return MESSAGES[code]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from contactsep.model.design import Design
+from contactsep.model.design import Design, DesignError
 
 
 def thesis_design(d=0.25, **overrides) -> Design:
@@ -12,5 +12,9 @@ def thesis_design(d=0.25, **overrides) -> Design:
     given.  ``d`` may be an array (a batch); any field may be overridden
     (``h2``, if given, takes the place of ``d``).
     """
+    unknown = sorted(set(overrides) - set(Design.__dataclass_fields__))
+    if unknown:
+        raise DesignError(f"{unknown[0]}: not a design field (one of "
+                          f"{', '.join(Design.__dataclass_fields__)})")
     overrides.setdefault("h2", d)
     return Design(**overrides)

@@ -5,7 +5,8 @@ Appendices A-D); the compiled kernel (fortran/model/) is held against it.
 Arrays are (M,) per design and (M, n) per design and mode; modes past a
 member's N are masked out (X = 0) and reported as NaN.  No Python loop
 runs per design: loops run over modes' end conditions, over refinement
-iterations and over search levels, each on the whole batch.
+iterations and over search levels, each on the whole batch.  The
+extremes' branch and bound is in twin_extremes.py.
 
 Conventions (docs/model.md): displacements of the upper contact are
 positive away from the separator, so it is released at +y_s and strikes
@@ -21,17 +22,10 @@ from contactsep import beams
 from contactsep.constants import GRAVITY_IN_PER_S2
 from contactsep.model import status
 from contactsep.model.design import REAL_COLUMNS, Packed, invalid_rows
+from contactsep.model.twin_extremes import extremes
 
 #: Acceleration of gravity (in/s^2): weight to mass (Appendix B).
 GRAVITY = GRAVITY_IN_PER_S2
-#: Grid points per shortest period in the extreme search (Nyquist x 4).
-SAMPLES_PER_PERIOD = 8
-#: Most grid points per search level; more modes are handled by levels.
-MAX_LEVEL_POINTS = 1024
-#: Most search levels (each narrows the window, adds faster modes).
-MAX_LEVELS = 12
-#: Newton/bisection iterations that polish a root or an extremum.
-POLISH_ITERATIONS = 60
 
 
 def member_constants(length, width, thickness, gamma, modulus):
@@ -165,119 +159,6 @@ def mass_ratio(m2, s2, m3, s3):
     return (m2 / s2) / (m3 / s3)
 
 
-def lower_displacement(c, p, t):
-    """y3(x3, t) = sum_j c_j sin p3j t, t (M,) or (M, k)."""
-    t = np.asarray(t, dtype=np.float64)
-    pn = np.nan_to_num(p)
-    if t.ndim == 1:
-        return np.sum(c * np.sin(pn * t[:, None]), axis=1)
-    return np.einsum("mj,mjk->mk", c, np.sin(pn[:, :, None] * t[:, None, :]))
-
-
-def _polish_extremum(c, p, lo, hi, start, sign):
-    """Critical point of sign*y3 in [lo, hi] from ``start`` (Newton with a
-    bisection safeguard on y3'); returns t and whether y3' changes sign
-    from + to - in [lo, hi]."""
-    cp = c * np.nan_to_num(p)
-    cpp = cp * np.nan_to_num(p)
-    deriv = lambda t: sign * np.sum(cp * np.cos(np.nan_to_num(p) * t[:, None]),
-                                    axis=1)
-    curv = lambda t: -sign * np.sum(cpp * np.sin(np.nan_to_num(p)
-                                                 * t[:, None]), axis=1)
-    d_lo, d_hi = deriv(lo), deriv(hi)
-    interior = (d_lo > 0.0) & (d_hi < 0.0)
-    a, b = lo.copy(), hi.copy()
-    t = start.copy()
-    for _ in range(POLISH_ITERATIONS):
-        d = deriv(t)
-        a = np.where(d > 0.0, t, a)
-        b = np.where(d > 0.0, b, t)
-        dd = curv(t)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            newton = t - d / dd
-        inside = (newton >= a) & (newton <= b) & np.isfinite(newton)
-        t = np.where(inside, newton, 0.5 * (a + b))
-    return t, interior
-
-
-def extremes(c, p, tau):
-    """(y3_max, t_max, y3_min, t_min, at_window_end) over 0 <= t <= tau.
-
-    Level search: each level samples the current window at up to
-    MAX_LEVEL_POINTS points with the modes it resolves (8 samples per
-    period), polishes the best sample, and bounds the unresolved modes by
-    R = sum |c_j|; the true extremum lies where the resolved sum is within
-    2R of its best, which becomes the next, narrower window.  When every
-    mode is resolved the polished point is the extremum.
-    """
-    results = []
-    for sign in (1.0, -1.0):
-        results.append(_extreme(c, p, tau, sign))
-    (t_max, y_max, end_max), (t_min, y_min, _) = results
-    return y_max, t_max, -y_min, t_min, end_max
-
-
-def _extreme(c, p, tau, sign):
-    m = c.shape[0]
-    pn = np.nan_to_num(p)
-    lo, hi = np.zeros(m), tau.copy()
-    best_t = np.zeros(m)
-    active = np.ones(m, dtype=bool)
-    for _ in range(MAX_LEVELS):
-        rows = np.flatnonzero(active)
-        if rows.size == 0:
-            break
-        width = hi[rows] - lo[rows]
-        p_max = np.max(pn[rows], axis=1)
-        wanted = np.ceil(width * SAMPLES_PER_PERIOD * p_max / (2.0 * np.pi))
-        count = np.minimum(MAX_LEVEL_POINTS,
-                           np.maximum(2, wanted + 1)).astype(np.int64)
-        k_all = np.arange(int(count.max()))
-        live = k_all[None, :] < count[:, None]
-        u = np.minimum(k_all[None, :], (count - 1)[:, None]) / (
-            count - 1)[:, None]
-        grid = lo[rows, None] + width[:, None] * u
-        h = width / (count - 1)
-        resolved = pn[rows] * (4.0 * h[:, None]) <= np.pi
-        cr = np.where(resolved, c[rows], 0.0)
-        values = sign * np.einsum("mj,mjk->mk", cr,
-                                  np.sin(pn[rows, :, None] * grid[:, None, :]))
-        values = np.where(live, values, -np.inf)
-        k = np.argmax(values, axis=1)
-        left = grid[np.arange(rows.size), np.maximum(k - 1, 0)]
-        right = grid[np.arange(rows.size), np.minimum(k + 1, count - 1)]
-        t_grid = grid[np.arange(rows.size), k]
-        t_star, interior = _polish_extremum(cr, p[rows], left, right, t_grid,
-                                            sign)
-        s_star = sign * lower_displacement(cr, p[rows], t_star)
-        s_grid = values[np.arange(rows.size), k]
-        use = interior & (s_star >= s_grid)
-        t_best = np.where(use, t_star, t_grid)
-        s_best = np.where(use, s_star, s_grid)
-        rest = np.sum(np.abs(np.where(resolved, 0.0, c[rows])), axis=1)
-        best_t[rows] = t_best
-        finished = (rest == 0.0) | ~(width > 0.0)
-        # next window: samples within 2R (+ the grid's own error) of best
-        grid_error = np.sum(np.abs(cr) * pn[rows]**2, axis=1) * h * h / 8.0
-        near = values >= (s_best - 2.0 * rest - grid_error)[:, None]
-        first = np.argmax(near, axis=1)
-        last = near.shape[1] - 1 - np.argmax(near[:, ::-1], axis=1)
-        new_lo = grid[np.arange(rows.size), np.maximum(first - 1, 0)]
-        new_hi = grid[np.arange(rows.size), np.minimum(last + 1, count - 1)]
-        lo[rows] = np.where(finished, lo[rows], new_lo)
-        hi[rows] = np.where(finished, hi[rows], new_hi)
-        active[rows[finished]] = False
-    t = best_t
-    y = sign * lower_displacement(c, p, t)
-    for end_t in (np.zeros(m), tau):
-        y_end = sign * lower_displacement(c, p, end_t)
-        better = y_end > y
-        t = np.where(better, end_t, t)
-        y = np.where(better, y_end, y)
-    at_end = t == tau
-    return t, y, at_end
-
-
 def evaluate_packed(packed: Packed) -> dict:
     """Evaluate a packed batch; returns the contract's dict of arrays."""
     real, ints = packed.real, packed.ints
@@ -339,7 +220,9 @@ def evaluate_packed(packed: Packed) -> dict:
     c3 = lower_coefficients(gain, x3v, p3)
     with np.errstate(divide="ignore", invalid="ignore"):
         r = mass_ratio(m2_v0, s2, m3, s3)
-    y_max, t_max, y_min, t_min, at_end = extremes(c3, p3, safe["tau"])
+    (y_max, t_max, y_min, t_min, at_end, max_tied, min_tied,
+     unresolved) = extremes(c3, p3, safe["tau"])
+    code[unresolved & (code == status.OK)] = status.UNRESOLVED
 
     out = dict(t1=t1, v_impact=v, psi=psi, v0=v0, R=r, y3_max=y_max,
                t_max=t_max, y3_min=y_min, t_min=t_min, M1=m1, M2=m2_psi,
@@ -352,6 +235,8 @@ def evaluate_packed(packed: Packed) -> dict:
     for key in out:
         out[key] = np.where(failed, np.nan, out[key])
     out["at_window_end"] = np.where(failed, False, at_end)
+    out["t_max_tied"] = np.where(failed, False, max_tied)
+    out["t_min_tied"] = np.where(failed, False, min_tied)
     out["status"] = code
     for key, value in (("p1", p1), ("p2", p2), ("p3", p3), ("c3", c3)):
         out[key] = np.where(failed[:, None], np.nan, value)

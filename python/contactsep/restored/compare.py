@@ -145,7 +145,17 @@ class Comparison:
 
     @property
     def summary(self) -> str:
-        return f"{self.within} within tolerance, {self.outside} outside\n"
+        line = f"{self.within} within tolerance, {self.outside} outside"
+        if self.not_compared:
+            line += (f", {self.not_compared} data set"
+                     f"{'s' if self.not_compared > 1 else ''} not compared")
+        return line + "\n"
+
+    @property
+    def compared_nothing(self) -> bool:
+        """True when no row was compared at all (every data set was
+        refused): not a disagreement, nothing to judge."""
+        return self.within + self.outside == 0
 
     @property
     def text(self) -> str:

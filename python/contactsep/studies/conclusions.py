@@ -27,14 +27,15 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
-from contactsep.model import evaluate, thesis_design
+from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
     Simulations,
+    limit_notes,
     min_preloads,
 )
-from contactsep.studies.study import Study, check_status, refuse_fixed
+from contactsep.studies.study import Study, evaluate_all, refuse_fixed
 
 #: The values each study takes (the thesis rig's first, except e).
 RESTITUTIONS = (0.2, 0.375, 0.6, 0.8, 1.0)
@@ -101,7 +102,7 @@ def conclusion(name: str, model: str = "hertz",
     base = thesis_design(n_modes=n_modes, **overrides)
     values = _values(name, base)
     designs = [base.replace(**{own: float(v)}) for v in values]
-    single = check_status(evaluate(base.replace(**{own: values})))
+    single = evaluate_all(base.replace(**{own: values}), "compiled")
     settings = {"damping": "flores"} if (
         name == "conclusion3" and model == "hertz") else {}
     if dt is not None:
@@ -125,6 +126,8 @@ def conclusion(name: str, model: str = "hertz",
              "tested preload has an event (opening >= 1e-05 s), the "
              "preload chart's search",
              f"{sims.runs} simulations",
+             *(note for v, result in zip(values, found)
+               for note in limit_notes(f"{own} = {v:g}", result)),
              *design_lines(designs[0], per_row=(own,))]
     return Study(name, f"Conclusion {name[-1]} re-examined for circuit "
                  f"opening ({model}, N = {n_modes})", {

@@ -29,6 +29,7 @@ import numpy as np
 
 from contactsep import beams
 from contactsep.chatter.simulate import DAMPINGS
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model.design import (
     IMPACT_VELOCITIES,
@@ -165,7 +166,7 @@ def parse_value(field: str, text, label: str):
     """
     if field in CHOICES:
         allowed = CHOICES[field]
-        word = text.strip() if isinstance(text, str) else text
+        word = text.strip() if isinstance(text, str) else None
         if field.startswith("end"):
             word = beams.ALIASES.get(word, word)
         if word not in allowed:
@@ -203,6 +204,9 @@ def _setting(field: str, text, label: str) -> float:
         raise InputError(f"{label}: found {text!r}, expected a "
                          f"{'force' if field == 'preload' else 'time'} "
                          f">= 0 {unit(field)}")
+    if field == "min_open" and value > LISTING_TAU_S:
+        raise InputError(f"{label}: found {text!r}, expected at most the "
+                         f"window, {LISTING_TAU_S:g} s")
     return value
 
 

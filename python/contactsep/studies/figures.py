@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import evaluate, thesis_design
+from contactsep.model import thesis_design
 from contactsep.restored import thesis_decks
 from contactsep.studies.fields import design_lines
-from contactsep.studies.study import Study, check_status, refuse_fixed
+from contactsep.studies.study import Study, evaluate_all, refuse_fixed
 
 #: Figure 5's grids.
 FIG5_THICKNESSES = np.round(np.arange(0.10, 1.0001, 0.05), 10)
@@ -60,11 +60,11 @@ def _notes(design, *extra, per_row=()) -> tuple:
 def fig5(*, backend="compiled", **overrides) -> Study:
     """Figure 5: max y3 against separator thickness d = 0.10..1.00 in, for
     y_s = 0.25, 0.5, 0.75 in (``ys=`` given: that one curve)."""
-    refuse_fixed("fig5", overrides, FIXED["fig5"])
+    refuse_fixed("fig5", overrides, FIXED["fig5"], arrays=("ys",))
     ys = np.atleast_1d(overrides.pop("ys", FIG5_DEFLECTIONS))[:, None]
     d = FIG5_THICKNESSES[None, :]
     design = thesis_design(d=d, ys=ys, **overrides)
-    ev = check_status(evaluate(design, backend=backend))
+    ev = evaluate_all(design, backend)
     shape = ev.y3_max.shape
     return Study("fig5", "Figure 5: maximum lower-contact displacement vs "
                  "separator thickness", {
@@ -83,10 +83,9 @@ def fig6(*, backend="compiled", **overrides) -> Study:
     overrides.setdefault("h2", FIG6_THICKNESS)
     base = thesis_design(**overrides)
     length = float(base.L3)
-    one = check_status(evaluate(base.replace(x3=r * length), backend=backend))
-    two = check_status(evaluate(base.replace(L3=length / r,
-                                             x3=np.full_like(r, length)),
-                       backend=backend))
+    one = evaluate_all(base.replace(x3=r * length), backend)
+    two = evaluate_all(base.replace(L3=length / r,
+                                    x3=np.full_like(r, length)), backend)
     return Study("fig6", "Figure 6: maximum lower-contact displacement vs "
                  "x3/L3", {
                      "curve": np.repeat(["I", "II"], r.size),
@@ -106,8 +105,7 @@ def fig7(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("fig7", overrides, FIXED["fig7"])
     r = np.array(FIG7_RATIOS)
     base = thesis_design(**overrides)
-    ev = check_status(evaluate(base.replace(x3=r * float(base.L3)),
-                               backend=backend))
+    ev = evaluate_all(base.replace(x3=r * float(base.L3)), backend)
     y = ev.y3(FIG7_TIMES)
     notes = [f"r = {ri}: mode coefficients c3_j (in) = "
              + ", ".join(f"{c:.4g}" for c in ev.c3[i])
@@ -126,9 +124,9 @@ def fig8(*, backend="compiled", **overrides) -> Study:
     base = thesis_design(**overrides)
     base = base.replace(x1=FIG8_CONTACT * float(base.L1),
                         x3=FIG8_CONTACT * float(base.L3))
-    r0 = float(check_status(evaluate(base, backend=backend)).R)
+    r0 = float(evaluate_all(base, backend).R)
     gamma2 = float(base.gamma2) * FIG8_RATIOS / r0
-    ev = check_status(evaluate(base.replace(gamma2=gamma2), backend=backend))
+    ev = evaluate_all(base.replace(gamma2=gamma2), backend)
     anchor = ev.y3_max[0] * (1 + 2 * ev.R[0])
     return Study("fig8", "Figure 8: maximum lower-contact displacement vs "
                  "mass ratio R", {
@@ -148,9 +146,9 @@ def fig23(*, backend="compiled", lc_reading="listing", **overrides) -> Study:
     d = np.array(list(TABLE_III))
     lc = np.array(list(TABLE_III.values()))
     base = thesis_design(d=d, **overrides)
-    plain = check_status(evaluate(base, backend=backend))
+    plain = evaluate_all(base, backend)
     corrected = base.replace(Lc=lc, lc_reading=lc_reading)
-    ev = check_status(evaluate(corrected, backend=backend))
+    ev = evaluate_all(corrected, backend)
     return Study("fig23", "Figures 21 and 23: maximum lower-contact "
                  "displacement with the Table III equivalent lengths", {
                      "d_in": d, "Lc_in": lc, "y3_max_in": ev.y3_max,
@@ -166,7 +164,7 @@ def convergence(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("convergence", overrides, FIXED["convergence"])
     n = np.array(CONVERGENCE_MODES)
     design = thesis_design(n_modes=n, **overrides)
-    ev = check_status(evaluate(design, backend=backend))
+    ev = evaluate_all(design, backend)
     return Study("convergence", "Convergence in the number of modes N", {
         "N": n, "t1_s": ev.t1, "v_impact_in_s": ev.v_impact,
         "psi_lb_s": ev.psi, "v0_in_s": ev.v0, "y3_max_in": ev.y3_max},

@@ -8,6 +8,10 @@ temporary file beside ``path`` and renamed into place when finished.
 
 from __future__ import annotations
 
+import os
+import stat
+import sys
+import tempfile
 import textwrap
 
 import numpy as np
@@ -20,7 +24,49 @@ from contactsep.studies.study import Study
 DPI = 100
 
 
+def _writable_config() -> None:
+    """Matplotlib keeps its configuration and font cache in
+    $XDG_CONFIG_HOME/matplotlib and $XDG_CACHE_HOME/matplotlib (~/.config,
+    ~/.cache); where it cannot create them (an unwritable or missing
+    HOME) it prints two warning lines and rebuilds the font cache in a
+    new temporary directory every run.  Point it (MPLCONFIGDIR, unless
+    set) at a private directory of this user's under the temporary
+    directory instead: quiet, and the cache is built once."""
+    if "MPLCONFIGDIR" in os.environ or "matplotlib" in sys.modules:
+        return
+    home = os.path.expanduser("~")
+    for variable, default in (("XDG_CONFIG_HOME", ".config"),
+                              ("XDG_CACHE_HOME", ".cache")):
+        base = os.environ.get(variable) or os.path.join(home, default)
+        path = os.path.join(base, "matplotlib")
+        try:
+            os.makedirs(path, exist_ok=True)
+            writable = os.access(path, os.W_OK | os.X_OK)
+        except OSError:
+            writable = False
+        if not writable:
+            break
+    else:
+        return
+    private = os.path.join(tempfile.gettempdir(),
+                           f"contactsep-matplotlib-{os.getuid()}")
+    try:
+        os.mkdir(private, 0o700)
+    except FileExistsError:
+        pass
+    except OSError:
+        private = None
+    if private is not None:
+        info = os.lstat(private)
+        # another user's directory, or a link planted there: not ours
+        if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.getuid():
+            private = None
+    os.environ["MPLCONFIGDIR"] = private or tempfile.mkdtemp(
+        prefix="contactsep-matplotlib-")
+
+
 def _pyplot():
+    _writable_config()
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -78,10 +124,18 @@ def _fig23(ax, c):
 
 
 def _preload(ax, c):
+    # a row without an answer (an event up to the simulation's preload
+    # limit): a triangle at the top edge, in its curve's colour
+    edge = ax.get_xaxis_transform()
     for ys in np.unique(c["ys_in"]):
         rows = c["ys_in"] == ys
-        ax.semilogy(c["d_in"][rows], c["min_preload_lb"][rows], "o-",
-                    label=f"y_s = {ys:g} in")
+        line, = ax.semilogy(c["d_in"][rows], c["min_preload_lb"][rows],
+                            "o-", label=f"y_s = {ys:g} in")
+        missing = rows & np.isnan(c["min_preload_lb"])
+        if np.any(missing):
+            ax.plot(c["d_in"][missing], np.full(missing.sum(), 0.97), "^",
+                    color=line.get_color(), transform=edge, clip_on=False,
+                    label=f"y_s = {ys:g} in: none below the preload limit")
     ax.set(xlabel="separator thickness d (in)",
            ylabel="smallest preload with no event (lb)")
     ax.text(0.02, 0.03, f"{c['model'][0]}, N = {c['n_modes'][0]}",
@@ -229,10 +283,8 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
 def save_chatter_png(result, path, dpi: int = 100) -> None:
     """The two gaps against time, each on its own axis (the lower one,
     which decides opening, is small), the open circuit shaded; written
-    to a temporary file beside ``path`` and renamed when finished."""
-    import os
-    import tempfile
-
+    to a temporary file beside ``path`` and renamed when finished (a
+    device written in place: :func:`contactsep.output.open_output`)."""
     plt = _pyplot()
     fig, (upper, lower) = plt.subplots(
         2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
@@ -254,14 +306,8 @@ def save_chatter_png(result, path, dpi: int = 100) -> None:
     lower.set(xlabel="time from release (s)",
               ylabel="lower gap (0.001 in)")
     fig.tight_layout()
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, temporary = tempfile.mkstemp(suffix=".png", dir=directory)
     try:
-        with os.fdopen(fd, "wb") as out:
+        with output.open_output(path, binary=True) as out:
             fig.savefig(out, format="png")
-        os.replace(temporary, path)
-    except BaseException:
-        os.unlink(temporary)
-        raise
     finally:
         plt.close(fig)

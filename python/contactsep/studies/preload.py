@@ -35,7 +35,6 @@ over all the rows, run on worker processes.
 from __future__ import annotations
 
 import math
-import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
@@ -44,11 +43,11 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.chatter.circuit import MIN_OPEN
-from contactsep.chatter.simulate import DEFAULT_DT
+from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.runner import _quiet_worker
+from contactsep.studies.runner import _quiet_worker, usable_cores
 from contactsep.studies.study import Study, refuse_fixed
 
 #: The chart's separators and release heights (in).
@@ -91,6 +90,9 @@ class PreloadSearch:
     min_preload_lb: float
     #: (preload lb, has an event) of every simulation, by preload.
     tested: tuple
+    #: The largest preload the search could test (lb; inf: the grid's
+    #: top): the simulation's limit, :func:`largest_preload`.
+    ceiling_lb: float = math.inf
 
     @property
     def closed_below(self) -> tuple:
@@ -198,7 +200,8 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 brackets[row] = [top, min(p for p in tested[row]
                                           if p > top)]
     return [PreloadSearch(min_preload_lb=hi,
-                          tested=tuple(sorted(tested[row].items())))
+                          tested=tuple(sorted(tested[row].items())),
+                          ceiling_lb=limits[row])
             for row, (_, hi) in enumerate(brackets)]
 
 
@@ -238,7 +241,7 @@ class Simulations:
     time for the caller's notes."""
 
     def __init__(self, workers: int | None = None):
-        self.workers = workers or os.cpu_count() or 1
+        self.workers = workers or usable_cores()
         self.runs = 0
         self.seconds = 0.0
         self._pool = None
@@ -249,10 +252,17 @@ class Simulations:
                                              initializer=_quiet_worker)
         return self
 
-    def __exit__(self, *exc) -> None:
-        if self._pool is not None:
-            # stopped early (Ctrl-C, a failed run): drop what is queued
-            self._pool.shutdown(wait=True, cancel_futures=True)
+    def __exit__(self, kind, *exc) -> None:
+        if self._pool is None:
+            return
+        if kind is not None:
+            # stopped early (Ctrl-C, SIGTERM, a failed run): the runs
+            # still going are dropped, so their workers are killed now
+            # rather than waited for (a run may take a minute at large N)
+            for process in list((getattr(self._pool, "_processes", None)
+                                 or {}).values()):
+                process.kill()
+        self._pool.shutdown(wait=True, cancel_futures=True)
 
     def map(self, function, tasks: list) -> list:
         """function(task) for every task, in order (function and tasks
@@ -278,7 +288,8 @@ def min_preloads(designs, model: str = "hertz", settings=None,
     """:func:`search` for single designs: each simulated by ``model``
     with ``settings`` (simulate()'s keywords: dt, damping, min_open,
     ...), the batches on ``workers`` processes (or ``simulations``, an
-    open :class:`Simulations`)."""
+    open :class:`Simulations`), each design's preloads up to the largest
+    the simulation takes (:func:`largest_preload`)."""
     if model not in MODELS:
         raise InputError(f"model: found {model!r}, expected one of "
                          f"{', '.join(MODELS)}")
@@ -289,11 +300,29 @@ def min_preloads(designs, model: str = "hertz", settings=None,
         return sims.events([(designs[row], model, settings, preload)
                             for row, preload in tasks])
 
+    ceilings = [largest_preload(design) for design in designs]
     if simulations is not None:
         return search(len(designs),
-                      lambda tasks: has_event(tasks, simulations))
+                      lambda tasks: has_event(tasks, simulations),
+                      ceilings=ceilings)
     with Simulations(workers) as sims:
-        return search(len(designs), lambda tasks: has_event(tasks, sims))
+        return search(len(designs), lambda tasks: has_event(tasks, sims),
+                      ceilings=ceilings)
+
+
+def limit_notes(where: str, result: PreloadSearch) -> list[str]:
+    """A note where the simulation's preload limit cut the search short:
+    no answer below it, or the answer's closed octave checked only up to
+    it (the search's scan, module docstring)."""
+    top = max(p for p, _ in result.tested)
+    if math.isnan(result.min_preload_lb):
+        return [f"no answer at {where}: an event at {top:.4g} lb, and the "
+                f"simulation takes at most {result.ceiling_lb:.4g} lb (it "
+                f"bends the lower contact or the separator by its length)"]
+    if result.ceiling_lb < 2.0 * result.min_preload_lb:
+        return [f"{where}: closed checked up to {top:.4g} lb only, the "
+                f"simulation's limit being {result.ceiling_lb:.4g} lb"]
+    return []
 
 
 def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
@@ -330,6 +359,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         f"{sims.runs} simulations",
     ]
     for (d, ys), result in zip(rows, found):
+        notes += limit_notes(f"d = {d:g} in, y_s = {ys:g} in", result)
         below = result.closed_below
         if below:
             where = f"{below[0]:.4g} lb" if len(below) == 1 else (

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep.errors import InputError
-from contactsep.studies.fields import OUTPUT_NAMES
+from contactsep.studies.fields import OUTPUT_NAMES, unit
 
 
 @dataclass(frozen=True)
@@ -69,19 +69,58 @@ class Study:
         return "\n".join(lines) + "\n"
 
 
-def check_status(evaluation):
-    """The evaluation, if every design of the study was evaluated; else
-    an InputError (a study's rows are all or nothing)."""
-    if np.any(evaluation.status != 0):
-        raise InputError("a design of the study failed (status "
-                         f"{int(np.max(evaluation.status))}); check the "
-                         "design options")
-    return evaluation
+def evaluate_all(design, backend: str):
+    """The evaluation of every design of a study, or an InputError that
+    names the first design that failed and why (a study's rows are all
+    or nothing): 'study design d = 0.55 in: h2: found 0.55, expected at
+    most L2 = 0.5 in'."""
+    from contactsep.model import evaluate, status
+    evaluation = evaluate(design, backend=backend)
+    failed = evaluation.status != 0
+    if not np.any(failed):
+        return evaluation
+    where = np.unravel_index(int(np.argmax(failed)), failed.shape)
+    one = {}
+    for name in design.__dataclass_fields__:
+        value = getattr(design, name)
+        if isinstance(value, np.ndarray) and value.ndim:
+            value = np.broadcast_to(value, failed.shape)[where].item()
+            one[name] = value
+    code = int(evaluation.status[where])
+    shown = ", ".join(f"{OUTPUT_NAMES.get(k, k)} = {v:.6g} {unit(k)}"
+                      .rstrip() if isinstance(v, float) else f"{k} = {v}"
+                      for k, v in one.items())
+    problems = _problems(design, one)
+    why = problems[0] if problems else \
+        status.explain(code, design.replace(**one))
+    raise InputError(f"{int(np.sum(failed))} of {failed.size} designs of "
+                     f"the study failed"
+                     + (f"; the first ({shown})" if shown else "")
+                     + f": {why}")
 
 
-def refuse_fixed(study: str, overrides: dict, fixed: dict) -> None:
+def _problems(design, one: dict) -> list[str]:
+    """The problems of the one design ``one`` picks out of a batch."""
+    from contactsep.model import DesignError
+    try:
+        design.replace(**one)
+    except DesignError as error:
+        return [str(error)]
+    return []
+
+
+def refuse_fixed(study: str, overrides: dict, fixed: dict,
+                 arrays: tuple = ()) -> None:
     """A study sets some fields itself (``fixed``: field -> why); an
-    override of one is refused with an InputError naming it."""
+    override of one is refused with an InputError naming it, and so is
+    an array for any other field (a study's rows are its own axes; a
+    sweep varies any field), but those in ``arrays``."""
+    for name, value in overrides.items():
+        if name not in arrays and not isinstance(value, tuple) and \
+                np.ndim(value) != 0:
+            raise InputError(f"study {study}: {name}: found {value!r}, "
+                             f"expected one value (a study varies its own "
+                             f"axes; contactsep sweep varies any field)")
     for name, why in fixed.items():
         if name in overrides:
             label = f"{OUTPUT_NAMES[name]}/{name}" if name in OUTPUT_NAMES \

@@ -26,14 +26,27 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
+from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
 SAMPLE_BLOCK = 65536
-#: Default designs per chunk.
+#: Default designs per chunk, and the most a chunk may have (the
+#: columns of a million designs are ~0.5 GB in the parent).
 CHUNK_SIZE = 100_000
+MAX_CHUNK_SIZE = 1_000_000
+#: Seconds of work a chunk is sized for (Chunks).
+TARGET_CHUNK_S = 0.5
+#: Modes x designs of the first chunk, before any is timed.
+FIRST_CHUNK_COST = 4096
+#: Bytes a chunk's per-mode arrays may take.
+CHUNK_MEMORY = 64 << 20
+#: Most designs a sweep may have: 1e12 takes weeks on a hundred cores
+#: and writes a 100 TB CSV; the designs are counted in Python integers
+#: (a grid of 2^32 x 2^32 points wrapped to 0 in int64 and ran nothing).
+MAX_DESIGNS = 10**12
 #: Output columns beside the varied fields.
 RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
 #: What a sweep may evaluate: the general model, or a chatter model.
@@ -98,13 +111,17 @@ def parse_vary(text: str) -> tuple[str, object]:
     if ":" in values_text and field in _SAMPLED:
         try:
             start, stop, count = values_text.split(":")
-            count = int(count)
-            if count < 1:
-                raise ValueError
-            values = LinearAxis(float(start), float(stop), count)
+            start, stop, count = float(start), float(stop), int(count)
         except ValueError:
             raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT"
                              f" or NAME=V1,V2,...") from None
+        if not (math.isfinite(start) and math.isfinite(stop)):
+            raise SweepError(f"--vary {text}: found START {start!r} and "
+                             f"STOP {stop!r}, expected finite numbers")
+        if not 1 <= count <= MAX_DESIGNS:
+            raise SweepError(f"--vary {text}: found COUNT {count}, expected "
+                             f"1 to {MAX_DESIGNS:,} values")
+        values = LinearAxis(start, stop, count)
         if field in design_fields.SETTINGS:
             # a linear axis lies between its ends: checking them checks it
             for end in (values.start, values.stop):
@@ -112,7 +129,14 @@ def parse_vary(text: str) -> tuple[str, object]:
     else:
         items = [design_fields.parse_value(field, item, label)
                  for item in values_text.split(",")]
+        for item in items:
+            if isinstance(item, float) and not math.isfinite(item):
+                raise SweepError(f"{label}: found {item!r}, expected "
+                                 f"finite numbers")
         values = np.array(items)
+        if field == "n_modes" and np.any(values > MAX_MODES):
+            raise SweepError(f"{label}: found {np.max(values)}, expected "
+                             f"at most {MAX_MODES:,} modes")
     return field, values
 
 
@@ -164,7 +188,34 @@ class SweepSpec:
     @property
     def size(self) -> int:
         """Number of designs."""
-        return int(np.prod(self.grid_shape, dtype=np.int64)) * self.samples
+        return math.prod(self.grid_shape) * self.samples
+
+    @property
+    def max_modes(self) -> int:
+        """The largest N of any member of any design (chunks are sized
+        by it)."""
+        counts = [self.base.get("n_modes",
+                                Design.__dataclass_fields__["n_modes"]
+                                .default)]
+        counts += [v for name, values in self.vary if name == "n_modes"
+                   for v in np.asarray(values).tolist()]
+        return max(max(c) if isinstance(c, (tuple, list)) else int(c)
+                   for c in counts)
+
+    @property
+    def max_tau(self) -> float:
+        """The longest window of any design (s): a normal distribution's
+        as its mean + 8 sd."""
+        taus = [self.base.get("tau",
+                              Design.__dataclass_fields__["tau"].default)]
+        for name, values in self.vary:
+            if name == "tau":
+                taus += [values.start, values.stop] if isinstance(
+                    values, LinearAxis) else np.asarray(values).tolist()
+        for name, kind, a, b in self.sample:
+            if name == "tau":
+                taus.append(b if kind == "uniform" else a + 8 * b)
+        return float(np.max(taus))
 
     @property
     def fields(self) -> tuple:
@@ -277,10 +328,44 @@ def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
     return out
 
 
-def chunks(size: int, chunk_size: int):
-    """(first, last) of each chunk."""
-    for first in range(0, size, chunk_size):
-        yield first, min(first + chunk_size, size)
+class Chunks:
+    """(first, last) of each chunk, sized by cost rather than count, so
+    that a chunk takes about TARGET_CHUNK_S whatever N is (a signal is
+    acted on between chunks, and a stopped pool finishes its running
+    ones) and its per-mode arrays stay within CHUNK_MEMORY: at most
+    ``chunk_size`` designs, the first few a guess from N, the others
+    from the time per design measured so far (:meth:`record`).  The
+    results do not depend on the chunking."""
+
+    def __init__(self, size: int, chunk_size: int, modes: int,
+                 costly: bool = False) -> None:
+        self.size = size
+        # the kernel's per-mode arrays: p1, p2, p3, c3 (8 bytes each)
+        per_design = 8 * (4 * modes + 64)
+        self.limit = max(1, min(chunk_size, CHUNK_MEMORY // per_design))
+        # a design that may take seconds (model.evaluate.costly): one
+        self.next = 1 if costly else \
+            max(1, min(self.limit, FIRST_CHUNK_COST // modes))
+        self._seconds_per_design = None
+
+    def record(self, designs: int, seconds: float) -> None:
+        """A chunk of ``designs`` took ``seconds``: size the next ones."""
+        rate = seconds / max(designs, 1)
+        if self._seconds_per_design is None or \
+                rate > self._seconds_per_design:
+            self._seconds_per_design = rate
+        else:   # forget a slow start slowly (imports, page faults)
+            self._seconds_per_design = 0.5 * (self._seconds_per_design
+                                              + rate)
+        wanted = TARGET_CHUNK_S / max(self._seconds_per_design, 1e-9)
+        self.next = int(max(1, min(self.limit, 8 * self.next, wanted)))
+
+    def __iter__(self):
+        first = 0
+        while first < self.size:
+            last = min(first + self.next, self.size)
+            yield first, last
+            first = last
 
 
 @dataclass
@@ -366,15 +451,52 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     if fixed:
         raise SweepError(f"{', '.join(sorted(fixed))}: fixed by a design "
                          f"option and varied or sampled too")
-    _check_model(model, backend, set(names) | {s[0] for s in sample}
-                 | set(settings))
+    swept = set(names) | {s[0] for s in sample}
+    _check_model(model, backend, swept | set(settings))
+    _check_preload(settings.get("preload"), base, swept)
     if samples is None:
         samples = 1000 if sample else 1
-    if samples < 1 or (samples > 1 and not sample):
-        raise SweepError("--samples needs --sample (and K >= 1)")
-    return SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
+    if isinstance(samples, bool) or not isinstance(samples, int) or \
+            not 1 <= samples <= MAX_DESIGNS:
+        raise SweepError(f"--samples: found {samples!r}, expected an "
+                         f"integer from 1 to {MAX_DESIGNS:,}")
+    if samples > 1 and not sample:
+        raise SweepError("--samples needs --sample")
+    if isinstance(seed, bool) or not isinstance(seed, int) or \
+            not 0 <= seed < 2**64:
+        raise SweepError(f"--seed: found {seed!r}, expected an integer "
+                         f"from 0 to 2^64 - 1")
+    spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
+    if spec.size > MAX_DESIGNS:
+        raise SweepError(f"the sweep has {spec.size:.3g} designs "
+                         f"({' x '.join(str(n) for n in spec.grid_shape)}"
+                         f"{f' x {samples}' if sample else ''}), expected at "
+                         f"most {MAX_DESIGNS:,}")
+    return spec
+
+
+#: Design fields the largest preload a simulation takes depends on (the
+#: separator's and the lower contact's flexibility at the contact; the
+#: densities cancel: M p^2 does not depend on them).
+_PRELOAD_LIMIT_FIELDS = {"L2", "b2", "h2", "E2", "end2", "x2", "L3", "b3",
+                         "h3", "E3", "end3", "x3", "n_modes"}
+
+
+def _check_preload(preload, base: dict, swept: set) -> None:
+    """A fixed preload above what the simulation takes for every design
+    (the limit depends on no swept field) is refused before any work;
+    otherwise a design above its limit is its row's status 2."""
+    if preload is None or swept & _PRELOAD_LIMIT_FIELDS:
+        return
+    from contactsep.chatter.simulate import largest_preload
+    most = largest_preload(thesis_design(**base))
+    if preload > most:
+        raise SweepError(f"--preload: found {preload!r}, expected at most "
+                         f"{most:.6g} lb for this design (it would bend "
+                         f"the lower contact or the separator by more "
+                         f"than its length)")
 
 
 def _check_model(model: str, backend: str, used: set) -> None:

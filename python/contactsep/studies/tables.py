@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import evaluate, thesis_design
+from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.study import Study, check_status, refuse_fixed
+from contactsep.studies.study import Study, evaluate_all, refuse_fixed
 
 #: Table I (cps): theoretical and experimental, upper and lower contact.
 TABLE_I_THEORETICAL = (10.6, 66.5, 187.0, 366.0)
@@ -42,7 +42,7 @@ def table1(*, backend="compiled", **overrides) -> Study:
     """Table I: the contacts' first four natural frequencies (cps)."""
     refuse_fixed("table1", overrides, FIXED["table1"])
     design = thesis_design(n_modes=4, **overrides)
-    ev = check_status(evaluate(design, backend=backend))
+    ev = evaluate_all(design, backend)
     model = ev.p1 / (2 * np.pi)
     return Study("table1", "Table I: contact natural frequencies", {
         "mode": np.arange(1, 5),
@@ -63,7 +63,7 @@ def table2(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("table2", overrides, FIXED["table2"])
     d = np.array(TABLE_II_D)
     design = thesis_design(d=d, **overrides)
-    ev = check_status(evaluate(design, backend=backend))
+    ev = evaluate_all(design, backend)
     model = ev.p2[:, 0] / (2 * np.pi)
     return Study("table2", "Table II: separator natural frequency", {
         "d_in": d, "printed_theoretical_cps": np.array(TABLE_II_THEORETICAL),
@@ -87,7 +87,7 @@ def table3(*, backend="compiled", **overrides) -> Study:
     d = np.array(TABLE_II_D)
     p = np.array(TABLE_III_P)
     design = thesis_design(d=d, **overrides)
-    ev = check_status(evaluate(design, backend=backend))
+    ev = evaluate_all(design, backend)
     formula = np.sqrt(1.3e6 * d / p)
     model = float(design.L2) * np.sqrt(ev.p2[:, 0] / p)
     return Study("table3", "Table III: equivalent length of the separators",

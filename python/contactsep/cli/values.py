@@ -1,0 +1,42 @@
+"""Types of the options that are not design fields (--seed, --samples,
+--workers, --chunk-size, --threshold, --dpi, ...): each reads its text
+and checks its range, so that argparse reports a bad value in one line,
+``argument --seed: found '-1', expected an integer from 0 to ...``
+(a NaN, an infinity or a size past 2^63 included)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+
+def integer(low: int, high: int):
+    """An argparse type: a decimal integer from ``low`` to ``high``."""
+    def convert(text: str) -> int:
+        try:
+            value = int(text, 10)
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError(
+                f"found {text!r}, expected an integer from {low:,} to "
+                f"{high:,}")
+        return value
+    convert.__name__ = "integer"
+    return convert
+
+
+def finite(unit: str = ""):
+    """An argparse type: a finite number (``unit`` named in the error)."""
+    def convert(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(
+                f"found {text!r}, expected a finite number"
+                + (f" ({unit})" if unit else ""))
+        return value
+    convert.__name__ = "number"
+    return convert

@@ -1,0 +1,156 @@
+"""Where a sweep's rows go: a CSV (``#`` lines saying what the sweep is,
+a header, 12-digit rows) or a Parquet file, each written to a temporary
+file beside its target and put in place when the sweep ends
+(:class:`contactsep.output.Replacement`), with a lock against a second
+sweep writing the same file."""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+
+import numpy as np
+
+from contactsep import output
+from contactsep.errors import InputError
+from contactsep.output import json_text
+from contactsep.studies import chatter_sweep
+from contactsep.studies.study import csv_comments
+from contactsep.studies.sweep import SweepSpec
+
+#: The first comment line of a sweep's CSV and its Parquet metadata.
+TITLE = "contactsep sweep of the general model (eq. 23) on the thesis design"
+#: How to read the columns (a comment line of the CSV).
+COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
+                "lb s, _in_s in/s, _lb_in3 lb/in^3, _psi psi; status 0 = "
+                "ok, 1 no impact, 2 invalid input, 3 overflow "
+                "(contactsep.model.status); failed designs have nan results")
+#: Significant digits of the CSV's numbers: the compiled kernel and its
+#: NumPy twin agree to 1e-12 relative (tests/model), so later digits are
+#: round-off; Parquet keeps every bit.
+CSV_DIGITS = 12
+
+
+def title(spec: SweepSpec | None) -> str:
+    """The sweep's title (first CSV comment, Parquet metadata)."""
+    if spec is None or spec.model == "eq23":
+        return TITLE
+    return chatter_sweep.title(spec.model)
+
+
+def column_notes(spec: SweepSpec | None) -> list[str]:
+    """How to read the columns (CSV comments, Parquet metadata)."""
+    if spec is None or spec.model == "eq23":
+        return [COLUMNS_NOTE]
+    return chatter_sweep.notes(spec.model)
+
+
+def _row_format(columns: dict) -> str:
+    """%-format of one CSV row, from the columns' kinds."""
+    formats = []
+    for values in columns.values():
+        kind = np.asarray(values).dtype.kind
+        formats.append("%d" if kind in "iub" else "%s" if kind in "USO"
+                       else f"%.{CSV_DIGITS}g")
+    return ",".join(formats) + "\n"
+
+
+class CsvWriter:
+    """Streams chunks to a CSV file: '#' lines (what the sweep is), a
+    header, the rows.  The rows go to a temporary file beside ``path``
+    as the sweep goes, renamed into place by :meth:`close` (an
+    interrupted sweep's finished chunks too, with a last comment line
+    saying so); :meth:`abort` (a failed sweep) leaves ``path`` as it was.
+    A second sweep writing ``path`` meanwhile is refused (a lock)."""
+
+    def __init__(self, path: str, spec: SweepSpec, notes=()):
+        self.path = path
+        self._file = output.Replacement(path, lock=True)
+        self._handle = self._file.stream
+        try:
+            self._handle.write(csv_comments([title(spec), *spec.describe(),
+                                             *column_notes(spec), *notes]))
+        except BaseException:
+            self._file.discard()
+            raise
+        self._writer = csv.writer(self._handle, lineterminator="\n")
+        self._line = None
+
+    def write(self, columns: dict) -> None:
+        if self._line is None:
+            self._writer.writerow(list(columns))
+            self._line = _row_format(columns)
+        # Python's own %-formatting, row by row: numpy.char.mod is slower
+        # (~15 us a row) and swallows a signal raised while it runs, so
+        # Ctrl-C and SIGTERM went unheard during a long write
+        rows = zip(*(np.asarray(v).tolist() for v in columns.values()))
+        self._handle.writelines(self._line % row for row in rows)
+        self._handle.flush()
+
+    def close(self, interrupted: str | None = None) -> None:
+        """Finish the file and put it in place; ``interrupted`` (what
+        was done) ends it with a comment line saying so."""
+        try:
+            if interrupted:
+                self._handle.write(csv_comments([interrupted]))
+        except BaseException:
+            self._file.discard()
+            raise
+        self._file.commit()
+
+    def abort(self) -> None:
+        """Drop the file: ``path`` stays as it was."""
+        self._file.discard()
+
+
+class ParquetWriter:
+    """Streams chunks to a Parquet file (needs pyarrow); the file's
+    metadata key ``contactsep`` holds what the CSV's comments say, as
+    JSON (``title``, ``inputs``, ``notes``).  Written, locked and put in
+    place as :class:`CsvWriter`'s file (no comment at an interrupt: the
+    command's message says it)."""
+
+    def __init__(self, path: str, spec: SweepSpec | None = None):
+        require_pyarrow()
+        self.path = path
+        self._metadata = {"contactsep": json_text({
+            "title": title(spec), "notes": column_notes(spec),
+            "inputs": spec.inputs() if spec is not None else None},
+            indent=None)}
+        self._file = output.Replacement(path, binary=True, lock=True)
+        self._writer = None
+
+    def write(self, columns: dict) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        table = pa.table({k: np.ascontiguousarray(v)
+                          for k, v in columns.items()})
+        table = table.replace_schema_metadata(self._metadata)
+        if self._writer is None:
+            self._writer = pq.ParquetWriter(self._file.stream, table.schema)
+        self._writer.write_table(table)
+
+    def close(self, interrupted: str | None = None) -> None:
+        try:
+            if self._writer is not None:
+                self._writer.close()
+        except BaseException:
+            self._file.discard()
+            raise
+        self._file.commit()
+
+    def abort(self) -> None:
+        with contextlib.suppress(Exception):
+            if self._writer is not None:
+                self._writer.close()
+        self._file.discard()
+
+
+def require_pyarrow() -> None:
+    """The InputError --parquet gives without pyarrow, before any work."""
+    try:
+        import pyarrow  # noqa: F401
+        import pyarrow.parquet  # noqa: F401
+    except ImportError:
+        raise InputError("--parquet needs pyarrow: pip install "
+                         "'contactsep[tables]'") from None

@@ -1,0 +1,203 @@
+"""Deaf to signals (issue 18, class 3): Ctrl-C ends every command with
+status 130 and SIGTERM with 143 within seconds, however long its work,
+quietly (at most one line), leaving no process behind.
+
+A compiled call cannot be interrupted from Python: the model's batches
+are evaluated in pieces of about 0.5 s, a sweep's chunks are sized by
+cost, and a long chatter run goes to a child process the parent kills."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from contactsep import output
+from contactsep.errors import InputError
+from contactsep.model import evaluate, thesis_design
+
+evaluate_module = importlib.import_module("contactsep.model.evaluate")
+
+#: Seconds a command may take to stop after the signal: a few, on a
+#: machine that other test runs share.
+PROMPT = 5.0
+
+
+def _stop(args, signum, after, tmp_path, group):
+    """Start ``contactsep ARGS``, send ``signum`` ``after`` seconds later
+    (to its process group, as a terminal does, or to it alone, as kill
+    does); return (status, seconds to stop, stderr)."""
+    process = subprocess.Popen(
+        [sys.executable, "-m", "contactsep", *args], cwd=tmp_path,
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        start_new_session=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(after)
+    assert process.poll() is None, "finished before the signal"
+    sent = time.monotonic()
+    if group:
+        os.killpg(process.pid, signum)
+    else:
+        process.send_signal(signum)
+    err = process.communicate(timeout=120)[1]
+    took = time.monotonic() - sent
+    # no child left behind (a killed one is reaped by init: a moment)
+    deadline = time.monotonic() + PROMPT
+    while True:
+        try:
+            os.killpg(process.pid, 0)
+        except ProcessLookupError:
+            break
+        assert time.monotonic() < deadline, "a process outlived the command"
+        time.sleep(0.1)
+    return process.returncode, took, err
+
+
+CTRL_C = (signal.SIGINT, 130, True)      # to the group, as a terminal
+SIGTERM = (signal.SIGTERM, 143, False)    # to the command, as kill does
+#: (command, seconds it runs before the signal, signal): each ran for
+#: minutes, deaf, inside one compiled call (the chatter runs), or
+#: between whole chunks and calls (study, sweep).  Each command with the
+#: other signal: under -m slow.
+LONG = [
+    (["chatter", "--model", "hertz", "--n-modes", "1024"], 2.0, SIGTERM),
+    (["chatter", "--model", "newton", "--n-modes", "1024"], 2.0, CTRL_C),
+    (["chatter", "--model", "appE", "--n-modes", "128"], 2.0, CTRL_C),
+    (["study", "fig5", "--n-modes", "100000"], 2.0, CTRL_C),
+    (["sweep", "--vary", "h2=0.1:0.5:1000", "--n-modes", "300",
+      "--workers", "2", "--csv", "s.csv"], 3.0, SIGTERM),
+    # designs of seconds each (issue 17's search over a long window)
+    (["model", "--tau", "1e5"], 1.5, SIGTERM),
+    (["sweep", "--vary", "h2=0.1:0.5:1000", "--tau", "1e4", "--workers",
+      "2", "--csv", "s.csv"], 3.0, SIGTERM),
+    # issue 16: the preload chart's batches on worker processes (killed
+    # when stopped), a chatter sweep of pressed designs (~0.15 s each)
+    (["study", "preload", "--n-modes", "64"], 3.0, CTRL_C),
+    (["sweep", "--model", "hertz", "--vary", "h2=0.1:0.5:100", "--n-modes",
+      "32", "--preload", "5", "--workers", "2", "--csv", "s.csv"], 3.0,
+     SIGTERM),
+]
+OTHER = [pytest.param(args, after, CTRL_C if how is SIGTERM else SIGTERM,
+                      marks=pytest.mark.slow) for args, after, how in LONG]
+
+
+def _id(value):
+    if isinstance(value, list):
+        return " ".join(value)
+    if isinstance(value, tuple):
+        return "ctrl-c" if value == CTRL_C else "sigterm"
+    return f"{value:g}s"
+
+
+@pytest.mark.parametrize("args, after, how", LONG + OTHER, ids=_id)
+def test_a_long_command_stops_at_once(tmp_path, args, after, how):
+    signum, status, group = how
+    code, took, err = _stop(args, signum, after, tmp_path, group)
+    assert code == status, err
+    assert took < PROMPT, took
+    assert err.count("\n") <= 1 and "Traceback" not in err
+    if "--csv" in args:              # the chunks done, whole, and a note
+        lines = (tmp_path / "s.csv").read_text().splitlines()
+        assert lines[-1].startswith("# interrupted after ")
+
+
+def _sleep_then(seconds, value):
+    time.sleep(seconds)
+    return value
+
+
+def _fail():
+    raise ValueError("from the child")
+
+
+class _Unpicklable(Exception):
+    def __reduce__(self):
+        raise TypeError("not picklable")
+
+
+def _fail_unpicklably():
+    raise _Unpicklable("a message")
+
+
+def test_a_run_in_a_child_answers_raises_and_is_killed_on_a_signal():
+    """output.interruptible: the answer and the exceptions come back;
+    a signal in the parent (here an alarm that raises) kills the child
+    at once and propagates."""
+    assert output.interruptible(True, _sleep_then, 0.0, {"a": [1]}) == \
+        {"a": [1]}
+    with pytest.raises(ValueError, match="from the child"):
+        output.interruptible(True, _fail)
+    with pytest.raises(InputError, match="^a message$"):
+        output.interruptible(True, _fail_unpicklably)
+    # a large answer comes back whole
+    big = np.arange(3_000_000.0)
+    np.testing.assert_array_equal(
+        output.interruptible(True, _sleep_then, 0.0, big), big)
+
+    def alarm(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.3)
+        start = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            output.interruptible(True, _sleep_then, 60.0, None)
+        assert time.monotonic() - start < PROMPT
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    # the child is gone: nothing is left to wait for
+    with pytest.raises(ChildProcessError):
+        os.waitpid(-1, os.WNOHANG)
+
+
+KEYS = ("t1", "psi", "y3_max", "t_max", "status", "p1", "p3", "c3",
+        "at_window_end")
+
+
+def test_a_batch_in_pieces_equals_one_call(monkeypatch):
+    """The batch's pieces (sized by their time) give the bits one call
+    gives, per-mode arrays padded to the batch's N as one call pads."""
+    design = thesis_design(d=np.linspace(0.1, 1.0, 57),
+                           n_modes=np.array([4, 150, 50] * 19))
+    calls = []
+    from contactsep.model import compiled
+    original = compiled.evaluate_packed
+
+    def counted(packed):
+        calls.append(packed.size)
+        return original(packed)
+
+    monkeypatch.setattr(compiled, "evaluate_packed", counted)
+    pieces = evaluate(design)
+    assert len(calls) > 1 and sum(calls) == 57
+    monkeypatch.setattr(evaluate_module, "FIRST_PIECE_COST", 10**9)
+    whole = evaluate(design)
+    assert calls[-1] == 57
+    for key in KEYS:
+        np.testing.assert_array_equal(getattr(pieces, key),
+                                      getattr(whole, key), err_msg=key)
+
+
+def test_a_costly_batch_in_child_processes_equals_one_call(monkeypatch):
+    """N >= 200 or tau >= 1 s: pieces from one design up, each in a child
+    process (the answers come back through a pipe, bit for bit)."""
+    design = thesis_design(d=np.linspace(0.1, 1.0, 9),
+                           n_modes=np.array([4, 300, 50] * 3),
+                           tau=np.array([0.06, 0.06, 2.0] * 3))
+    assert evaluate_module.costly(300, 2.0)
+    pieces = evaluate(design)
+    monkeypatch.setattr(evaluate_module, "COSTLY_MODES", 10**9)
+    monkeypatch.setattr(evaluate_module, "COSTLY_TAU_S", np.inf)
+    monkeypatch.setattr(evaluate_module, "FIRST_PIECE_COST", 10**9)
+    whole = evaluate(design)
+    for key in KEYS:
+        np.testing.assert_array_equal(getattr(pieces, key),
+                                      getattr(whole, key), err_msg=key)
