@@ -127,8 +127,8 @@ def test_the_search_at_n4_holds_3_percent_either_side():
     """Two rows at N = 4 where it holds.  At N = 4 "closed" is far from
     monotone: for 10 of the 15 rows the answer sits at the top of an
     open window narrower than 3 %, and 3 % below it is closed too
-    (docs/chatter.md, "The preload chart"); at N = 32, 14 of 15 hold
-    (test_the_committed_chart_holds_3_percent_either_side)."""
+    (docs/chatter.md, "The preload chart"); at N = 32 the 14 rows with
+    an answer hold (test_the_committed_chart_holds_3_percent_either_side)."""
     rows = [(0.5, 0.25), (0.75, 0.5)]
     found = preload.min_preloads(
         [thesis_design(d=d, ys=ys, n_modes=4) for d, ys in rows],
@@ -218,15 +218,24 @@ def test_the_committed_chart_is_what_the_code_computes():
 #: Rows of the committed chart (Hertz, N = 32) where "closed" is not
 #: monotone 3 % below the answer (docs/chatter.md, "The preload chart"):
 #: there the preload 3 % below has no event either.
-NOT_MONOTONE_BELOW = {(0.35, 0.75)}
+NOT_MONOTONE_BELOW = set()
+#: Rows with no answer: an event at 26.9 lb, and the simulation takes at
+#: most 27.05 lb (the lower contact bent by its length).
+NO_ANSWER = {(0.35, 0.75)}
 
 
 @pytest.mark.slow
 def test_the_committed_chart_holds_3_percent_either_side():
-    _, rows = _read(ROOT / "docs" / "studies" / "preload.csv")
+    comments, rows = _read(ROOT / "docs" / "studies" / "preload.csv")
     for r in rows:
         key = (float(r["d_in"]), float(r["ys_in"]))
-        below, above = _check(r["model"], *key, int(r["n_modes"]),
-                              float(r["min_preload_lb"]))
+        answer = float(r["min_preload_lb"])
+        if key in NO_ANSWER:
+            assert math.isnan(answer)
+            assert any(c.startswith(f"# no answer at d = {key[0]:g} in, "
+                                    f"y_s = {key[1]:g} in") for c in
+                       comments), key
+            continue
+        below, above = _check(r["model"], *key, int(r["n_modes"]), answer)
         assert above == 0, key
         assert (below == 0) == (key in NOT_MONOTONE_BELOW), key

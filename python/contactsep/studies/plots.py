@@ -138,8 +138,8 @@ def _preload(ax, c):
                     label=f"y_s = {ys:g} in: none below the preload limit")
     ax.set(xlabel="separator thickness d (in)",
            ylabel="smallest preload with no event (lb)")
-    ax.text(0.02, 0.03, f"{c['model'][0]}, N = {c['n_modes'][0]}",
-            transform=ax.transAxes, fontsize=8)
+    ax.text(0.98, 0.95, f"{c['model'][0]}, N = {c['n_modes'][0]}",
+            transform=ax.transAxes, fontsize=8, ha="right", va="top")
 
 
 def _convergence(ax, c):
