@@ -40,12 +40,12 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
         assert free.max_lower_gap_in == study["max_lower_gap_in"][i]
         assert free.circuit_open_s == study["circuit_open_s"][i]
         assert free.n_events == study["n_events"][i]
-        answer = study["min_preload_lb"][i]
-        below, above = (simulate(design, model="hertz", damping=damping,
-                                 preload=f * answer, samples=1,
-                                 single_impulse=False).n_events
-                        for f in (0.97, 1.03))
-        assert above == 0, (name, value)
+        # 3 % above: closed (3 % below is often closed too at N = 4,
+        # where "closed" is far from monotone: docs/chatter.md)
+        above = simulate(design, model="hertz", damping=damping,
+                         preload=1.03 * study["min_preload_lb"][i],
+                         samples=1, single_impulse=False)
+        assert above.n_events == 0, (name, value)
     if name == "conclusion6":
         # R of eq. 24 grows in proportion to the separator's density
         assert np.allclose(study["R"] / study["R"][0],
@@ -53,6 +53,37 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
                            rtol=1e-12)
     if name == "conclusion7":
         assert np.allclose(study["r"] * 19.0, study["x3_in"], rtol=1e-15)
+
+
+def test_a_study_table_around_known_simulations(monkeypatch):
+    """conclusion7's table with the simulations replaced by known
+    functions: an event below 2 lb per unit x3/L3, a free run's gap equal
+    to x3 / 1000: the columns, eq. 23 from the model itself, the search
+    to 1 %."""
+    from contactsep.studies import preload
+
+    def event(task):
+        design, model, settings, load = task
+        return load < 2.0 * float(design.x3) / float(design.L3)
+
+    def free(task):
+        design, model, settings = task
+        return float(design.x3) / 1000.0, 0.03, 3
+
+    monkeypatch.setattr(preload, "_simulate_event", event)
+    monkeypatch.setattr(conclusions, "_zero_preload", free)
+    study = conclusions.conclusion("conclusion7", n_modes=4, workers=1)
+    assert list(study.columns) == [
+        "r", "x3_in", "y3_max_in", "max_lower_gap_in", "circuit_open_s",
+        "n_events", "min_preload_lb"]
+    r = np.array(conclusions.CONTACT_RATIOS)
+    assert np.array_equal(study["r"], r)
+    assert np.allclose(study["max_lower_gap_in"], 19.0 * r / 1000.0)
+    ratio = study["min_preload_lb"] / (2.0 * r)
+    assert np.all((ratio >= 1.0) & (ratio <= 1.01))
+    for x3, y3 in zip(study["x3_in"], study["y3_max_in"]):
+        assert evaluate(thesis_design(n_modes=4, x3=float(x3))).y3_max \
+            == pytest.approx(y3, rel=1e-12)
 
 
 @pytest.mark.parametrize("argv, message", [
