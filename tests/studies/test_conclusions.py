@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 
 from contactsep.chatter import simulate
+from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate, thesis_design
-from contactsep.studies import conclusions
+from contactsep.studies import conclusions, preload
 
 #: The design each study's rows change, and how.
 ROWS = {
@@ -40,11 +41,23 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
         assert free.max_lower_gap_in == study["max_lower_gap_in"][i]
         assert free.circuit_open_s == study["circuit_open_s"][i]
         assert free.n_events == study["n_events"][i]
+        answer = study["min_preload_lb"][i]
+        if np.isnan(answer):
+            # no answer: an event at the highest grid preload the
+            # simulation takes (at N = 4 the thin separators need more
+            # than the lower contact's 27 lb)
+            top = preload.grid(preload.top_index(largest_preload(design)))
+            assert simulate(design, model="hertz", damping=damping,
+                            preload=top, samples=1,
+                            single_impulse=False).n_events > 0
+            assert any(note.startswith("no answer at ")
+                       for note in study.notes)
+            continue
         # 3 % above: closed (3 % below is often closed too at N = 4,
         # where "closed" is far from monotone: docs/chatter.md)
         above = simulate(design, model="hertz", damping=damping,
-                         preload=1.03 * study["min_preload_lb"][i],
-                         samples=1, single_impulse=False)
+                         preload=1.03 * answer, samples=1,
+                         single_impulse=False)
         assert above.n_events == 0, (name, value)
     if name == "conclusion6":
         # R of eq. 24 grows in proportion to the separator's density
@@ -60,8 +73,6 @@ def test_a_study_table_around_known_simulations(monkeypatch):
     functions: an event below 2 lb per unit x3/L3, a free run's gap equal
     to x3 / 1000: the columns, eq. 23 from the model itself, the search
     to 1 %."""
-    from contactsep.studies import preload
-
     def event(task):
         design, model, settings, load = task
         return load < 2.0 * float(design.x3) / float(design.L3)

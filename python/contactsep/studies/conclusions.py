@@ -28,7 +28,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
 from contactsep.model import thesis_design
-from contactsep.studies.fields import design_lines
+from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
     Simulations,
@@ -127,7 +127,8 @@ def conclusion(name: str, model: str = "hertz",
              "preload chart's search",
              f"{sims.runs} simulations",
              *(note for v, result in zip(values, found)
-               for note in limit_notes(f"{own} = {v:g}", result)),
+               for note in limit_notes(f"{column_name(own)} = {v:g}",
+                                       result)),
              *design_lines(designs[0], per_row=(own,))]
     return Study(name, f"Conclusion {name[-1]} re-examined for circuit "
                  f"opening ({model}, N = {n_modes})", {
