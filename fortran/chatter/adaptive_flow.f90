@@ -23,9 +23,10 @@ contains
     real(wp), intent(in) :: tau
     integer :: j
 
-    ! scalar cos and sin (libm's, within an ulp), not the vector
-    ! libmvec ones (up to 4 ulp) -O3 would call: every flight step
-    ! rotates by these, and the stepper has always tabled them so
+    ! libm's scalar cos and sin (within an ulp), not libmvec's vector
+    ! ones (up to 4 ulp) that -O3 calls here otherwise: every flight
+    ! step rotates by this table, and the stepper's answers were made
+    ! with libm's (docs/chatter.md)
     !GCC$ novector
     do j = 1, run%n
       run%tab_c(j, slot) = cos(run%p(j) * tau)
