@@ -1,4 +1,4 @@
-"""The adaptive steppers (fortran/chatter/adaptive.f90) against the
+"""The adaptive steppers (fortran/chatter/adaptive*.f90) against the
 fixed-step ones, and one Hertz impact against its closed form.
 
 Error model, Hertz.  Where a contact may close, the adaptive stepper

@@ -95,7 +95,7 @@ def _with_room(call):
 
 def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     """The compiled adaptive Hertz stepper (fortran/chatter/
-    hertz_adaptive.f90): the fixed-step splitting where a contact may
+    adaptive*.f90): the fixed-step splitting where a contact may
     close, the exact flow elsewhere, crossings on the exact flow."""
     s = system
     samples = steps // stride + 1
@@ -116,7 +116,7 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
 
 def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
     """The compiled adaptive Newton stepper (fortran/chatter/
-    adaptive.f90): exact flow over half steps, Newton's impulses at the
+    adaptive*.f90): exact flow over half steps, Newton's impulses at the
     midpoints where a contact may close, the exact flow elsewhere."""
     s = system
     samples = steps // stride + 1

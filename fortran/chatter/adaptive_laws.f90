@@ -1,0 +1,161 @@
+!> The fixed steps of the adaptive stepper (chatter_adaptive), taken
+!> where a contact may close, by its two contact laws: Hertz's forces in
+!> the splitting of chatter_hertz (half kick, exact flow, half kick) and
+!> Newton's impulses at the step's midpoint (the one-step LCP solved as
+!> chatter_moreau_jean solves it).  Each records contact 1's first
+!> episode and watches the crossings and the largest gap of its flows.
+module chatter_adaptive_laws
+  use contactsep_kinds, only: wp
+  use chatter_lcp, only: solve_lcp
+  use chatter_status, only: status_lcp_unsolved
+  use chatter_adaptive_state, only: adaptive_run
+  use chatter_adaptive_flow, only: flow
+  use chatter_adaptive_crossings, only: watch_fixed
+  implicit none
+  private
+  public :: hertz_step, newton_step
+
+contains
+
+  !> A step of the fixed-step splitting from step `step`, as
+  !> chatter_hertz takes it: half kick, exact flow, half kick.
+  subroutine hertz_step(run, step)
+    type(adaptive_run), intent(inout) :: run
+    integer, intent(in) :: step
+    logical :: kicked
+
+    call contact_forces(run)
+    if (run%force(1) > 0.0_wp .and. run%episode == 0) then
+      run%episode = 1
+      run%first(1) = real(step, wp) * run%dt
+      run%first(2) = 0.0_wp
+    end if
+    if (run%episode == 1) then
+      if (run%force(1) > 0.0_wp) then
+        run%first(2) = run%first(2) + run%force(1) * run%dt
+      else
+        run%episode = 2
+      end if
+    end if
+    kicked = any(run%force /= 0.0_wp)
+    call kick(run)
+    call flow(run, 1)
+    run%t_now = real(step + 1, wp) * run%dt
+    call watch_fixed(run, run%dt, 1, run%t_now)
+    run%gap(:) = run%gap_new
+    call contact_forces(run)
+    kicked = kicked .or. any(run%force /= 0.0_wp)
+    call kick(run)
+    run%amp_fresh = run%amp_fresh .and. .not. kicked
+    run%rate_fresh = .not. kicked
+    if (run%rate_fresh) run%rate(:) = run%rate_new
+    run%e_fresh = run%e_fresh .and. .not. kicked
+  end subroutine hertz_step
+
+  !> One Newton step from step `step`: flow dt/2, the impulses, flow
+  !> dt/2.
+  subroutine newton_step(run, step)
+    type(adaptive_run), intent(inout) :: run
+    integer, intent(in) :: step
+    ! one or two contacts (with one, impulse(2) stays 0)
+    real(wp) :: d(2, 2), b(2), z(2), noise, impulse(2), t_mid
+    integer :: active(2), na, i, j
+    logical :: ok, kicked
+
+    call flow(run, -1)
+    t_mid = (real(step, wp) + 0.5_wp) * run%dt
+    call watch_fixed(run, 0.5_wp * run%dt, -1, t_mid)
+    run%gap(:) = run%gap_new
+    ! closed at the midpoint and not separating beyond the round-off
+    ! of the rate (a resting contact has u = 0 +- that)
+    na = 0
+    do j = 1, run%k
+      noise = 64.0_wp * epsilon(1.0_wp) * sum(abs(run%ht(:, j) * run%v))
+      if (run%gap(j) <= 0.0_wp .and. run%rate_new(j) <= noise) then
+        na = na + 1
+        active(na) = j
+      end if
+    end do
+    impulse = 0.0_wp
+    if (na > 0) then
+      do i = 1, na
+        do j = 1, na
+          d(i, j) = run%coupling(active(i), active(j))
+        end do
+        b(i) = (1.0_wp + run%restitution) * run%rate_new(active(i))
+      end do
+      call solve_lcp(na, d, b, z, ok)
+      if (.not. ok) then
+        run%status = status_lcp_unsolved
+        return
+      end if
+      do i = 1, na
+        impulse(active(i)) = z(i)
+        if (z(i) /= 0.0_wp) call axpy(run%n, z(i), &
+            run%inv_mh(:, active(i)), run%v)
+      end do
+    end if
+    if (impulse(1) > 0.0_wp .and. run%episode == 0) then
+      run%episode = 1
+      run%first(1) = t_mid
+      run%first(2) = 0.0_wp
+    end if
+    if (run%episode == 1) then
+      if (impulse(1) > 0.0_wp) then
+        run%first(2) = run%first(2) + impulse(1)
+      else
+        run%episode = 2
+      end if
+    end if
+    kicked = any(impulse /= 0.0_wp)
+    run%amp_fresh = run%amp_fresh .and. .not. kicked
+    run%e_fresh = run%e_fresh .and. .not. kicked
+    call flow(run, -1)
+    call watch_fixed(run, 0.5_wp * run%dt, -1, real(step + 1, wp) &
+        * run%dt)
+    run%gap(:) = run%gap_new
+    run%rate(:) = run%rate_new
+    run%rate_fresh = .true.
+  end subroutine newton_step
+
+  !> F = k delta^{3/2} (1 + chi delta'), F >= 0, as chatter_hertz, of
+  !> the current gaps, into run%force.
+  subroutine contact_forces(run)
+    type(adaptive_run), intent(inout) :: run
+    real(wp) :: depth
+    integer :: j
+
+    do j = 1, run%k
+      if (run%gap(j) < 0.0_wp) then
+        depth = -run%gap(j)
+        run%force(j) = run%stiffness * depth * sqrt(depth)
+        if (run%chi /= 0.0_wp) run%force(j) = max(run%force(j) &
+            * (1.0_wp - run%chi * dot_product(run%ht(:, j), run%v)), &
+            0.0_wp)
+      else
+        run%force(j) = 0.0_wp
+      end if
+    end do
+  end subroutine contact_forces
+
+  !> Half a step's kick of the Hertz forces in run%force.
+  subroutine kick(run)
+    type(adaptive_run), intent(inout) :: run
+    integer :: j
+
+    do j = 1, run%k
+      if (run%force(j) /= 0.0_wp) call axpy(run%n, run%force(j), &
+          run%half_kick(:, j), run%v)
+    end do
+  end subroutine kick
+
+  !> y += alpha x.
+  pure subroutine axpy(nm, alpha, x, y)
+    integer, intent(in) :: nm
+    real(wp), intent(in) :: alpha, x(nm)
+    real(wp), intent(inout) :: y(nm)
+
+    y = y + alpha * x
+  end subroutine axpy
+
+end module chatter_adaptive_laws
