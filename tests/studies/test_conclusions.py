@@ -74,11 +74,11 @@ def test_a_study_table_around_known_simulations(monkeypatch):
     to x3 / 1000: the columns, eq. 23 from the model itself, the search
     to 1 %."""
     def event(task):
-        design, model, settings, load = task
+        design, _, _, load = task
         return load < 2.0 * float(design.x3) / float(design.L3)
 
     def free(task):
-        design, model, settings = task
+        design = task[0]
         return float(design.x3) / 1000.0, 0.03, 3
 
     monkeypatch.setattr(preload, "_simulate_event", event)

@@ -144,7 +144,7 @@ def test_the_chart_has_its_rows_and_columns(monkeypatch):
     seen = []
 
     def fake(task):
-        design, model, settings, load = task
+        design, _, _, load = task
         seen.append((float(design.h2), float(design.ys), design.n_modes))
         return load < 0.3 * float(design.ys)
 

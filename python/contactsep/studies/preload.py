@@ -157,9 +157,9 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     """
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
     tops = [top_index(c) for c in limits]
-    scans = [dict() for _ in range(n_rows)]
+    scans = [{} for _ in range(n_rows)]
     zeros = [None] * n_rows
-    tested = [dict() for _ in range(n_rows)]
+    tested = [{} for _ in range(n_rows)]
 
     def run(tasks, on_grid=False):
         for (row, preload), event in zip(tasks, has_event(tasks)):
