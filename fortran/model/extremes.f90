@@ -6,9 +6,10 @@
 !> Every design's window is halved level by level; a live cell carries
 !> a_j = c_j sin(p_j m) and b_j = c_j cos(p_j m) at its centre m, rotated
 !> from its parent's by the level's exact half-angle.  The bounds of a cell
-!> (model_extremes_cells) decide whether it is dropped (it cannot come
-!> within the tie of the best value found), finished (its bound is within
-!> `converged` of a value it holds) or halved.  The search ends when no
+!> (model_extremes_bounds; model_extremes_cells runs a level) decide
+!> whether it is dropped (it cannot come within the tie of the best value
+!> found), finished (its bound is within `converged` of a value it holds)
+!> or halved.  The search ends when no
 !> cell is left, or gives up (resolved = .false.) when a design's work
 !> budget runs out: it never returns an unrefined value.
 !>
@@ -23,9 +24,9 @@
 module model_extremes
   use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
-  use model_extremes_cells, only: extremes_workspace, tie, &
-      reserve_slots, reserve_cells, search_level, halve, turns, offer, &
-      earliest
+  use model_extremes_workspace, only: extremes_workspace, tie, &
+      reserve_slots, reserve_cells, halve, turns, offer, earliest
+  use model_extremes_cells, only: search_level
   implicit none
   private
   public :: extremes, extremes_workspace

@@ -1,0 +1,222 @@
+!> The bounds of the extremes search's cells (model_extremes_cells):
+!> every live cell's value, its bounds of y3 and -y3 and, where every mode
+!> is low, its certified values.
+!>
+!> On a cell of half-width r around m, with phi_j = p_j r, the modes with
+!> phi_j > phi_low are bounded by their own maxima over the arc [p_j m -
+!> phi_j, p_j m + phi_j] (|c_j| if it reaches the crest, else the larger
+!> end), the others by Taylor's theorem: y_L(m + x) lies between
+!> A + B x + K_lo x^2/2 and A + B x + K_up x^2/2, A and B their value and
+!> slope at m, K_lo and K_up bounds of their second derivative on the cell
+!> (p_j^2 times the arc maxima).  The upper parabola bounds the cell; the
+!> top of the lower one is a certified value at a known point.
+!>
+!> The per-mode sums run a design at a time (its mode's data then scalars
+!> in the loop); the bounds run over all the block's cells at once, each
+!> design's scalars gathered by the cell's slot.
+module model_extremes_bounds
+  use contactsep_kinds, only: wp
+  use model_extremes_workspace, only: extremes_workspace, turns
+  implicit none
+  private
+  public :: arcs, add_modes, cell_bounds, parabola_max
+
+  !> Modes with p_j r <= phi_low enter a cell's bound by Taylor's theorem.
+  real(wp), parameter :: phi_low = 1.0_wp
+
+contains
+
+  !> The level's arcs per slot (with cells) and mode: cos and sin of phi_j
+  !> (a whole turn: -1 and 0), and 1 where the mode is low.
+  pure subroutine arcs(ws, slots, level)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots, level
+    integer :: j, slot
+    logical :: whole
+
+    do j = 1, size(ws%p, 2)
+      do slot = 1, slots
+        if (ws%cells_of(slot) == 0) cycle
+        whole = turns(ws%quadrant(slot, j), level) >= 2
+        ws%arc_c(slot, j) = merge(-1.0_wp, ws%chain_c(slot, j), whole)
+        ws%arc_s(slot, j) = merge(0.0_wp, max(ws%chain_s(slot, j), &
+            0.0_wp), whole)
+        ws%low(slot, j) = merge(1.0_wp, 0.0_wp, .not. whole .and. &
+            ws%p(slot, j) * ws%half_width(slot) <= phi_low)
+      end do
+    end do
+  end subroutine arcs
+
+  !> Each cell's value, low-mode sums and high-mode arc maxima (a slot's
+  !> cells at a time: its modes' data are scalars there).  A mode whose arc
+  !> is a whole turn adds |c| to every cell's high sums (ws%whole).
+  pure subroutine add_modes(ws, slots, level)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots, level
+    integer :: j, s, lo, hi, cells
+
+    cells = ws%cells
+    ws%value(1:cells) = 0.0_wp
+    ws%a_low(1:cells) = 0.0_wp
+    ws%slope(1:cells) = 0.0_wp
+    ws%curve_up(1:cells) = 0.0_wp
+    ws%curve_down(1:cells) = 0.0_wp
+    ws%high_up(1:cells) = 0.0_wp
+    ws%high_down(1:cells) = 0.0_wp
+    ws%whole(1:slots) = 0.0_wp
+    do s = 1, slots
+      if (ws%cells_of(s) == 0) cycle
+      lo = ws%first(s)
+      hi = lo + ws%cells_of(s) - 1
+      do j = 1, ws%n(s)
+        if (ws%arc_c(s, j) == -1.0_wp .and. ws%arc_s(s, j) == 0.0_wp) then
+          ws%whole(s) = ws%whole(s) + ws%absc(s, j)
+          ws%value(lo:hi) = ws%value(lo:hi) + ws%a(lo:hi, j)
+        else if (ws%low(s, j) > 0.0_wp) then
+          call add_low(hi - lo + 1, ws%a(lo:hi, j), ws%b(lo:hi, j), &
+              ws%absc(s, j), ws%arc_c(s, j), ws%arc_s(s, j), ws%p(s, j), &
+              ws%value(lo:hi), ws%a_low(lo:hi), ws%slope(lo:hi), &
+              ws%curve_up(lo:hi), ws%curve_down(lo:hi))
+        else
+          call add_high(hi - lo + 1, ws%a(lo:hi, j), ws%b(lo:hi, j), &
+              ws%absc(s, j), ws%arc_c(s, j), ws%arc_s(s, j), &
+              ws%value(lo:hi), ws%high_up(lo:hi), ws%high_down(lo:hi))
+        end if
+      end do
+    end do
+  end subroutine add_modes
+
+  !> The maxima of c sin and -c sin over a cell's arc (absc = |c|; ca, sa
+  !> = cos, sin of the arc's half-width): |c| if the arc reaches the crest,
+  !> else its larger end.
+  elemental subroutine arc_maxima(a, b, absc, ca, sa, up, down)
+    real(wp), intent(in) :: a, b
+    real(wp), value :: absc, ca, sa
+    real(wp), intent(out) :: up, down
+
+    real(wp) :: ab
+
+    ! (written as max() with a merge of constants so that the vectoriser
+    ! need not load b inside a branch)
+    ab = abs(b)
+    up = max(a * ca + ab * sa, merge(absc, -huge(absc), a >= absc * ca))
+    down = max(ab * sa - a * ca, merge(absc, -huge(absc), -a >= absc * ca))
+  end subroutine arc_maxima
+
+  !> A mode bounded by Taylor's theorem: its share of the cells' value,
+  !> slope and curvature bounds (p^2 times its arc maxima of -+ c sin).
+  pure subroutine add_low(cells, a, b, absc, ca, sa, p, value, a_low, &
+      slope, curve_up, curve_down)
+    integer, intent(in) :: cells
+    real(wp), intent(in) :: a(cells), b(cells)
+    real(wp), value :: absc, ca, sa, p
+    real(wp), intent(inout) :: value(cells), a_low(cells), slope(cells)
+    real(wp), intent(inout) :: curve_up(cells), curve_down(cells)
+    real(wp) :: up, down, p2
+    integer :: k
+
+    p2 = p * p
+    do k = 1, cells
+      call arc_maxima(a(k), b(k), absc, ca, sa, up, down)
+      value(k) = value(k) + a(k)
+      a_low(k) = a_low(k) + a(k)
+      slope(k) = slope(k) + p * b(k)
+      curve_up(k) = curve_up(k) + p2 * down
+      curve_down(k) = curve_down(k) + p2 * up
+    end do
+  end subroutine add_low
+
+  !> A mode bounded by its own arc maxima.
+  pure subroutine add_high(cells, a, b, absc, ca, sa, value, high_up, &
+      high_down)
+    integer, intent(in) :: cells
+    real(wp), intent(in) :: a(cells), b(cells)
+    real(wp), value :: absc, ca, sa
+    real(wp), intent(inout) :: value(cells), high_up(cells)
+    real(wp), intent(inout) :: high_down(cells)
+    real(wp) :: up, down
+    integer :: k
+
+    do k = 1, cells
+      call arc_maxima(a(k), b(k), absc, ca, sa, up, down)
+      value(k) = value(k) + a(k)
+      high_up(k) = high_up(k) + up
+      high_down(k) = high_down(k) + down
+    end do
+  end subroutine add_high
+
+  !> Each cell's bounds of y3 and -y3 (the upper Taylor parabolas' maxima
+  !> plus the high modes' arc maxima) and, where every mode of its design
+  !> is low, its certified values (the lower parabolas' tops) with their
+  !> offsets from the centre (else -huge: with high modes at their least
+  !> they would not help).
+  pure subroutine cell_bounds(ws, slots)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots
+    integer :: s
+
+    do s = 1, slots
+      ws%all_low(s) = merge(1.0_wp, 0.0_wp, &
+          ws%p_max(s) * ws%half_width(s) <= phi_low)
+    end do
+    call bounds_kernel(ws%cells, ws%slot, ws%half_width, ws%all_low, &
+        ws%whole, ws%a_low, ws%slope, ws%curve_up, ws%curve_down, &
+        ws%high_up, ws%high_down, ws%bound(:, 1), ws%bound(:, 2), &
+        ws%sure(:, 1), ws%sure(:, 2), ws%sure_at(:, 1), ws%sure_at(:, 2))
+  end subroutine cell_bounds
+
+  pure subroutine bounds_kernel(cells, slot, half_width, all_low, whole, &
+      a, b, curve_up, curve_down, high_up, high_down, bound_up, &
+      bound_down, sure_up, sure_down, at_up, at_down)
+    integer, intent(in) :: cells, slot(:)
+    real(wp), intent(in) :: half_width(:), all_low(:), whole(:)
+    real(wp), intent(in) :: a(:), b(:), curve_up(:), curve_down(:)
+    real(wp), intent(in) :: high_up(:), high_down(:)
+    real(wp), intent(out) :: bound_up(:), bound_down(:), sure_up(:)
+    real(wp), intent(out) :: sure_down(:), at_up(:), at_down(:)
+    real(wp) :: r, lowest
+    integer :: k
+
+    do k = 1, cells
+      r = half_width(slot(k))
+      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_max(a(k), &
+          b(k), curve_up(k), -r, r)
+      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_max(-a(k), &
+          -b(k), curve_down(k), -r, r)
+      ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
+      ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r], where
+      ! every mode is low (else -huge)
+      lowest = merge(-huge(1.0_wp), huge(1.0_wp), all_low(slot(k)) == 0.0_wp)
+      sure_up(k) = min(parabola_max(a(k), b(k), -curve_down(k), -r, r), &
+          lowest)
+      at_up(k) = parabola_at(b(k), -curve_down(k), r)
+      sure_down(k) = min(parabola_max(-a(k), -b(k), -curve_up(k), -r, r), &
+          lowest)
+      at_down(k) = parabola_at(-b(k), -curve_up(k), r)
+    end do
+  end subroutine bounds_kernel
+
+  !> max of a + b x + k x^2/2 over lo <= x <= hi.
+  elemental function parabola_max(a, b, k, lo, hi) result(top)
+    real(wp), intent(in) :: a, b, k, lo, hi
+    real(wp) :: top, x
+
+    top = max(a + b * lo + 0.5_wp * k * lo * lo, &
+        a + b * hi + 0.5_wp * k * hi * hi)
+    ! the vertex, where the parabola opens downwards (clipped to the ends)
+    x = min(max(-b / min(k, -tiny(k)), lo), hi)
+    top = merge(max(top, a + b * x + 0.5_wp * k * x * x), top, k < 0.0_wp)
+  end function parabola_max
+
+  !> Where a + b x + k x^2/2 is largest on -r <= x <= r (the vertex when
+  !> the parabola opens downwards, else the higher end; -r of equal ends).
+  elemental function parabola_at(b, k, r) result(x)
+    real(wp), intent(in) :: b, k, r
+    real(wp) :: x
+
+    ! the ends differ by 2 b r: the right one is higher where b > 0
+    x = merge(min(max(-b / min(k, -tiny(k)), -r), r), &
+        merge(r, -r, b > 0.0_wp), k < 0.0_wp)
+  end function parabola_at
+
+end module model_extremes_bounds
