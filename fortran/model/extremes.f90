@@ -25,8 +25,8 @@ module model_extremes
   use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
   use model_extremes_workspace, only: extremes_workspace, tie, &
-      reserve_slots, reserve_cells, halve, turns, offer, earliest
-  use model_extremes_cells, only: search_level
+      reserve_slots, reserve_cells, offer, earliest
+  use model_extremes_cells, only: search_level, halve, quarter
   implicit none
   private
   public :: extremes, extremes_workspace
@@ -172,7 +172,7 @@ contains
   elemental subroutine root_phase(p, tau, cos0, sin0, quadrant)
     real(wp), intent(in) :: p, tau
     real(wp), intent(out) :: cos0, sin0
-    integer(int64), intent(out) :: quadrant
+    real(wp), intent(out) :: quadrant
     real(wp) :: hi, lo, k, rest, u, e, ch, sh
     integer :: part
 
@@ -189,7 +189,7 @@ contains
       rest = (rest - u) - e
     end do
     rest = rest + lo
-    quadrant = int(k, int64) + floor(rest / pi, int64)
+    quadrant = k + real(floor(rest / pi, int64), wp)
   end subroutine root_phase
 
   !> (hi, lo) with hi + lo = x y exactly (Dekker; no fused multiply-add).
@@ -305,7 +305,7 @@ contains
       sh = ws%sin0(1, :)
       centre = 0.5_wp * ws%tau(1)
       do level = 1, top
-        call halve(ch, sh, iand(turns(ws%quadrant(1, :), level), 3_int64), &
+        call halve(ch, sh, quarter(ws%quadrant(1, :), level), &
             hc, hs)
         ch = hc
         sh = hs

@@ -16,36 +16,15 @@
 !> design's scalars gathered by the cell's slot.
 module model_extremes_bounds
   use contactsep_kinds, only: wp
-  use model_extremes_workspace, only: extremes_workspace, turns
+  use model_extremes_workspace, only: extremes_workspace
   implicit none
   private
-  public :: arcs, add_modes, cell_bounds, parabola_max
+  public :: add_modes, cell_bounds, parabola_max
 
   !> Modes with p_j r <= phi_low enter a cell's bound by Taylor's theorem.
-  real(wp), parameter :: phi_low = 1.0_wp
+  real(wp), parameter, public :: phi_low = 1.0_wp
 
 contains
-
-  !> The level's arcs per slot (with cells) and mode: cos and sin of phi_j
-  !> (a whole turn: -1 and 0), and 1 where the mode is low.
-  pure subroutine arcs(ws, slots, level)
-    type(extremes_workspace), intent(inout) :: ws
-    integer, intent(in) :: slots, level
-    integer :: j, slot
-    logical :: whole
-
-    do j = 1, size(ws%p, 2)
-      do slot = 1, slots
-        if (ws%cells_of(slot) == 0) cycle
-        whole = turns(ws%quadrant(slot, j), level) >= 2
-        ws%arc_c(slot, j) = merge(-1.0_wp, ws%chain_c(slot, j), whole)
-        ws%arc_s(slot, j) = merge(0.0_wp, max(ws%chain_s(slot, j), &
-            0.0_wp), whole)
-        ws%low(slot, j) = merge(1.0_wp, 0.0_wp, .not. whole .and. &
-            ws%p(slot, j) * ws%half_width(slot) <= phi_low)
-      end do
-    end do
-  end subroutine arcs
 
   !> Each cell's value, low-mode sums and high-mode arc maxima (a slot's
   !> cells at a time: its modes' data are scalars there).  A mode whose arc

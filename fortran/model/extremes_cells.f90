@@ -1,5 +1,7 @@
 !> One level of the extremes search (model_extremes) on a block of designs:
-!> every live cell bounded (model_extremes_bounds), its centre and
+!> the level's arcs from the exact half-angle chain (its quadrants read from
+!> the bits of floor(p_j tau/pi)), every live cell bounded
+!> (model_extremes_bounds), its centre and
 !> certified points offered as candidates, dropped, finished, polished or
 !> halved.
 !>
@@ -11,15 +13,14 @@
 !> every step here runs over all the block's cells at once, each design's
 !> scalars gathered by the cell's slot.
 module model_extremes_cells
-  use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
   use model_extremes_workspace, only: extremes_workspace, reserve_cells, &
-      halve, turns, offer, tie, converged
-  use model_extremes_bounds, only: arcs, add_modes, cell_bounds, &
-      parabola_max
+      offer, tie, converged
+  use model_extremes_bounds, only: add_modes, cell_bounds, parabola_max, &
+      phi_low
   implicit none
   private
-  public :: search_level
+  public :: search_level, halve, turns, quarter
 
   !> Cells with p_max r <= phi_polish are polished by Newton steps.
   real(wp), parameter :: phi_polish = 1.0_wp
@@ -32,9 +33,8 @@ contains
   pure subroutine search_level(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots, level
-    integer :: slot, cells
+    integer :: slot
 
-    cells = ws%cells
     do slot = 1, slots
       ws%half_width(slot) = ws%tau(slot) * 0.5_wp**(level + 1)
     end do
@@ -43,18 +43,114 @@ contains
     call cell_bounds(ws, slots)
     call offer_cells(ws, slots)
     call select_cells(ws, slots, level)
-    ! the next level's half-angles (of designs with cells left), then the
-    ! children
-    do slot = 1, slots
-      if (ws%cells_of(slot) == 0) cycle
-      call halve(ws%chain_c(slot, :), ws%chain_s(slot, :), &
-          iand(turns(ws%quadrant(slot, :), level + 1), 3_int64), &
-          ws%arc_c(slot, :), ws%arc_s(slot, :))
-      ws%chain_c(slot, :) = ws%arc_c(slot, :)
-      ws%chain_s(slot, :) = ws%arc_s(slot, :)
-    end do
+    call next_chain(ws, slots, level + 1)
     call split_cells(ws, slots)
   end subroutine search_level
+
+  !> The level's arcs per slot and mode: cos and sin of phi_j
+  !> (a whole turn: -1 and 0), and 1 where the mode is low.
+  pure subroutine arcs(ws, slots, level)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots, level
+    integer :: j, slot
+    real(wp) :: scale, chain_c, chain_s, reach
+    logical :: whole
+
+    ! every slot (those without cells too): no branch on the slot
+    scale = 0.5_wp**level
+    do j = 1, size(ws%p, 2)
+      do slot = 1, slots
+        chain_c = ws%chain_c(slot, j)
+        chain_s = ws%chain_s(slot, j)
+        reach = ws%p(slot, j) * ws%half_width(slot)
+        ! turns(quadrant, level) >= 2, without the floor
+        whole = ws%quadrant(slot, j) * scale >= 2.0_wp
+        ws%arc_c(slot, j) = merge(-1.0_wp, chain_c, whole)
+        ws%arc_s(slot, j) = merge(0.0_wp, max(chain_s, 0.0_wp), whole)
+        ws%low(slot, j) = merge(0.0_wp, merge(1.0_wp, 0.0_wp, &
+            reach <= phi_low), whole)
+      end do
+    end do
+  end subroutine arcs
+
+  !> The half-angles of `level` from the level above's, for the designs
+  !> with cells left (a loop over slots for each mode: contiguous, and
+  !> vectorised; the other slots keep theirs).
+  pure subroutine next_chain(ws, slots, level)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: slots, level
+    real(wp) :: hc, hs, chain_c, chain_s, quadrant
+    logical :: active
+    integer :: j, slot
+
+    do j = 1, size(ws%p, 2)
+      do slot = 1, slots
+        chain_c = ws%chain_c(slot, j)
+        chain_s = ws%chain_s(slot, j)
+        quadrant = ws%quadrant(slot, j)
+        active = ws%cells_of(slot) > 0
+        call halve(chain_c, chain_s, quarter(quadrant, level), hc, hs)
+        ws%chain_c(slot, j) = merge(hc, chain_c, active)
+        ws%chain_s(slot, j) = merge(hs, chain_s, active)
+      end do
+    end do
+  end subroutine next_chain
+
+  !> cos and sin of phi/2 from those of phi, in the given quadrant.
+  elemental subroutine halve(cos_phi, sin_phi, quadrant, cos_half, sin_half)
+    real(wp), intent(in) :: cos_phi, sin_phi
+    real(wp), intent(in) :: quadrant
+    real(wp), intent(out) :: cos_half, sin_half
+    real(wp) :: big, small
+    logical :: up
+
+    ! the larger of |cos phi/2| and |sin phi/2| by its square root (no
+    ! cancellation), the other from sin phi = 2 cos phi/2 sin phi/2;
+    ! branch-free, so that a loop of halvings vectorises
+    up = cos_phi >= 0.0_wp
+    big = sqrt(0.5_wp * (1.0_wp + abs(cos_phi)))
+    small = abs(sin_phi) / (2.0_wp * big)
+    cos_half = merge(big, small, up)
+    sin_half = merge(small, big, up)
+    cos_half = merge(-cos_half, cos_half, quadrant == 1.0_wp .or. &
+        quadrant == 2.0_wp)
+    sin_half = merge(-sin_half, sin_half, quadrant >= 2.0_wp)
+  end subroutine halve
+
+  !> floor(p_j tau/pi) / 2^level (given floor(p_j tau/pi)): the half-turns
+  !> of p_j tau/2^(level+1).
+  elemental function turns(quadrant, level) result(q)
+    real(wp), intent(in) :: quadrant
+    integer, intent(in) :: level
+    real(wp) :: q
+
+    q = whole_part(quadrant * 0.5_wp**level)
+  end function turns
+
+  !> The quadrant (0 to 3) of p_j tau/2^(level+1): the last two bits of its
+  !> half-turns.
+  elemental function quarter(quadrant, level) result(q)
+    real(wp), intent(in) :: quadrant
+    integer, intent(in) :: level
+    real(wp) :: q, half_turns
+
+    half_turns = turns(quadrant, level)
+    q = half_turns - 4.0_wp * whole_part(0.25_wp * half_turns)
+  end function quarter
+
+  !> floor(x) for 0 <= x < 2^51 (floor(p_j tau/pi) < 2^52/pi: a design with
+  !> p_max tau >= 2^52 is not searched), exact, without a branch or the
+  !> SSE4.1 rounding instruction plain x86-64 lacks (so that the loops
+  !> over slots vectorise): adding and taking away 2^52 rounds x to the
+  !> nearest integer.
+  elemental function whole_part(x) result(f)
+    real(wp), intent(in) :: x
+    real(wp) :: f
+    real(wp), parameter :: two_52 = 2.0_wp**52
+
+    f = (x + two_52) - two_52
+    f = f - merge(1.0_wp, 0.0_wp, f > x)
+  end function whole_part
 
   !> The cells' centres and certified points that come within the tie of
   !> their design's best, as candidates (the best values first raised to
@@ -120,7 +216,7 @@ contains
       if (ws%cells_of(s) == 0) cycle
       lo = ws%first(s)
       hi = lo + ws%cells_of(s) - 1
-      if (turns(ws%min_quadrant(s), level) >= 2) then
+      if (turns(ws%min_quadrant(s), level) >= 2.0_wp) then
         ! nothing can be dropped or finished yet
         ws%floor_value(:, s) = -huge(1.0_wp)
         ws%conv(s) = -huge(1.0_wp)

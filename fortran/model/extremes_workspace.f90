@@ -1,13 +1,13 @@
 !> The extremes search's working arrays (model_extremes): the workspace
-!> kept between blocks and batches, its growth, the exact half-angle step
-!> and the quadrant bits of the phase chain, and the candidate list (points
-!> within the tie of a design's best, from which the earliest is taken).
+!> kept between blocks and batches, its growth, and the candidate list
+!> (points within the tie of a design's best, from which the earliest is
+!> taken).
 module model_extremes_workspace
   use, intrinsic :: iso_fortran_env, only: int64
   use contactsep_kinds, only: wp
   implicit none
   private
-  public :: reserve_slots, reserve_cells, halve, turns, offer, earliest
+  public :: reserve_slots, reserve_cells, offer, earliest
 
   !> Two values closer than tie * S are a tie: the earlier is reported.
   real(wp), parameter, public :: tie = 1.0e-12_wp
@@ -18,10 +18,11 @@ module model_extremes_workspace
   !> Working arrays kept between blocks and batches (grown as needed).
   type, public :: extremes_workspace
     !> Per design slot and mode: p_j, c_j, |c_j|, cos and sin of p_j tau/2,
-    !> floor(p_j tau/pi), and cos and sin of p_j r of the current level.
+    !> floor(p_j tau/pi) (an integer, exact in a double: p_j tau < 2^52),
+    !> and cos and sin of p_j r of the current level.
     real(wp), allocatable :: p(:, :), c(:, :), absc(:, :), cos0(:, :)
     real(wp), allocatable :: sin0(:, :), chain_c(:, :), chain_s(:, :)
-    integer(int64), allocatable :: quadrant(:, :)
+    real(wp), allocatable :: quadrant(:, :)
     !> The level's per-slot-and-mode arc cosine and sine (-1, 0 for a whole
     !> turn) and Taylor weight (1 for a low mode, else 0).
     real(wp), allocatable :: arc_c(:, :), arc_s(:, :), low(:, :)
@@ -34,7 +35,8 @@ module model_extremes_workspace
     real(wp), allocatable :: tau(:), scale(:), p_max(:), ends(:, :)
     real(wp), allocatable :: best(:, :), half_width(:), whole(:)
     real(wp), allocatable :: all_low(:), floor_value(:, :), conv(:)
-    integer(int64), allocatable :: min_quadrant(:), work(:)
+    real(wp), allocatable :: min_quadrant(:)
+    integer(int64), allocatable :: work(:)
     logical, allocatable :: gave_up(:), deferred(:), has_cells(:)
     logical :: overflow = .false.
     !> The cells: slot, centre, a_j, b_j, alive for max and min; a slot's
@@ -126,34 +128,6 @@ contains
         ws%high_up(room), ws%high_down(room), ws%bound(room, 2), &
         ws%sure(room, 2), ws%sure_at(room, 2))
   end subroutine reserve_cells
-
-  !> cos and sin of phi/2 from those of phi, in the given quadrant.
-  elemental subroutine halve(cos_phi, sin_phi, quadrant, cos_half, sin_half)
-    real(wp), intent(in) :: cos_phi, sin_phi
-    integer(int64), intent(in) :: quadrant
-    real(wp), intent(out) :: cos_half, sin_half
-    real(wp) :: hc, hs
-
-    if (cos_phi >= 0.0_wp) then
-      hc = sqrt(0.5_wp * (1.0_wp + cos_phi))
-      hs = abs(sin_phi) / (2.0_wp * hc)
-    else
-      hs = sqrt(0.5_wp * (1.0_wp - cos_phi))
-      hc = abs(sin_phi) / (2.0_wp * hs)
-    end if
-    cos_half = merge(-hc, hc, quadrant == 1 .or. quadrant == 2)
-    sin_half = merge(-hs, hs, quadrant >= 2)
-  end subroutine halve
-
-  !> floor(p_j tau/pi) / 2^level: the half-turns of p_j tau/2^(level+1);
-  !> its last two bits are that angle's quadrant.
-  elemental function turns(quadrant, level) result(q)
-    integer(int64), intent(in) :: quadrant
-    integer, intent(in) :: level
-    integer(int64) :: q
-
-    q = shiftr(quadrant, min(level, 63))
-  end function turns
 
   !> A point as a candidate of a design (slot) for side 1 (max of y3) or 2
   !> (max of -y3): the best value rises; points within the tie are kept.
