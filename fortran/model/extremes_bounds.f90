@@ -153,49 +153,66 @@ contains
     real(wp), intent(in) :: high_up(:), high_down(:)
     real(wp), intent(out) :: bound_up(:), bound_down(:), sure_up(:)
     real(wp), intent(out) :: sure_down(:), at_up(:), at_down(:)
-    real(wp) :: r, lowest
+    real(wp) :: r, lowest, vertex_up, vertex_down
     integer :: k
 
     do k = 1, cells
       r = half_width(slot(k))
-      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_max(a(k), &
-          b(k), curve_up(k), -r, r)
-      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_max(-a(k), &
-          -b(k), curve_down(k), -r, r)
+      ! two vertices serve the four parabolas: a + b x + curve_up x^2/2
+      ! and -a - b x - curve_up x^2/2 turn at -b/curve_up, the other two
+      ! at b/curve_down (each used only where its parabola opens
+      ! downwards, so never where its curvature is zero)
+      vertex_up = -b(k) / merge(curve_up(k), 1.0_wp, curve_up(k) /= 0.0_wp)
+      vertex_down = b(k) / merge(curve_down(k), 1.0_wp, &
+          curve_down(k) /= 0.0_wp)
+      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_top(a(k), &
+          b(k), curve_up(k), vertex_up, -r, r)
+      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_top(-a(k), &
+          -b(k), curve_down(k), vertex_down, -r, r)
       ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
       ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r], where
       ! every mode is low (else -huge)
       lowest = merge(-huge(1.0_wp), huge(1.0_wp), all_low(slot(k)) == 0.0_wp)
-      sure_up(k) = min(parabola_max(a(k), b(k), -curve_down(k), -r, r), &
-          lowest)
-      at_up(k) = parabola_at(b(k), -curve_down(k), r)
-      sure_down(k) = min(parabola_max(-a(k), -b(k), -curve_up(k), -r, r), &
-          lowest)
-      at_down(k) = parabola_at(-b(k), -curve_up(k), r)
+      sure_up(k) = min(parabola_top(a(k), b(k), -curve_down(k), &
+          vertex_down, -r, r), lowest)
+      at_up(k) = parabola_at(b(k), -curve_down(k), vertex_down, r)
+      sure_down(k) = min(parabola_top(-a(k), -b(k), -curve_up(k), &
+          vertex_up, -r, r), lowest)
+      at_down(k) = parabola_at(-b(k), -curve_up(k), vertex_up, r)
     end do
   end subroutine bounds_kernel
 
   !> max of a + b x + k x^2/2 over lo <= x <= hi.
   elemental function parabola_max(a, b, k, lo, hi) result(top)
     real(wp), intent(in) :: a, b, k, lo, hi
+    real(wp) :: top
+
+    top = parabola_top(a, b, k, -b / min(k, -tiny(k)), lo, hi)
+  end function parabola_max
+
+  !> max of a + b x + k x^2/2 over lo <= x <= hi, given its vertex -b/k
+  !> where k < 0 (else not used).
+  elemental function parabola_top(a, b, k, vertex, lo, hi) result(top)
+    real(wp), intent(in) :: a, b, k, vertex, lo, hi
     real(wp) :: top, x
 
     top = max(a + b * lo + 0.5_wp * k * lo * lo, &
         a + b * hi + 0.5_wp * k * hi * hi)
     ! the vertex, where the parabola opens downwards (clipped to the ends)
-    x = min(max(-b / min(k, -tiny(k)), lo), hi)
+    x = min(max(vertex, lo), hi)
     top = merge(max(top, a + b * x + 0.5_wp * k * x * x), top, k < 0.0_wp)
-  end function parabola_max
+  end function parabola_top
 
-  !> Where a + b x + k x^2/2 is largest on -r <= x <= r (the vertex when
-  !> the parabola opens downwards, else the higher end; -r of equal ends).
-  elemental function parabola_at(b, k, r) result(x)
-    real(wp), intent(in) :: b, k, r
+  !> Where a + b x + k x^2/2 is largest on -r <= x <= r (the vertex, given
+  !> as for parabola_top, when the parabola opens downwards, else the
+  !> higher end; -r of equal ends).
+  elemental function parabola_at(b, k, vertex, r) result(x)
+    real(wp), intent(in) :: b, k, vertex, r
     real(wp) :: x
 
     ! the ends differ by 2 b r: the right one is higher where b > 0
-    x = merge(min(max(-b / min(k, -tiny(k)), -r), r), &
-        merge(r, -r, b > 0.0_wp), k < 0.0_wp)
+    x = merge(min(max(vertex, -r), r), merge(r, -r, b > 0.0_wp), &
+        k < 0.0_wp)
   end function parabola_at
 
 end module model_extremes_bounds

@@ -26,6 +26,13 @@ module model_extremes_cells
   real(wp), parameter :: phi_polish = 1.0_wp
   !> Newton steps of a polish.
   integer, parameter :: polish_steps = 3
+  !> The polish's Taylor factors of sin and cos, 1/((2k)(2k+1)) and
+  !> 1/((2k-1)(2k)): multiplied, not divided (a division costs several
+  !> multiplications; each factor is rounded once, as the quotient was).
+  real(wp), parameter :: inv_sin(9) = 1.0_wp / [6.0_wp, 20.0_wp, 42.0_wp, &
+      72.0_wp, 110.0_wp, 156.0_wp, 210.0_wp, 272.0_wp, 342.0_wp]
+  real(wp), parameter :: inv_cos(10) = 1.0_wp / [2.0_wp, 12.0_wp, 30.0_wp, &
+      56.0_wp, 90.0_wp, 132.0_wp, 182.0_wp, 240.0_wp, 306.0_wp, 380.0_wp]
 
 contains
 
@@ -331,15 +338,16 @@ contains
         pj = ws%p(s, j)
         x = pj * shift
         x2 = x * x
-        sx = x * (1.0_wp - x2 / 6.0_wp * (1.0_wp - x2 / 20.0_wp * (1.0_wp &
-            - x2 / 42.0_wp * (1.0_wp - x2 / 72.0_wp * (1.0_wp - x2 &
-            / 110.0_wp * (1.0_wp - x2 / 156.0_wp * (1.0_wp - x2 / 210.0_wp &
-            * (1.0_wp - x2 / 272.0_wp * (1.0_wp - x2 / 342.0_wp)))))))))
-        cx = 1.0_wp - x2 / 2.0_wp * (1.0_wp - x2 / 12.0_wp * (1.0_wp - x2 &
-            / 30.0_wp * (1.0_wp - x2 / 56.0_wp * (1.0_wp - x2 / 90.0_wp &
-            * (1.0_wp - x2 / 132.0_wp * (1.0_wp - x2 / 182.0_wp * (1.0_wp &
-            - x2 / 240.0_wp * (1.0_wp - x2 / 306.0_wp * (1.0_wp - x2 &
-            / 380.0_wp)))))))))
+        sx = x * (1.0_wp - x2 * inv_sin(1) * (1.0_wp - x2 * inv_sin(2) &
+            * (1.0_wp - x2 * inv_sin(3) * (1.0_wp - x2 * inv_sin(4) &
+            * (1.0_wp - x2 * inv_sin(5) * (1.0_wp - x2 * inv_sin(6) &
+            * (1.0_wp - x2 * inv_sin(7) * (1.0_wp - x2 * inv_sin(8) &
+            * (1.0_wp - x2 * inv_sin(9))))))))))
+        cx = 1.0_wp - x2 * inv_cos(1) * (1.0_wp - x2 * inv_cos(2) &
+            * (1.0_wp - x2 * inv_cos(3) * (1.0_wp - x2 * inv_cos(4) &
+            * (1.0_wp - x2 * inv_cos(5) * (1.0_wp - x2 * inv_cos(6) &
+            * (1.0_wp - x2 * inv_cos(7) * (1.0_wp - x2 * inv_cos(8) &
+            * (1.0_wp - x2 * inv_cos(9) * (1.0_wp - x2 * inv_cos(10))))))))))
         a2 = ws%a(k, j) * cx + ws%b(k, j) * sx
         b2 = ws%b(k, j) * cx - ws%a(k, j) * sx
         value = value + a2
