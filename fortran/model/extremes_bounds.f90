@@ -132,32 +132,45 @@ contains
   pure subroutine cell_bounds(ws, slots)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots
-    integer :: s
+    integer :: s, lo, hi
+    real(wp) :: lowest
 
+    ! a slot's cells at a time, its scalars there (no gather: the loop
+    ! vectorises)
     do s = 1, slots
       ws%all_low(s) = merge(1.0_wp, 0.0_wp, &
           ws%p_max(s) * ws%half_width(s) <= phi_low)
+      if (ws%cells_of(s) == 0) cycle
+      lo = ws%first(s)
+      hi = lo + ws%cells_of(s) - 1
+      ! the certified values exist where every mode is low (else -huge)
+      lowest = merge(huge(1.0_wp), -huge(1.0_wp), ws%all_low(s) > 0.0_wp)
+      call bounds_kernel(hi - lo + 1, ws%half_width(s), lowest, &
+          ws%whole(s), ws%a_low(lo:hi), ws%slope(lo:hi), &
+          ws%curve_up(lo:hi), ws%curve_down(lo:hi), ws%high_up(lo:hi), &
+          ws%high_down(lo:hi), ws%bound(lo:hi, 1), ws%bound(lo:hi, 2), &
+          ws%sure(lo:hi, 1), ws%sure(lo:hi, 2), ws%sure_at(lo:hi, 1), &
+          ws%sure_at(lo:hi, 2))
     end do
-    call bounds_kernel(ws%cells, ws%slot, ws%half_width, ws%all_low, &
-        ws%whole, ws%a_low, ws%slope, ws%curve_up, ws%curve_down, &
-        ws%high_up, ws%high_down, ws%bound(:, 1), ws%bound(:, 2), &
-        ws%sure(:, 1), ws%sure(:, 2), ws%sure_at(:, 1), ws%sure_at(:, 2))
   end subroutine cell_bounds
 
-  pure subroutine bounds_kernel(cells, slot, half_width, all_low, whole, &
-      a, b, curve_up, curve_down, high_up, high_down, bound_up, &
-      bound_down, sure_up, sure_down, at_up, at_down)
-    integer, intent(in) :: cells, slot(:)
-    real(wp), intent(in) :: half_width(:), all_low(:), whole(:)
-    real(wp), intent(in) :: a(:), b(:), curve_up(:), curve_down(:)
-    real(wp), intent(in) :: high_up(:), high_down(:)
-    real(wp), intent(out) :: bound_up(:), bound_down(:), sure_up(:)
-    real(wp), intent(out) :: sure_down(:), at_up(:), at_down(:)
-    real(wp) :: r, lowest, vertex_up, vertex_down
+  !> The bounds of a slot's cells (half-width r, whole-turn modes' sum
+  !> whole, certified values capped at lowest).
+  pure subroutine bounds_kernel(cells, r, lowest, whole, a, b, curve_up, &
+      curve_down, high_up, high_down, bound_up, bound_down, sure_up, &
+      sure_down, at_up, at_down)
+    integer, intent(in) :: cells
+    real(wp), value :: r, lowest, whole
+    real(wp), intent(in) :: a(cells), b(cells), curve_up(cells)
+    real(wp), intent(in) :: curve_down(cells), high_up(cells)
+    real(wp), intent(in) :: high_down(cells)
+    real(wp), intent(out) :: bound_up(cells), bound_down(cells)
+    real(wp), intent(out) :: sure_up(cells), sure_down(cells)
+    real(wp), intent(out) :: at_up(cells), at_down(cells)
+    real(wp) :: vertex_up, vertex_down
     integer :: k
 
     do k = 1, cells
-      r = half_width(slot(k))
       ! two vertices serve the four parabolas: a + b x + curve_up x^2/2
       ! and -a - b x - curve_up x^2/2 turn at -b/curve_up, the other two
       ! at b/curve_down (each used only where its parabola opens
@@ -165,14 +178,12 @@ contains
       vertex_up = -b(k) / merge(curve_up(k), 1.0_wp, curve_up(k) /= 0.0_wp)
       vertex_down = b(k) / merge(curve_down(k), 1.0_wp, &
           curve_down(k) /= 0.0_wp)
-      bound_up(k) = high_up(k) + whole(slot(k)) + parabola_top(a(k), &
-          b(k), curve_up(k), vertex_up, -r, r)
-      bound_down(k) = high_down(k) + whole(slot(k)) + parabola_top(-a(k), &
-          -b(k), curve_down(k), vertex_down, -r, r)
+      bound_up(k) = high_up(k) + whole + parabola_top(a(k), b(k), &
+          curve_up(k), vertex_up, -r, r)
+      bound_down(k) = high_down(k) + whole + parabola_top(-a(k), -b(k), &
+          curve_down(k), vertex_down, -r, r)
       ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
-      ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r], where
-      ! every mode is low (else -huge)
-      lowest = merge(-huge(1.0_wp), huge(1.0_wp), all_low(slot(k)) == 0.0_wp)
+      ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r]
       sure_up(k) = min(parabola_top(a(k), b(k), -curve_down(k), &
           vertex_down, -r, r), lowest)
       at_up(k) = parabola_at(b(k), -curve_down(k), vertex_down, r)
