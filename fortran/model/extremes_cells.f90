@@ -59,14 +59,16 @@ contains
   pure subroutine arcs(ws, slots, level)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots, level
-    integer :: j, slot
+    integer :: j, slot, first, last
     real(wp) :: scale, chain_c, chain_s, reach
     logical :: whole
 
-    ! every slot (those without cells too): no branch on the slot
+    ! every slot from the first to the last with cells (those between
+    ! without cells too: no branch on the slot)
+    call active_slots(ws, slots, first, last)
     scale = 0.5_wp**level
     do j = 1, size(ws%p, 2)
-      do slot = 1, slots
+      do slot = first, last
         chain_c = ws%chain_c(slot, j)
         chain_s = ws%chain_s(slot, j)
         reach = ws%p(slot, j) * ws%half_width(slot)
@@ -88,10 +90,11 @@ contains
     integer, intent(in) :: slots, level
     real(wp) :: hc, hs, chain_c, chain_s, quadrant
     logical :: active
-    integer :: j, slot
+    integer :: j, slot, first, last
 
+    call active_slots(ws, slots, first, last)
     do j = 1, size(ws%p, 2)
-      do slot = 1, slots
+      do slot = first, last
         chain_c = ws%chain_c(slot, j)
         chain_s = ws%chain_s(slot, j)
         quadrant = ws%quadrant(slot, j)
@@ -102,6 +105,24 @@ contains
       end do
     end do
   end subroutine next_chain
+
+  !> The first and last slots with cells (last < first when none).
+  pure subroutine active_slots(ws, slots, first, last)
+    type(extremes_workspace), intent(in) :: ws
+    integer, intent(in) :: slots
+    integer, intent(out) :: first, last
+
+    first = 1
+    do while (first <= slots)
+      if (ws%cells_of(first) > 0) exit
+      first = first + 1
+    end do
+    last = slots
+    do while (last >= first)
+      if (ws%cells_of(last) > 0) exit
+      last = last - 1
+    end do
+  end subroutine active_slots
 
   !> cos and sin of phi/2 from those of phi, in the given quadrant.
   elemental subroutine halve(cos_phi, sin_phi, quadrant, cos_half, sin_half)
