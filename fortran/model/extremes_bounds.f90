@@ -133,7 +133,6 @@ contains
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots
     integer :: s, lo, hi
-    real(wp) :: lowest
 
     ! a slot's cells at a time, its scalars there (no gather: the loop
     ! vectorises)
@@ -143,24 +142,50 @@ contains
       if (ws%cells_of(s) == 0) cycle
       lo = ws%first(s)
       hi = lo + ws%cells_of(s) - 1
-      ! the certified values exist where every mode is low (else -huge)
-      lowest = merge(huge(1.0_wp), -huge(1.0_wp), ws%all_low(s) > 0.0_wp)
-      call bounds_kernel(hi - lo + 1, ws%half_width(s), lowest, &
-          ws%whole(s), ws%a_low(lo:hi), ws%slope(lo:hi), &
-          ws%curve_up(lo:hi), ws%curve_down(lo:hi), ws%high_up(lo:hi), &
-          ws%high_down(lo:hi), ws%bound(lo:hi, 1), ws%bound(lo:hi, 2), &
-          ws%sure(lo:hi, 1), ws%sure(lo:hi, 2), ws%sure_at(lo:hi, 1), &
-          ws%sure_at(lo:hi, 2))
+      if (ws%all_low(s) > 0.0_wp) then
+        call bounds_kernel(hi - lo + 1, ws%half_width(s), ws%whole(s), &
+            ws%a_low(lo:hi), ws%slope(lo:hi), ws%curve_up(lo:hi), &
+            ws%curve_down(lo:hi), ws%high_up(lo:hi), ws%high_down(lo:hi), &
+            ws%bound(lo:hi, 1), ws%bound(lo:hi, 2), ws%sure(lo:hi, 1), &
+            ws%sure(lo:hi, 2), ws%sure_at(lo:hi, 1), ws%sure_at(lo:hi, 2))
+      else
+        call upper_bounds(hi - lo + 1, ws%half_width(s), ws%whole(s), &
+            ws%a_low(lo:hi), ws%slope(lo:hi), ws%curve_up(lo:hi), &
+            ws%curve_down(lo:hi), ws%high_up(lo:hi), ws%high_down(lo:hi), &
+            ws%bound(lo:hi, 1), ws%bound(lo:hi, 2))
+        ws%sure(lo:hi, :) = -huge(1.0_wp)
+        ws%sure_at(lo:hi, :) = 0.0_wp
+      end if
     end do
   end subroutine cell_bounds
 
   !> The bounds of a slot's cells (half-width r, whole-turn modes' sum
-  !> whole, certified values capped at lowest).
-  pure subroutine bounds_kernel(cells, r, lowest, whole, a, b, curve_up, &
+  !> whole) where some mode is not low: no certified values.
+  pure subroutine upper_bounds(cells, r, whole, a, b, curve_up, &
+      curve_down, high_up, high_down, bound_up, bound_down)
+    integer, intent(in) :: cells
+    real(wp), value :: r, whole
+    real(wp), intent(in) :: a(cells), b(cells), curve_up(cells)
+    real(wp), intent(in) :: curve_down(cells), high_up(cells)
+    real(wp), intent(in) :: high_down(cells)
+    real(wp), intent(out) :: bound_up(cells), bound_down(cells)
+    integer :: k
+
+    do k = 1, cells
+      bound_up(k) = high_up(k) + whole + parabola_top(a(k), b(k), &
+          curve_up(k), -b(k) / min(curve_up(k), -tiny(1.0_wp)), -r, r)
+      bound_down(k) = high_down(k) + whole + parabola_top(-a(k), -b(k), &
+          curve_down(k), b(k) / min(curve_down(k), -tiny(1.0_wp)), -r, r)
+    end do
+  end subroutine upper_bounds
+
+  !> The bounds of a slot's cells (half-width r, whole-turn modes' sum
+  !> whole) where every mode is low, and their certified values.
+  pure subroutine bounds_kernel(cells, r, whole, a, b, curve_up, &
       curve_down, high_up, high_down, bound_up, bound_down, sure_up, &
       sure_down, at_up, at_down)
     integer, intent(in) :: cells
-    real(wp), value :: r, lowest, whole
+    real(wp), value :: r, whole
     real(wp), intent(in) :: a(cells), b(cells), curve_up(cells)
     real(wp), intent(in) :: curve_down(cells), high_up(cells)
     real(wp), intent(in) :: high_down(cells)
@@ -184,11 +209,11 @@ contains
           curve_down(k), vertex_down, -r, r)
       ! the lower parabolas a + b x - curve_down x^2/2 (y3) and
       ! -a - b x - curve_up x^2/2 (-y3): their tops on [-r, r]
-      sure_up(k) = min(parabola_top(a(k), b(k), -curve_down(k), &
-          vertex_down, -r, r), lowest)
+      sure_up(k) = parabola_top(a(k), b(k), -curve_down(k), vertex_down, &
+          -r, r)
       at_up(k) = parabola_at(b(k), -curve_down(k), vertex_down, r)
-      sure_down(k) = min(parabola_top(-a(k), -b(k), -curve_up(k), &
-          vertex_up, -r, r), lowest)
+      sure_down(k) = parabola_top(-a(k), -b(k), -curve_up(k), vertex_up, &
+          -r, r)
       at_down(k) = parabola_at(-b(k), -curve_up(k), vertex_up, r)
     end do
   end subroutine bounds_kernel
