@@ -81,17 +81,26 @@ contains
   !> y1(x1, t) and dy1/dt(x1, t) together.  The cosines and the sines are
   !> taken in separate array statements, which gfortran vectorises with
   !> glibc's vector sin and cos (libmvec; a scalar sincos per mode took
-  !> most of the model's time outside the extremes at N = 32).
+  !> most of the model's time outside the extremes at N = 32), a chunk of
+  !> modes at a time (fixed-size arrays: on the stack, not allocated).
   pure subroutine upper_state(coef, p, t, y, v)
     real(wp), intent(in) :: coef(:), p(:), t
     real(wp), intent(out) :: y, v
-    real(wp) :: phase(size(coef)), cosines(size(coef)), sines(size(coef))
+    integer, parameter :: chunk = 64
+    real(wp) :: phase(chunk), cosines(chunk), sines(chunk)
+    integer :: first, last, m
 
-    phase = p * t
-    cosines = cos(phase)
-    sines = sin(phase)
-    y = sum(coef * cosines)
-    v = -sum(coef * p * sines)
+    y = 0.0_wp
+    v = 0.0_wp
+    do first = 1, size(coef), chunk
+      last = min(first + chunk - 1, size(coef))
+      m = last - first + 1
+      phase(1:m) = p(first:last) * t
+      cosines(1:m) = cos(phase(1:m))
+      sines(1:m) = sin(phase(1:m))
+      y = y + sum(coef(first:last) * cosines(1:m))
+      v = v - sum(coef(first:last) * p(first:last) * sines(1:m))
+    end do
   end subroutine upper_state
 
   !> V = |dy1/dt(x1, t1)|; listing: |sum p_j A_j X_j(x1)| (ACT, no sin).
