@@ -262,10 +262,8 @@ contains
           * epsilon(1.0_wp) * ws%scale(s)
       ws%floor_value(:, s) = ws%floor_value(:, s) - margin
     end do
-    call judge(ws%cells, ws%slot, 1.0_wp, ws%floor_value(1, :), ws%conv, &
-        ws%value, ws%sure(:, 1), ws%bound(:, 1), ws%alive(:, 1))
-    call judge(ws%cells, ws%slot, -1.0_wp, ws%floor_value(2, :), ws%conv, &
-        ws%value, ws%sure(:, 2), ws%bound(:, 2), ws%alive(:, 2))
+    call judge(ws%cells, ws%slot, ws%floor_value, ws%conv, ws%value, &
+        ws%sure, ws%bound, ws%alive, ws%keep)
     ! the polishes after every cell is pruned (they raise the best); none
     ! where the side's curvature bound K has K r^2/2 > converged * S: the
     ! bound about any point of the cell then stays above its value by
@@ -284,28 +282,35 @@ contains
           if (merge(ws%curve_up(k), ws%curve_down(k), side == 1) &
               * (r * r * 0.5_wp) > hopeless) cycle
           call polish(ws, k, side, r, done)
-          if (done) ws%alive(k, side) = .false.
+          if (done) then
+            ws%alive(k, side) = .false.
+            ws%keep(k) = ws%alive(k, 1) .or. ws%alive(k, 2)
+          end if
         end do
       end do
     end do
-    ws%keep(1:ws%cells) = ws%alive(1:ws%cells, 1) .or. &
-        ws%alive(1:ws%cells, 2)
   end subroutine select_cells
 
-  !> A side's cells stay alive while their bound reaches their design's
-  !> floor and is more than its conv above the larger of their value
-  !> (times sgn) and their certified value.
-  pure subroutine judge(cells, slot, sgn, floor_value, conv, value, sure, &
-      bound, alive)
+  !> A cell stays alive on a side (1: y3, 2: -y3) while its bound there
+  !> reaches its design's floor and is more than its conv above the larger
+  !> of its value (with the side's sign) and its certified value; keep:
+  !> alive on either side.  (Both sides in one pass over the cells.)
+  pure subroutine judge(cells, slot, floor_value, conv, value, sure, bound, &
+      alive, keep)
     integer, intent(in) :: cells, slot(:)
-    real(wp), intent(in) :: sgn, floor_value(:), conv(:), value(:)
-    real(wp), intent(in) :: sure(:), bound(:)
-    logical, intent(inout) :: alive(:)
-    integer :: k
+    real(wp), intent(in) :: floor_value(:, :), conv(:), value(:)
+    real(wp), intent(in) :: sure(:, :), bound(:, :)
+    logical, intent(inout) :: alive(:, :)
+    logical, intent(out) :: keep(:)
+    integer :: k, s
 
     do k = 1, cells
-      alive(k) = alive(k) .and. bound(k) >= floor_value(slot(k)) .and. &
-          bound(k) - max(sgn * value(k), sure(k)) > conv(slot(k))
+      s = slot(k)
+      alive(k, 1) = alive(k, 1) .and. bound(k, 1) >= floor_value(1, s) &
+          .and. bound(k, 1) - max(value(k), sure(k, 1)) > conv(s)
+      alive(k, 2) = alive(k, 2) .and. bound(k, 2) >= floor_value(2, s) &
+          .and. bound(k, 2) - max(-value(k), sure(k, 2)) > conv(s)
+      keep(k) = alive(k, 1) .or. alive(k, 2)
     end do
   end subroutine judge
 
