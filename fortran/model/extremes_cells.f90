@@ -186,48 +186,42 @@ contains
   pure subroutine offer_cells(ws, slots)
     type(extremes_workspace), intent(inout) :: ws
     integer, intent(in) :: slots
-    integer :: k, s
+    integer :: k, s, lo, hi
+    real(wp) :: best_up, best_down, floor_up, floor_down
 
-    do k = 1, ws%cells
-      s = ws%slot(k)
-      ws%best(1, s) = max(ws%best(1, s), ws%value(k), ws%sure(k, 1))
-      ws%best(2, s) = max(ws%best(2, s), -ws%value(k), ws%sure(k, 2))
-    end do
+    ! a slot's cells at a time (contiguous), its best and floors scalars
     do s = 1, slots
-      ws%floor_value(:, s) = ws%best(:, s) - tie * ws%scale(s)
-    end do
-    call near_best(ws%cells, ws%slot, ws%floor_value, ws%value, &
-        ws%sure(:, 1), ws%sure(:, 2), ws%keep)
-    do k = 1, ws%cells
-      if (.not. ws%keep(k)) cycle
-      s = ws%slot(k)
-      if (ws%value(k) >= ws%floor_value(1, s)) &
-          call offer(ws, s, 1, ws%centre(k), ws%value(k))
-      if (-ws%value(k) >= ws%floor_value(2, s)) &
-          call offer(ws, s, 2, ws%centre(k), -ws%value(k))
-      if (ws%sure(k, 1) >= ws%floor_value(1, s)) &
-          call offer(ws, s, 1, ws%centre(k) + ws%sure_at(k, 1), &
-          ws%sure(k, 1))
-      if (ws%sure(k, 2) >= ws%floor_value(2, s)) &
-          call offer(ws, s, 2, ws%centre(k) + ws%sure_at(k, 2), &
-          ws%sure(k, 2))
+      if (ws%cells_of(s) == 0) cycle
+      lo = ws%first(s)
+      hi = lo + ws%cells_of(s) - 1
+      best_up = ws%best(1, s)
+      best_down = ws%best(2, s)
+      do k = lo, hi
+        best_up = max(best_up, ws%value(k), ws%sure(k, 1))
+        best_down = max(best_down, -ws%value(k), ws%sure(k, 2))
+      end do
+      ws%best(1, s) = best_up
+      ws%best(2, s) = best_down
+      floor_up = best_up - tie * ws%scale(s)
+      floor_down = best_down - tie * ws%scale(s)
+      ws%floor_value(1, s) = floor_up
+      ws%floor_value(2, s) = floor_down
+      do k = lo, hi
+        if (max(ws%value(k), ws%sure(k, 1)) < floor_up .and. &
+            max(-ws%value(k), ws%sure(k, 2)) < floor_down) cycle
+        if (ws%value(k) >= floor_up) &
+            call offer(ws, s, 1, ws%centre(k), ws%value(k))
+        if (-ws%value(k) >= floor_down) &
+            call offer(ws, s, 2, ws%centre(k), -ws%value(k))
+        if (ws%sure(k, 1) >= floor_up) &
+            call offer(ws, s, 1, ws%centre(k) + ws%sure_at(k, 1), &
+            ws%sure(k, 1))
+        if (ws%sure(k, 2) >= floor_down) &
+            call offer(ws, s, 2, ws%centre(k) + ws%sure_at(k, 2), &
+            ws%sure(k, 2))
+      end do
     end do
   end subroutine offer_cells
-
-  !> Cells whose value, or certified value, reaches their design's floors.
-  pure subroutine near_best(cells, slot, floor_value, value, sure_up, &
-      sure_down, near)
-    integer, intent(in) :: cells, slot(:)
-    real(wp), intent(in) :: floor_value(:, :), value(:), sure_up(:)
-    real(wp), intent(in) :: sure_down(:)
-    logical, intent(out) :: near(:)
-    integer :: k
-
-    do k = 1, cells
-      near(k) = max(value(k), sure_up(k)) >= floor_value(1, slot(k)) &
-          .or. max(-value(k), sure_down(k)) >= floor_value(2, slot(k))
-    end do
-  end subroutine near_best
 
   !> Drop, finish or polish each cell per side; ws%keep marks the cells to
   !> halve.  A design's cells are all halved while no mode resolves (its
