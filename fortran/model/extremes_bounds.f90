@@ -47,8 +47,16 @@ contains
       if (ws%cells_of(s) == 0) cycle
       lo = ws%first(s)
       hi = lo + ws%cells_of(s) - 1
-      do j = 1, ws%n(s)
-        if (ws%arc_c(s, j) == -1.0_wp .and. ws%arc_s(s, j) == 0.0_wp) then
+      j = 0
+      do while (j < ws%n(s))
+        j = j + 1
+        if (whole_turn(ws, s, j) .and. whole_turn(ws, s, j + 1)) then
+          ! two whole-turn modes in one pass (their values only)
+          ws%whole(s) = ws%whole(s) + ws%absc(s, j) + ws%absc(s, j + 1)
+          ws%value(lo:hi) = ws%value(lo:hi) + (ws%a(lo:hi, j) &
+              + ws%a(lo:hi, j + 1))
+          j = j + 1
+        else if (whole_turn(ws, s, j)) then
           ws%whole(s) = ws%whole(s) + ws%absc(s, j)
           ws%value(lo:hi) = ws%value(lo:hi) + ws%a(lo:hi, j)
         else if (ws%low(s, j) > 0.0_wp) then
@@ -64,6 +72,17 @@ contains
       end do
     end do
   end subroutine add_modes
+
+  !> Whether mode j of slot s (if it has one) turns a whole turn over the
+  !> level's cells.
+  pure logical function whole_turn(ws, s, j)
+    type(extremes_workspace), intent(in) :: ws
+    integer, intent(in) :: s, j
+
+    whole_turn = .false.
+    if (j > ws%n(s)) return
+    whole_turn = ws%arc_c(s, j) == -1.0_wp .and. ws%arc_s(s, j) == 0.0_wp
+  end function whole_turn
 
   !> The maxima of c sin and -c sin over a cell's arc (absc = |c|; ca, sa
   !> = cos, sin of the arc's half-width): |c| if the arc reaches the crest,
