@@ -59,6 +59,16 @@ contains
         else if (whole_turn(ws, s, j)) then
           ws%whole(s) = ws%whole(s) + ws%absc(s, j)
           ws%value(lo:hi) = ws%value(lo:hi) + ws%a(lo:hi, j)
+        else if (low_mode(ws, s, j) .and. low_mode(ws, s, j + 1)) then
+          ! two low modes in one pass over the cells (their five sums read
+          ! and written once)
+          call add_low_pair(hi - lo + 1, ws%a(lo:hi, j), ws%b(lo:hi, j), &
+              ws%a(lo:hi, j + 1), ws%b(lo:hi, j + 1), ws%absc(s, j), &
+              ws%arc_c(s, j), ws%arc_s(s, j), ws%p(s, j), &
+              ws%absc(s, j + 1), ws%arc_c(s, j + 1), ws%arc_s(s, j + 1), &
+              ws%p(s, j + 1), ws%value(lo:hi), ws%a_low(lo:hi), &
+              ws%slope(lo:hi), ws%curve_up(lo:hi), ws%curve_down(lo:hi))
+          j = j + 1
         else if (ws%low(s, j) > 0.0_wp) then
           call add_low(hi - lo + 1, ws%a(lo:hi, j), ws%b(lo:hi, j), &
               ws%absc(s, j), ws%arc_c(s, j), ws%arc_s(s, j), ws%p(s, j), &
@@ -72,6 +82,17 @@ contains
       end do
     end do
   end subroutine add_modes
+
+  !> Whether mode j of slot s (if it has one) is low (Taylor) on the
+  !> level's cells.
+  pure logical function low_mode(ws, s, j)
+    type(extremes_workspace), intent(in) :: ws
+    integer, intent(in) :: s, j
+
+    low_mode = .false.
+    if (j > ws%n(s)) return
+    low_mode = ws%low(s, j) > 0.0_wp .and. .not. whole_turn(ws, s, j)
+  end function low_mode
 
   !> Whether mode j of slot s (if it has one) turns a whole turn over the
   !> level's cells.
@@ -123,6 +144,30 @@ contains
       curve_down(k) = curve_down(k) + p2 * up
     end do
   end subroutine add_low
+
+  !> Two modes bounded by Taylor's theorem (add_low), in one pass.
+  pure subroutine add_low_pair(cells, a1, b1, a2, b2, absc1, ca1, sa1, p1, &
+      absc2, ca2, sa2, p2, value, a_low, slope, curve_up, curve_down)
+    integer, intent(in) :: cells
+    real(wp), intent(in) :: a1(cells), b1(cells), a2(cells), b2(cells)
+    real(wp), value :: absc1, ca1, sa1, p1, absc2, ca2, sa2, p2
+    real(wp), intent(inout) :: value(cells), a_low(cells), slope(cells)
+    real(wp), intent(inout) :: curve_up(cells), curve_down(cells)
+    real(wp) :: up1, down1, up2, down2, p1_2, p2_2
+    integer :: k
+
+    p1_2 = p1 * p1
+    p2_2 = p2 * p2
+    do k = 1, cells
+      call arc_maxima(a1(k), b1(k), absc1, ca1, sa1, up1, down1)
+      call arc_maxima(a2(k), b2(k), absc2, ca2, sa2, up2, down2)
+      value(k) = value(k) + (a1(k) + a2(k))
+      a_low(k) = a_low(k) + (a1(k) + a2(k))
+      slope(k) = slope(k) + (p1 * b1(k) + p2 * b2(k))
+      curve_up(k) = curve_up(k) + (p1_2 * down1 + p2_2 * down2)
+      curve_down(k) = curve_down(k) + (p1_2 * up1 + p2_2 * up2)
+    end do
+  end subroutine add_low_pair
 
   !> A mode bounded by its own arc maxima.
   pure subroutine add_high(cells, a, b, absc, ca, sa, value, high_up, &
