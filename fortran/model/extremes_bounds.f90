@@ -11,18 +11,30 @@
 !> (p_j^2 times the arc maxima).  The upper parabola bounds the cell; the
 !> top of the lower one is a certified value at a known point.
 !>
-!> The per-mode sums run a design at a time (its mode's data then scalars
-!> in the loop); the bounds run over all the block's cells at once, each
-!> design's scalars gathered by the cell's slot.
+!> A cell at an end of the window whose modes are all low is also bounded
+!> by Taylor about that end (end_bound).  A small cell is polished: Newton
+!> steps to the vertex of y3's Taylor parabola, and a bound about it.
+!>
+!> The per-mode sums and the bounds run a design at a time (its modes'
+!> data then scalars in the loops).
 module model_extremes_bounds
   use contactsep_kinds, only: wp
-  use model_extremes_workspace, only: extremes_workspace
+  use model_extremes_workspace, only: extremes_workspace, offer, converged
   implicit none
   private
-  public :: add_modes, cell_bounds, parabola_max
+  public :: add_modes, cell_bounds, end_bound, polish
 
   !> Modes with p_j r <= phi_low enter a cell's bound by Taylor's theorem.
   real(wp), parameter, public :: phi_low = 1.0_wp
+  !> Newton steps of a polish.
+  integer, parameter :: polish_steps = 3
+  !> The polish's Taylor factors of sin and cos, 1/((2k)(2k+1)) and
+  !> 1/((2k-1)(2k)): multiplied, not divided (a division costs several
+  !> multiplications; each factor is rounded once, as the quotient was).
+  real(wp), parameter :: inv_sin(9) = 1.0_wp / [6.0_wp, 20.0_wp, 42.0_wp, &
+      72.0_wp, 110.0_wp, 156.0_wp, 210.0_wp, 272.0_wp, 342.0_wp]
+  real(wp), parameter :: inv_cos(10) = 1.0_wp / [2.0_wp, 12.0_wp, 30.0_wp, &
+      56.0_wp, 90.0_wp, 132.0_wp, 182.0_wp, 240.0_wp, 306.0_wp, 380.0_wp]
 
 contains
 
@@ -314,5 +326,84 @@ contains
     x = merge(min(max(vertex, -r), r), merge(r, -r, b > 0.0_wp), &
         k < 0.0_wp)
   end function parabola_at
+
+  !> Cell k at t = 0 (at = 1) or t = tau (at = 3), its modes all low, is
+  !> bounded by Taylor about that end too (offsets lo..hi from it), where
+  !> y3 and its slope are known, and holds the end's value.
+  pure subroutine end_bound(ws, k, at, lo, hi)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: k, at
+    real(wp), intent(in) :: lo, hi
+    real(wp) :: sgn, y_end, curve_side
+    integer :: s, side
+
+    s = ws%slot(k)
+    do side = 1, 2
+      sgn = merge(1.0_wp, -1.0_wp, side == 1)
+      y_end = sgn * ws%ends(at, s)
+      curve_side = merge(ws%curve_up(k), ws%curve_down(k), side == 1)
+      ws%bound(k, side) = min(ws%bound(k, side), parabola_max(y_end, &
+          sgn * ws%ends(at + 1, s), curve_side, lo, hi))
+      ws%sure(k, side) = max(ws%sure(k, side), y_end)
+    end do
+  end subroutine end_bound
+
+  !> Newton steps (at most polish_steps) from cell k's centre to the vertex
+  !> of y3's Taylor parabola; the point is offered, and done is true when
+  !> the bound around it (the side's curvature bound on the cell) is
+  !> within converged * S of its value.
+  pure subroutine polish(ws, k, side, r, done)
+    type(extremes_workspace), intent(inout) :: ws
+    integer, intent(in) :: k, side
+    real(wp), intent(in) :: r
+    logical, intent(out) :: done
+    real(wp) :: shift, x, x2, sx, cx, a2, b2, value, slope, second, sgn, pj
+    real(wp) :: curve_bound
+    integer :: j, step, s
+
+    done = .false.
+    s = ws%slot(k)
+    sgn = merge(1.0_wp, -1.0_wp, side == 1)
+    curve_bound = merge(ws%curve_up(k), ws%curve_down(k), side == 1)
+    slope = ws%slope(k)
+    second = 0.0_wp
+    do j = 1, ws%n(s)
+      second = second - ws%p(s, j)**2 * ws%a(k, j)
+    end do
+    shift = 0.0_wp
+    value = 0.0_wp
+    do step = 1, polish_steps
+      if (.not. (sgn * second < 0.0_wp)) return
+      shift = shift - slope / second
+      if (.not. (abs(shift) <= r)) return
+      value = 0.0_wp
+      slope = 0.0_wp
+      second = 0.0_wp
+      do j = 1, ws%n(s)
+        ! |x| <= p_max r <= 1: Taylor to x^19 and x^20 is exact to rounding
+        pj = ws%p(s, j)
+        x = pj * shift
+        x2 = x * x
+        sx = x * (1.0_wp - x2 * inv_sin(1) * (1.0_wp - x2 * inv_sin(2) &
+            * (1.0_wp - x2 * inv_sin(3) * (1.0_wp - x2 * inv_sin(4) &
+            * (1.0_wp - x2 * inv_sin(5) * (1.0_wp - x2 * inv_sin(6) &
+            * (1.0_wp - x2 * inv_sin(7) * (1.0_wp - x2 * inv_sin(8) &
+            * (1.0_wp - x2 * inv_sin(9))))))))))
+        cx = 1.0_wp - x2 * inv_cos(1) * (1.0_wp - x2 * inv_cos(2) &
+            * (1.0_wp - x2 * inv_cos(3) * (1.0_wp - x2 * inv_cos(4) &
+            * (1.0_wp - x2 * inv_cos(5) * (1.0_wp - x2 * inv_cos(6) &
+            * (1.0_wp - x2 * inv_cos(7) * (1.0_wp - x2 * inv_cos(8) &
+            * (1.0_wp - x2 * inv_cos(9) * (1.0_wp - x2 * inv_cos(10))))))))))
+        a2 = ws%a(k, j) * cx + ws%b(k, j) * sx
+        b2 = ws%b(k, j) * cx - ws%a(k, j) * sx
+        value = value + a2
+        slope = slope + pj * b2
+        second = second - pj * pj * a2
+      end do
+    end do
+    call offer(ws, s, side, ws%centre(k) + shift, sgn * value)
+    done = parabola_max(sgn * value, sgn * slope, curve_bound, -r - shift, &
+        r - shift) - sgn * value <= converged * ws%scale(s)
+  end subroutine polish
 
 end module model_extremes_bounds
