@@ -9,9 +9,9 @@
 !> (model_extremes_bounds; model_extremes_cells runs a level) decide
 !> whether it is dropped (it cannot come within the tie of the best value
 !> found), finished (its bound is within `converged` of a value it holds)
-!> or halved.  The search ends when no
-!> cell is left, or gives up (resolved = .false.) when a design's work
-!> budget runs out: it never returns an unrefined value.
+!> or halved.  The search ends when no cell is left, or gives up
+!> (resolved = .false.) when a design's work budget runs out: it never
+!> returns an unrefined value.
 !>
 !> Phases are exact: p_j tau/2 = hi + lo (Dekker), sin and cos of the root
 !> centre from sin(hi) and cos(hi) corrected by lo, every finer level's
@@ -37,9 +37,9 @@ module model_extremes
   integer(int64), parameter, public :: block_cell_budget = 2_int64**14
   integer(int64), parameter, public :: cell_budget = 2_int64**18
   !> Most designs searched together; a block holds about block_modes of
-  !> their modes (its cells' arrays then stay in cache: measured,
-  !> benchmarks/bench_model.py, 32 designs of 4 modes 1 % slower than 64,
-  !> 32 of 32 modes 3 % slower than 16), and at least 8 designs.
+  !> their modes, and at least 8 designs (its cells' arrays then stay in
+  !> cache: 16 designs of 32 modes were 2-3 % faster than 32 designs, the
+  !> benchmark's designs of 4 modes within 1 % from 32 to 128).
   integer, parameter, public :: block_size = 64
   integer, parameter :: block_modes = 512
   !> Deepest level (cells tau/2^61 wide).

@@ -16,7 +16,7 @@ module model_extremes_cells
       polish, phi_low
   implicit none
   private
-  public :: search_level, halve, turns, quarter
+  public :: search_level, halve, quarter
 
   !> Cells with p_max r <= phi_polish are polished by Newton steps.
   real(wp), parameter :: phi_polish = 1.0_wp

@@ -23,12 +23,12 @@ halved.  Cells with p_max r <= PHI_POLISH are first polished: Newton
 steps to the vertex of y3's Taylor parabola, finished when the bound
 about that point is within CONVERGED of its value (not tried on a side
 whose curvature bound K has K r^2/2 > CONVERGED: the bound about any
-point of the cell then stays about that much above its value).  The maximum and the
-minimum share the cells.  The search never stops on a level count with an
-unrefined answer: it ends when no cell is left, or gives up (UNRESOLVED)
-when its work budget runs out.  A design needing more than
-BLOCK_CELL_BUDGET live cell-modes is searched again (deferred), its
-window in time-ordered segments (a segment needing more than CELL_BUDGET
+point of the cell then stays about that much above its value).  The
+maximum and the minimum share the cells.  The search never stops on a
+level count with an unrefined answer: it ends when no cell is left, or
+gives up (UNRESOLVED) when its work budget runs out.  A design needing
+more than BLOCK_CELL_BUDGET live cell-modes is searched again (deferred),
+its window in time-ordered segments (a segment needing more than CELL_BUDGET
 halved again; the deferred designs' pending segments are Python lists,
 one per design, popped a round at a time for all of them).  Every
 choice, constant and budget is the compiled kernel's, so that both give
