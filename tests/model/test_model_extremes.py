@@ -255,8 +255,8 @@ def test_the_twin_uses_the_kernels_constants():
     from conftest import ROOT
     from contactsep.model import twin_extremes
 
-    text = "".join((ROOT / "fortran" / "model" / name).read_text()
-                   for name in ("extremes.f90", "extremes_cells.f90"))
+    text = "".join(path.read_text() for path in sorted(
+        (ROOT / "fortran" / "model").glob("extremes*.f90")))
     found = dict(re.findall(
         r"parameter(?:, public)? :: (\w+) = ([-+.\w*]+)\n", text))
     for name in ("tie", "converged", "phi_low", "phi_polish",

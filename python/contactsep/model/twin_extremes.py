@@ -21,12 +21,14 @@ below the best value found by more than the tie is dropped; one whose
 bound is within CONVERGED of a value it holds is finished; the others are
 halved.  Cells with p_max r <= PHI_POLISH are first polished: Newton
 steps to the vertex of y3's Taylor parabola, finished when the bound
-about that point is within CONVERGED of its value.  The maximum and the
-minimum share the cells.  The search never stops on a level count with an
-unrefined answer: it ends when no cell is left, or gives up (UNRESOLVED)
-when its work budget runs out.  A design needing more than
-BLOCK_CELL_BUDGET live cell-modes is searched again (deferred), its
-window in time-ordered segments (a segment needing more than CELL_BUDGET
+about that point is within CONVERGED of its value (not tried on a side
+whose curvature bound K has K r^2/2 > CONVERGED: the bound about any
+point of the cell then stays about that much above its value).  The
+maximum and the minimum share the cells.  The search never stops on a
+level count with an unrefined answer: it ends when no cell is left, or
+gives up (UNRESOLVED) when its work budget runs out.  A design needing
+more than BLOCK_CELL_BUDGET live cell-modes is searched again (deferred),
+its window in time-ordered segments (a segment needing more than CELL_BUDGET
 halved again; the deferred designs' pending segments are Python lists,
 one per design, popped a round at a time for all of them).  Every
 choice, constant and budget is the compiled kernel's, so that both give
@@ -400,9 +402,13 @@ def _level(s, d, level, centre, a, b, alive, cos_phi, sin_phi):
     drop = (bound + margin[:, None] < s.best.value[d] - s.best.tie[d][:, None]
             ) | (bound - np.maximum(signed, sure) <= conv)
     alive &= ~(drop & ~coarse[:, None])
-    polish = alive & (s.p_max[d] * r <= PHI_POLISH)[:, None]
+    # no polish where the side's curvature bound K has K r^2/2 > conv:
+    # the bound about any point of the cell stays above its value by about
+    # that much (the compiled kernel's test, the same expression)
+    curve = np.stack([curve_up, curve_down], axis=1)
+    polish = (alive & (s.p_max[d] * r <= PHI_POLISH)[:, None]
+              & ~(curve * (r * r * 0.5)[:, None] > conv))
     if np.any(polish):
-        curve = np.stack([curve_up, curve_down], axis=1)
         alive &= ~_polish(s, polish, d, centre, a, b, r, curve, conv)
     return ~alive.any(axis=1)
 
