@@ -79,6 +79,12 @@ LONG = [
     (["model", "--tau", "1e6"], 1.5, SIGTERM),
     (["sweep", "--vary", "h2=0.1:0.5:1000", "--tau", "1e4", "--workers",
       "2", "--csv", "s.csv"], 3.0, SIGTERM),
+    # issue 16: the preload chart's batches on worker processes (killed
+    # when stopped), a chatter sweep of pressed designs (~0.15 s each)
+    (["study", "preload", "--n-modes", "64"], 3.0, CTRL_C),
+    (["sweep", "--model", "hertz", "--vary", "h2=0.1:0.5:100", "--n-modes",
+      "32", "--preload", "5", "--workers", "2", "--csv", "s.csv"], 3.0,
+     SIGTERM),
 ]
 OTHER = [pytest.param(args, after, CTRL_C if how is SIGTERM else SIGTERM,
                       marks=pytest.mark.slow) for args, after, how in LONG]

@@ -91,14 +91,27 @@ def _stack(design):
     return m, p, h, q0, np.zeros_like(q0), (upper, sep, lower)
 
 
+def _largest_preload(design, sep, lower) -> float:
+    # a preload that bends a member by more than its length is no small
+    # deflection (1e300 lb gave a lower gap of -1.3e285 in)
+    return min(float(design.L2) / system.flexibility(sep),
+               float(design.L3) / system.flexibility(lower))
+
+
+def largest_preload(design) -> float:
+    """The largest preload (lb) :func:`simulate` takes for ``design``:
+    the force that bends the separator or the lower contact, at its
+    contact point, by its length (27.05 lb for the thesis rig's lower
+    contact: 0.70 in/lb at its tip)."""
+    _, sep, lower = members(design)
+    return _largest_preload(design, sep, lower)
+
+
 def _system(design, preload, law) -> runners.System:
     """The stacked system, the lower contact preloaded if asked."""
     m, p, h, q0, v0, (upper, sep, lower) = _stack(design)
     g0 = np.zeros(2)
-    # a preload that bends a member by more than its length is no small
-    # deflection (1e300 lb gave a lower gap of -1.3e285 in)
-    most = min(float(design.L2) / system.flexibility(sep),
-               float(design.L3) / system.flexibility(lower))
+    most = _largest_preload(design, sep, lower)
     if preload > most:
         raise ChatterError(f"preload: found {preload!r}, expected at most "
                            f"{most:.6g} lb (it would bend the separator or "

@@ -16,6 +16,9 @@ from contactsep.cli.design_options import (
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
+from contactsep.studies.chatter_sweep import (
+    CHUNK_SIZE as CHATTER_CHUNK_SIZE,
+)
 from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
@@ -37,22 +40,36 @@ def _backend(parser: argparse.ArgumentParser) -> None:
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep study`` and ``contactsep sweep``."""
+    from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies import STUDIES
+    from contactsep.studies.preload import DEFAULT_MODES as PRELOAD_MODES
+    from contactsep.studies.preload import MODELS as PRELOAD_MODELS
 
     study = commands.add_parser(
         "study", help="regenerate a thesis figure or table",
         description="Evaluate one of the thesis's studies on the general "
                     "model and print it as a labelled table. NAME is one "
-                    f"of {', '.join(STUDIES)}, chatter, or all (every "
-                    "study but chatter; with --out). Design options change "
-                    "the thesis rig the study starts from; a study refuses "
-                    "those it sets itself (fig5 its thicknesses, ...); "
-                    "fig5 with --ys draws that one curve.",
-        **examples("contactsep study fig5 --png fig5.png --dpi 150",
-                   "contactsep study fig6 --n-modes 16 --restitution 0.5 "
+                    f"of {', '.join(STUDIES)}, chatter, preload, "
+                    "conclusion3, conclusion5, conclusion6, conclusion7, "
+                    "or all (every study of eq. 23; with --out). "
+                    "Design options change the thesis rig the study starts "
+                    "from; a study refuses those it sets itself (fig5 its "
+                    "thicknesses, ...); fig5 with --ys draws that one "
+                    "curve. preload (three-beam simulations, a minute or "
+                    "more) finds the smallest lower-contact preload with "
+                    "no discontinuity event, for five separators and "
+                    "three release heights; conclusion3, conclusion5, "
+                    "conclusion6, conclusion7 re-examine the thesis's "
+                    "conclusions (restitution, separator thickness, "
+                    "separator mass, contact point) for circuit opening "
+                    f"(each: default --model hertz, --n-modes "
+                    f"{PRELOAD_MODES}).",
+        **examples("contactsep study fig6 --n-modes 16 --restitution 0.5 "
                    "--csv fig6.csv",
                    "contactsep study all --out figs   # CSV and PNG of "
-                   "each"))
+                   "each",
+                   "contactsep study preload --csv preload.csv "
+                   "--png preload.png"))
     study.add_argument("name", metavar="NAME")
     study.add_argument("--csv", metavar="FILE", help="write the CSV here")
     study.add_argument("--png", metavar="FILE",
@@ -64,6 +81,19 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help=f"PNG resolution, dots per inch of the 6 x 4 in "
                             f"figure (default {DEFAULT_DPI})")
     _backend(study)
+    study.add_argument("--model", choices=PRELOAD_MODELS, default=None,
+                       help="preload and conclusionN only: the contact "
+                            "model (default hertz)")
+    study.add_argument("--damping", choices=DAMPINGS, default=None,
+                       help="preload only: the Hertz contact's damping "
+                            "(default none: elastic; flores: calibrated "
+                            "to e)")
+    study.add_argument("--workers", type=integer(1, max_workers()),
+                       default=None,
+                       help=f"preload and conclusionN only: local "
+                            f"processes for the simulations (default: the "
+                            f"usable cores; at most {WORKERS_PER_CORE} a "
+                            f"core)")
     add_design_options(study)
     study.set_defaults(handler=run_study)
 
@@ -74,14 +104,26 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "(--sample, K samples per grid point), the other "
                     "fields fixed by the design options: one CSV row per "
                     "design (with its status), a summary with the inputs. "
+                    "--model eq23 (default) evaluates the general model's "
+                    "single impulse (max y3); hertz and newton simulate "
+                    "the three beams and report whether and how long the "
+                    "circuit opens (p_open: the designs with a "
+                    "discontinuity event), and may also fix, vary or "
+                    "sample preload, min_open and (hertz) damping. "
                     "Failed designs are counted (n_failed) and left out of "
                     "the statistics; if every design fails, exit 2.",
         **examples("contactsep sweep --vary d=0.1:1.0:19 "
                    "--vary ys=0.25,0.5,0.75 --csv grid.csv",
                    "contactsep sweep --sample 'd=normal(0.25,0.01)' "
                    "--samples 100000 --threshold 0.11 --json",
-                   "contactsep sweep --design my.json "
-                   "--vary end2=clamped-clamped,pinned-pinned"))
+                   "contactsep sweep --model hertz --n-modes 16 "
+                   "--preload 20 --sample 'd=normal(0.25,0.01)' "
+                   "--samples 1000"))
+    sweep.add_argument("--model", choices=("eq23", "hertz", "newton"),
+                       default="eq23",
+                       help="eq23: the general model's single impulse "
+                            "(default); hertz, newton: the three-beam "
+                            "chatter simulation (contactsep chatter)")
     sweep.add_argument("--vary", action="append", default=[],
                        metavar="NAME=START:STOP:COUNT|NAME=V1,V2,...",
                        help="a grid axis (repeatable): any numeric field, "
@@ -99,7 +141,18 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--threshold", type=finite("in"), default=None,
                        metavar="T",
                        help="report p_exceed = P(max y3 > T) and its 95 %% "
-                            "Wilson interval (T in inches)")
+                            "Wilson interval (T in inches; eq23)")
+    chatter = sweep.add_argument_group(
+        "chatter settings (--model hertz or newton; each may instead be "
+        "varied or sampled)")
+    chatter.add_argument("--preload", metavar="LB",
+                         help="force pressing the lower contact on the "
+                              "separator at the start (lb; default 0)")
+    chatter.add_argument("--min-open", metavar="S",
+                         help="shortest circuit opening counted as a "
+                              "discontinuity event (s; default 1e-05)")
+    chatter.add_argument("--damping", metavar="{none,flores}",
+                         help="Hertz contact damping (default none)")
     sweep.add_argument("--csv", metavar="FILE",
                        help="one row per design, written as the sweep goes "
                             "to a temporary file beside FILE that replaces "
@@ -109,8 +162,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
     sweep.add_argument("--chunk-size", type=integer(1, MAX_CHUNK_SIZE),
-                       default=CHUNK_SIZE,
-                       help=f"most designs per chunk (default {CHUNK_SIZE}; "
+                       default=None,
+                       help=f"most designs per chunk (default {CHUNK_SIZE}, "
+                            f"chatter models {CHATTER_CHUNK_SIZE}; "
                             f"chunks are sized to about "
                             f"{TARGET_CHUNK_S:g} s of work below it)")
     sweep.add_argument("--workers", type=integer(1, max_workers()),
@@ -145,6 +199,16 @@ def _compute(name: str, args, overrides: dict):
     overrides = {k: v for k, v in overrides.items() if not (
         k in fields_from_file(args) and k in OWN_FIELDS.get(name, ()))}
 
+    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
+    searches = ("preload", *CONCLUSIONS)
+    if name not in searches and (args.model or args.workers):
+        raise InputError(f"--model and --workers are options of study "
+                         f"{', '.join(searches)}, not study {name}'s")
+    if name != "preload" and args.damping:
+        raise InputError(f"--damping is study preload's option, not "
+                         f"study {name}'s (conclusion3 uses flores)")
+    if name in searches:
+        return _search_study(name, args, overrides)
     if name == "chatter":
         if overrides or args.backend:
             raise InputError("study chatter takes no design options: it "
@@ -154,6 +218,24 @@ def _compute(name: str, args, overrides: dict):
         from contactsep.studies.chatter import chatter_table
         return chatter_table()
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
+
+
+def _search_study(name: str, args, overrides: dict):
+    """study preload and conclusion3|5|6|7: three-beam simulations with
+    the preload search; their own model, N (default 32) and workers."""
+    from contactsep.studies.conclusions import conclusion
+    from contactsep.studies.preload import DEFAULT_MODES, preload_chart
+    if args.backend:
+        raise InputError(f"study {name} runs the chatter simulation (no "
+                         f"--backend)")
+    overrides = dict(overrides)
+    options = {"model": args.model or "hertz",
+               "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
+               "workers": args.workers}
+    if name == "preload":
+        return preload_chart(**options, damping=args.damping or "none",
+                             **overrides)
+    return conclusion(name, **options, **overrides)
 
 
 def _save(study, out: Path, dpi: int) -> None:
@@ -184,11 +266,14 @@ def _study_targets(args, names) -> dict:
 
 def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
+    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
 
     names = list(STUDIES) if args.name == "all" else [args.name]
-    if args.name not in (*STUDIES, "chatter", "all"):
+    searches = ("preload", *CONCLUSIONS)
+    if args.name not in (*STUDIES, "chatter", *searches, "all"):
         raise InputError(f"study {args.name!r}: expected one of "
-                         f"{', '.join(STUDIES)}, chatter or all")
+                         f"{', '.join(STUDIES)}, chatter, "
+                         f"{', '.join(searches)} or all")
     if args.name == "all" and (not args.out or args.csv or args.png):
         raise InputError("study all writes with --out DIR (not --csv "
                          "or --png)")
@@ -203,6 +288,10 @@ def run_study(args: argparse.Namespace) -> int:
         out.mkdir(parents=True, exist_ok=True)
         for study in done:
             _save(study, out, args.dpi)
+        print("preload, conclusion3, conclusion5, conclusion6, "
+              "conclusion7: skipped (hundreds of three-beam simulations, "
+              "a minute or more each; contactsep study NAME --out DIR "
+              "writes one)")
         print("chatter: skipped (45 three-beam simulations, 20 s or more;"
               " contactsep study chatter --out DIR writes it)")
         return 0
@@ -220,9 +309,12 @@ def run_study(args: argparse.Namespace) -> int:
     return 0
 
 
-def _failures(summary: dict) -> str:
+def _failures(summary: dict, model: str) -> str:
     """'1,567 of 10,000 designs failed (1,567 invalid input)'."""
-    from contactsep.model.status import MESSAGES
+    if model == "eq23":
+        from contactsep.model.status import MESSAGES
+    else:
+        from contactsep.studies.chatter_sweep import MESSAGES
     total = summary["n"] + summary["n_failed"]
     reasons = ", ".join(f"{count:,} {MESSAGES[code].split(':')[0]}"
                         for code, count in sorted(
@@ -232,6 +324,7 @@ def _failures(summary: dict) -> str:
 
 
 def _print_summary(summary: dict, spec) -> None:
+    width = max([14] + [len(key) for key in summary])
     for key, value in summary.items():
         if key in ("inputs", "n_failed_by_status"):
             continue
@@ -241,9 +334,19 @@ def _print_summary(summary: dict, spec) -> None:
             value = f"{value:.6g}"
         elif isinstance(value, list):
             value = ", ".join(f"{v:.6g}" for v in value)
-        print(f"{key:>14} = {value}")
+        print(f"{key:>{width}} = {value}")
     for line in spec.describe():
-        print(f"{'':>14}   {line}")
+        print(f"{'':>{width}}   {line}")
+
+
+def _settings(args: argparse.Namespace) -> dict:
+    """The chatter settings typed as options (setting -> value)."""
+    from contactsep.studies.fields import parse_value
+    typed = {"preload": (args.preload, "--preload"),
+             "min_open": (args.min_open, "--min-open"),
+             "damping": (args.damping, "--damping")}
+    return {name: parse_value(name, text, option)
+            for name, (text, option) in typed.items() if text is not None}
 
 
 def run_sweep(args: argparse.Namespace) -> int:
@@ -258,9 +361,11 @@ def run_sweep(args: argparse.Namespace) -> int:
             if not (k in swept and k in fields_from_file(args))}
     spec = make_spec(vary=vary, sample=sample, samples=args.samples,
                      seed=args.seed, base=base,
-                     backend=args.backend or "compiled")
+                     backend=args.backend or "compiled", model=args.model,
+                     settings=_settings(args))
     runner.check_run(chunk_size=args.chunk_size, workers=args.workers,
                      threshold=args.threshold)
+    runner.check_threshold(spec, args.threshold)
     if args.parquet:
         runner.require_pyarrow()
     check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
@@ -291,8 +396,9 @@ def run_sweep(args: argparse.Namespace) -> int:
     if summary["n_failed"]:
         if not summary["n"]:
             sys.stdout.flush()
-            raise InputError(f"{_failures(summary)}: every one; nothing "
-                             f"to summarise")
-        warnings.warn(f"{_failures(summary)}; the statistics are over the "
-                      f"other {summary['n']:,}", ContactsepWarning)
+            raise InputError(f"{_failures(summary, args.model)}: every "
+                             f"one; nothing to summarise")
+        warnings.warn(f"{_failures(summary, args.model)}; the statistics "
+                      f"are over the other {summary['n']:,}",
+                      ContactsepWarning)
     return 0

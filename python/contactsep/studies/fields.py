@@ -13,6 +13,12 @@ Everything the command line and the sweeps read about a field is
 checked here, once: :func:`parse_value` turns a text into a field's
 value or raises an :class:`~contactsep.errors.InputError` naming what
 the user typed.
+
+Beside the Design's fields, the chatter sweeps (``contactsep sweep
+--model hertz|newton``) fix, vary or sample three settings of the
+simulation (:data:`SETTINGS`: ``preload``, ``min_open``, ``damping``);
+they are named, read and written the same way, but are not design
+fields (``--set preload=...`` is refused, naming them).
 """
 
 from __future__ import annotations
@@ -22,6 +28,8 @@ import math
 import numpy as np
 
 from contactsep import beams
+from contactsep.chatter.simulate import DAMPINGS
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model.design import (
     IMPACT_VELOCITIES,
@@ -67,6 +75,20 @@ FIELDS.update({
                         "contact: the contact point x1"),
 })
 
+#: The chatter simulation's settings a chatter sweep may fix, vary or
+#: sample (as FIELDS: unit suffix, unit as printed, meaning).
+SETTINGS: dict[str, tuple[str, str, str]] = {
+    "preload": ("lb", "lb", "force pressing the lower contact on the "
+                            "separator at the start"),
+    "min_open": ("s", "s", "shortest circuit opening counted as a "
+                           "discontinuity event"),
+    "damping": ("", "", "Hertz contact damping: none (elastic) or flores "
+                        "(calibrated to e)"),
+}
+#: The settings a chatter sweep may vary (--vary) and sample (--sample).
+VARIABLE_SETTINGS = ("preload", "min_open", "damping")
+SAMPLED_SETTINGS = ("preload", "min_open")
+
 #: Other names accepted for a field wherever a field is named on input.
 ALIASES = {"d": "h2", "restitution": "e"}
 #: The name a field has in outputs, where it is not the field's own.
@@ -76,7 +98,7 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "end3": beams.END_CONDITIONS,
            "impact_velocity": IMPACT_VELOCITIES,
            "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
-           "release": RELEASES}
+           "release": RELEASES, "damping": DAMPINGS}
 #: Fields that may be None, and what None means.
 OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
             "x3": "its tip (L3)", "Lc": "none"}
@@ -85,33 +107,51 @@ VARIABLE = REAL_COLUMNS + ("end1", "end2", "end3", "n_modes")
 SAMPLED = REAL_COLUMNS
 
 
+def _entry(field: str) -> tuple[str, str, str]:
+    return FIELDS[field] if field in FIELDS else SETTINGS[field]
+
+
 def column_name(field: str) -> str:
-    """The field's key in every output: 'h2' -> 'd_in', 'e' -> 'e',
-    'gamma2' -> 'gamma2_lb_in3'."""
-    suffix = FIELDS[field][0]
+    """The field's (or setting's) key in every output: 'h2' -> 'd_in',
+    'e' -> 'e', 'gamma2' -> 'gamma2_lb_in3', 'preload' -> 'preload_lb'."""
+    suffix = _entry(field)[0]
     name = OUTPUT_NAMES.get(field, field)
     return f"{name}_{suffix}" if suffix else name
 
 
 _BY_COLUMN = {column_name(f): f for f in FIELDS}
+_SETTING_NAMES = {**{s: s for s in SETTINGS},
+                  **{column_name(s): s for s in SETTINGS}}
 
 
-def field_name(name: str, label: str | None = None) -> str:
+def field_name(name: str, label: str | None = None,
+               settings: bool = False) -> str:
     """The Design field a name stands for: the field itself, an alias
-    ('d', 'restitution') or an output column name ('d_in').  ``label``
-    (default: the name) is how an error names it."""
+    ('d', 'restitution') or an output column name ('d_in'); with
+    ``settings``, also a chatter setting ('preload' or 'preload_lb').
+    ``label`` (default: the name) is how an error names it."""
     name = name.strip()
     field = name if name in FIELDS else ALIASES.get(name) or \
         _BY_COLUMN.get(name)
+    if field is None and name in _SETTING_NAMES:
+        if settings:
+            return _SETTING_NAMES[name]
+        option = "--" + _SETTING_NAMES[name].replace("_", "-")
+        raise InputError(f"{label or name}: a setting of the chatter "
+                         f"simulation, not a design field (contactsep "
+                         f"sweep --model hertz takes {option})")
     if field is None:
+        also = f"; the chatter settings {', '.join(SETTINGS)}" \
+            if settings else ""
         raise InputError(f"{label or name}: not a design field (one of "
-                         f"{', '.join(FIELDS)}; also d, restitution)")
+                         f"{', '.join(FIELDS)}; also d, restitution"
+                         f"{also})")
     return field
 
 
 def unit(field: str) -> str:
     """The unit as printed ('lb/in^3'); '' for dimensionless."""
-    return FIELDS[field][1]
+    return _entry(field)[1]
 
 
 def parse_value(field: str, text, label: str):
@@ -119,7 +159,8 @@ def parse_value(field: str, text, label: str):
     JSON file); ``label`` names it in errors ('--d', 'design.json: d_in').
 
     Real fields take a number (any float; the Design checks its range;
-    x1, x2, x3 and Lc also None, their default),
+    x1, x2, x3 and Lc also None, their default), the settings preload
+    and min_open a finite number >= 0, damping none or flores,
     end conditions and the options one of their words, ``n_modes`` an
     integer >= 1 or three of them ('4,16,4').
     """
@@ -136,6 +177,8 @@ def parse_value(field: str, text, label: str):
         return _modes(text, label)
     if text is None and field in OPTIONAL:
         return None
+    if field in SETTINGS:
+        return _setting(field, text, label)
     if isinstance(text, bool) or not isinstance(text, (str, int, float)):
         raise InputError(f"{label}: found {text!r}, expected a number "
                          f"({unit(field) or 'dimensionless'})")
@@ -144,6 +187,26 @@ def parse_value(field: str, text, label: str):
     except ValueError:
         raise InputError(f"{label}: found {text!r}, expected a number "
                          f"({unit(field) or 'dimensionless'})") from None
+    return value
+
+
+def _setting(field: str, text, label: str) -> float:
+    """preload (lb) or min_open (s): a finite number >= 0 (the chatter
+    layer refuses the rest; refused here, it is one line before any
+    work)."""
+    try:
+        if isinstance(text, bool):
+            raise ValueError
+        value = float(text)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not (math.isfinite(value) and value >= 0.0):
+        raise InputError(f"{label}: found {text!r}, expected a "
+                         f"{'force' if field == 'preload' else 'time'} "
+                         f">= 0 {unit(field)}")
+    if field == "min_open" and value > LISTING_TAU_S:
+        raise InputError(f"{label}: found {text!r}, expected at most the "
+                         f"window, {LISTING_TAU_S:g} s")
     return value
 
 

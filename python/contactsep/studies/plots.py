@@ -123,6 +123,25 @@ def _fig23(ax, c):
     ax.set(xlabel="separator thickness d (in)", ylabel="max y3 (in)")
 
 
+def _preload(ax, c):
+    # a row without an answer (an event up to the simulation's preload
+    # limit): a triangle at the top edge, in its curve's colour
+    edge = ax.get_xaxis_transform()
+    for ys in np.unique(c["ys_in"]):
+        rows = c["ys_in"] == ys
+        line, = ax.semilogy(c["d_in"][rows], c["min_preload_lb"][rows],
+                            "o-", label=f"y_s = {ys:g} in")
+        missing = rows & np.isnan(c["min_preload_lb"])
+        if np.any(missing):
+            ax.plot(c["d_in"][missing], np.full(missing.sum(), 0.97), "^",
+                    color=line.get_color(), transform=edge, clip_on=False,
+                    label=f"y_s = {ys:g} in: none below the preload limit")
+    ax.set(xlabel="separator thickness d (in)",
+           ylabel="smallest preload with no event (lb)")
+    ax.text(0.98, 0.95, f"{c['model'][0]}, N = {c['n_modes'][0]}",
+            transform=ax.transAxes, fontsize=8, ha="right", va="top")
+
+
 def _convergence(ax, c):
     ax.loglog(c["N"], c["psi_lb_s"] / c["psi_lb_s"][0], "o-",
               label="psi / psi(N=1)")
@@ -192,8 +211,38 @@ def _chatter(axes, c):
     bottom.legend(fontsize=7, ncol=3, loc="upper right")
 
 
+#: The conclusion studies' x axis: column and label.
+_CONCLUSION_AXES = {
+    "conclusion3": ("e", "coefficient of restitution e"),
+    "conclusion5": ("d_in", "separator thickness d (in)"),
+    "conclusion6": ("R", "mass ratio R (eq. 24), through gamma2"),
+    "conclusion7": ("r", "lower contact point x3/L3"),
+}
+
+
+def _conclusion(axes, c, name):
+    top, bottom = axes
+    column, label = _CONCLUSION_AXES[name]
+    x = c[column]
+    top.semilogy(x, c["y3_max_in"], "s--", label="eq. 23 max y3 (thesis)")
+    top.semilogy(x, c["max_lower_gap_in"], "o-",
+                 label="three beams: max lower gap, no preload")
+    top.set(ylabel="lower contact (in)")
+    preloads = c["min_preload_lb"]
+    bottom.plot(x, preloads, "o-", color="C2",
+                label="smallest preload with no event")
+    if np.nanmax(preloads) > 10 * np.nanmin(preloads) > 0:
+        bottom.set_yscale("log")
+    else:
+        bottom.set_ylim(bottom=0.0)
+    bottom.set(xlabel=label, ylabel="preload (lb)")
+    if name == "conclusion6":
+        top.set_xscale("log")
+
+
 _ONE_PANEL = {"fig5": _fig5, "fig6": _fig6, "fig7": _fig7, "fig8": _fig8,
-              "fig23": _fig23, "convergence": _convergence}
+              "fig23": _fig23, "convergence": _convergence,
+              "preload": _preload}
 
 
 def save_png(study: Study, path, dpi: int = DPI) -> None:
@@ -205,12 +254,14 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig, ax = plt.subplots(figsize=(6.0, 4.0))
         _ONE_PANEL[name](ax, study.columns)
         axes = [ax]
-    elif name in _TABLES or name == "chatter":
+    elif name in _TABLES or name == "chatter" or name in _CONCLUSION_AXES:
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0),
-                                 height_ratios=(2, 1) if name != "chatter"
+                                 height_ratios=(2, 1) if name in _TABLES
                                  else (1, 1))
         if name == "chatter":
             _chatter(axes, study.columns)
+        elif name in _CONCLUSION_AXES:
+            _conclusion(axes, study.columns, name)
         else:
             _table(axes, study.columns, name)
     else:

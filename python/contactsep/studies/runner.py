@@ -21,6 +21,7 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.evaluate import costly
+from contactsep.studies import chatter_sweep
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
@@ -127,11 +128,33 @@ def _quiet_worker() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
+def default_chunk_size(spec: SweepSpec) -> int:
+    """The most designs a chunk has unless asked: 100,000 of eq. 23 (one
+    compiled batch), 8 chatter simulations (a design takes 10-400 ms:
+    the progress bar moves, the workers stay evenly loaded)."""
+    return CHUNK_SIZE if spec.model == "eq23" else chatter_sweep.CHUNK_SIZE
+
+
+def check_threshold(spec: SweepSpec, threshold) -> None:
+    """A threshold is on eq23's max y3: a chatter sweep refuses it."""
+    if threshold is not None and spec.model != "eq23":
+        raise InputError(f"--threshold: eq23's max y3; a {spec.model} "
+                         f"sweep reports p_open, the designs with a "
+                         f"discontinuity event")
+
+
+def evaluate(spec: SweepSpec, first: int, last: int) -> dict:
+    """The columns of designs first..last-1, by the sweep's model."""
+    if spec.model == "eq23":
+        return evaluate_chunk(spec, first, last)
+    return chatter_sweep.evaluate_chunk(spec, first, last)
+
+
 def evaluate_chunk_timed(spec, first, last) -> tuple[dict, float]:
     """A chunk's columns and the seconds it took (chunks are sized by
     the time per design: Chunks.record)."""
     start = time.perf_counter()
-    columns = evaluate_chunk(spec, first, last)
+    columns = evaluate(spec, first, last)
     return columns, time.perf_counter() - start
 
 
@@ -273,12 +296,14 @@ def max_workers() -> int:
     return WORKERS_PER_CORE * usable_cores()
 
 
-def check_run(*, chunk_size=CHUNK_SIZE, workers=None, threshold=None
+def check_run(*, chunk_size=None, workers=None, threshold=None
               ) -> None:
     """The run options of :func:`run_sweep`, checked before any work or
-    file (InputError naming the option)."""
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or \
-            not 1 <= chunk_size <= MAX_CHUNK_SIZE:
+    file (InputError naming the option; ``chunk_size`` None: the
+    model's default)."""
+    if chunk_size is not None and (
+            isinstance(chunk_size, bool) or not isinstance(chunk_size, int)
+            or not 1 <= chunk_size <= MAX_CHUNK_SIZE):
         raise InputError(f"--chunk-size: found {chunk_size!r}, expected an "
                          f"integer from 1 to {MAX_CHUNK_SIZE:,}")
     if workers is not None and (
@@ -296,15 +321,19 @@ def check_run(*, chunk_size=CHUNK_SIZE, workers=None, threshold=None
 
 
 def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
-              chunk_size: int = CHUNK_SIZE, workers: int | None = None,
+              chunk_size: int | None = None, workers: int | None = None,
               scheduler=None, progress: bool | None = None) -> dict:
     """Evaluate every design of ``spec`` chunk by chunk, in order; each
     chunk goes to every writer as it arrives.  Returns the summary
-    (:meth:`Summary.as_dict`, ``elapsed_s``, and ``inputs``: what made the
-    sweep, :meth:`SweepSpec.inputs`).
+    (:meth:`Summary.as_dict`, or :meth:`ChatterSummary.as_dict
+    <contactsep.studies.chatter_sweep.ChatterSummary.as_dict>` for a
+    chatter model; ``elapsed_s``; and ``inputs``: what made the sweep,
+    :meth:`SweepSpec.inputs`).
 
-    ``chunk_size``: the most designs a chunk has (chunks are sized by
-    cost below it: :class:`~contactsep.studies.sweep.Chunks`);
+    ``chunk_size``: the most designs a chunk has (default
+    :func:`default_chunk_size`; chunks are sized by cost below it:
+    :class:`~contactsep.studies.sweep.Chunks`); ``threshold`` (in, eq23
+    only): also report P(max y3 > threshold);
     ``workers``: local processes (default: the usable cores; 1 runs in
     this process; at most WORKERS_PER_CORE a core); ``scheduler``: a Dask
     scheduler address (or Client).  An interrupt (Ctrl-C, SIGTERM)
@@ -313,13 +342,19 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     other error drops the writers' files (:meth:`CsvWriter.abort`).
     """
     check_run(chunk_size=chunk_size, workers=workers, threshold=threshold)
+    check_threshold(spec, threshold)
+    if chunk_size is None:
+        chunk_size = default_chunk_size(spec)
     if workers is None:
         workers = usable_cores()
+    # a chatter design takes 10-400 ms: the first chunk is one design
     bounds = Chunks(spec.size, chunk_size, spec.max_modes,
-                    costly(spec.max_modes, spec.max_tau))
+                    spec.model != "eq23"
+                    or costly(spec.max_modes, spec.max_tau))
     if spec.size <= bounds.next:
         workers = 1
-    summary = Summary(threshold=threshold)
+    summary = Summary(threshold=threshold) if spec.model == "eq23" \
+        else chatter_sweep.ChatterSummary()
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()

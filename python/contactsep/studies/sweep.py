@@ -1,11 +1,15 @@
-"""Parameter sweeps and tolerance studies of the general model, in chunks.
+"""Parameter sweeps and tolerance studies, in chunks.
 
 A sweep is the thesis design with some fields varied over lists or ranges
 (several form a grid) and/or sampled from distributions (a tolerance
-study); design i of the sweep is grid point i // K, sample i % K.  Chunks
-of designs are evaluated by the compiled batch, in this process, in a
-process pool on the local cores, or on a Dask cluster, and streamed in
-order to the output: memory is bounded by a few chunks whatever the size.
+study); design i of the sweep is grid point i // K, sample i % K.  Each
+design is evaluated by a model: ``eq23`` (the general model, a chunk in
+one compiled batch), or ``hertz`` or ``newton`` (the three-beam chatter
+simulation, contactsep.studies.chatter_sweep, which may also vary the
+simulation's settings preload, min_open and damping).  Chunks are
+evaluated in this process, in a process pool on the local cores, or on
+a Dask cluster, and streamed in order to the output: memory is bounded
+by a few chunks whatever the size.
 
 Samples are reproducible and independent of the chunking: sample k of a
 field is drawn from block k // SAMPLE_BLOCK of a generator seeded with
@@ -25,7 +29,7 @@ from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
-from contactsep.studies.stats import wilson_interval
+from contactsep.studies.stats import RunningMoments, wilson_interval
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
 SAMPLE_BLOCK = 65536
@@ -45,6 +49,13 @@ CHUNK_MEMORY = 64 << 20
 MAX_DESIGNS = 10**12
 #: Output columns beside the varied fields.
 RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
+#: What a sweep may evaluate: the general model, or a chatter model.
+MODELS = ("eq23", "hertz", "newton")
+
+#: What --vary and --sample take: design fields, and chatter settings
+#: (make_spec refuses the settings for eq23).
+_VARIABLE = design_fields.VARIABLE + design_fields.VARIABLE_SETTINGS
+_SAMPLED = design_fields.SAMPLED + design_fields.SAMPLED_SETTINGS
 
 
 class SweepError(InputError):
@@ -52,7 +63,8 @@ class SweepError(InputError):
 
 
 def _field(name: str, option: str, allowed: tuple) -> str:
-    field = design_fields.field_name(name, f"{option} {name.strip()}")
+    field = design_fields.field_name(name, f"{option} {name.strip()}",
+                                     settings=True)
     if field not in allowed:
         raise SweepError(f"{option} {name.strip()}: {field} cannot be "
                          f"{'varied' if option == '--vary' else 'sampled'}"
@@ -91,12 +103,12 @@ def parse_vary(text: str) -> tuple[str, object]:
     (a list) or 'end2=clamped-clamped,pinned-pinned'; the name may be
     any name of the field (h2, d, d_in).  Returns (field, values)."""
     name, sep, values_text = text.partition("=")
-    field = _field(name, "--vary", design_fields.VARIABLE)
+    field = _field(name, "--vary", _VARIABLE)
     label = f"--vary {name.strip()}"
     if not sep:
         raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
                          f"NAME=V1,V2,...")
-    if ":" in values_text and field in design_fields.SAMPLED:
+    if ":" in values_text and field in _SAMPLED:
         try:
             start, stop, count = values_text.split(":")
             start, stop, count = float(start), float(stop), int(count)
@@ -110,6 +122,10 @@ def parse_vary(text: str) -> tuple[str, object]:
             raise SweepError(f"--vary {text}: found COUNT {count}, expected "
                              f"1 to {MAX_DESIGNS:,} values")
         values = LinearAxis(start, stop, count)
+        if field in design_fields.SETTINGS:
+            # a linear axis lies between its ends: checking them checks it
+            for end in (values.start, values.stop):
+                design_fields.parse_value(field, end, label)
     else:
         items = [design_fields.parse_value(field, item, label)
                  for item in values_text.split(",")]
@@ -131,7 +147,7 @@ def parse_sample(text: str) -> tuple[str, str, float, float]:
     """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)' (numeric
     fields, any of their names)."""
     name, _, spec = text.partition("=")
-    field = _field(name, "--sample", design_fields.SAMPLED)
+    field = _field(name, "--sample", _SAMPLED)
     match = _SAMPLE.match(spec)
     try:
         kind, a, b = match.group(1), float(match.group(2)), \
@@ -159,6 +175,11 @@ class SweepSpec:
     samples: int = 1
     seed: int = 0
     backend: str = "compiled"
+    #: "eq23" (the general model) or a chatter model ("hertz", "newton").
+    model: str = "eq23"
+    #: Chatter settings fixed for every design (preload, min_open,
+    #: damping; the rest take simulate()'s defaults).
+    settings: dict = field(default_factory=dict)
 
     @property
     def grid_shape(self) -> tuple:
@@ -216,10 +237,14 @@ class SweepSpec:
                                       **dict(zip(_PARAMETERS[kind],
                                                  (a, b)))}
                   for name, kind, a, b in self.sample}
-        return {"seed": self.seed, "samples": self.samples,
-                "designs": self.size, "vary": vary, "sample": sample,
-                "fixed": design_fields.describe(self.base),
-                "backend": self.backend}
+        out = {"seed": self.seed, "samples": self.samples,
+               "designs": self.size, "vary": vary, "sample": sample,
+               "fixed": design_fields.describe(self.base),
+               "backend": self.backend}
+        if self.model != "eq23":
+            out["model"] = self.model
+            out["settings"] = design_fields.describe(self.settings)
+        return out
 
     def describe(self) -> list[str]:
         """The inputs in words, one line each (the CSV's comments)."""
@@ -239,7 +264,8 @@ class SweepSpec:
             p, q = _PARAMETERS[kind]
             lines.append(f"sample {column_name(name)} ~ {kind}({p} "
                          f"{a:.12g}, {q} {b:.12g})")
-        for key, value in design_fields.describe(self.base).items():
+        for key, value in design_fields.describe(
+                {**self.base, **self.settings}).items():
             lines.append(f"fixed {key} = {value}")
         return lines
 
@@ -348,36 +374,22 @@ class Summary:
     status 0; failed designs are counted by status."""
 
     threshold: float | None = None
-    n: int = 0
-    total: float = 0.0
-    total_sq: float = 0.0
     exceed: int = 0
-    low: float = math.inf
-    high: float = -math.inf
+    #: max y3 (in) of the designs with status 0.
+    y3: RunningMoments = field(default_factory=RunningMoments)
     #: status code -> designs that ended with it (0 excluded).
     failed: dict = field(default_factory=dict)
-    _shift: float | None = None
 
     def add(self, columns: dict) -> None:
-        y = np.asarray(columns["y3_max_in"])
-        status = np.asarray(columns["status"])
-        ok = status == 0
-        codes, counts = np.unique(status[~ok], return_counts=True)
-        for code, count in zip(codes.tolist(), counts.tolist()):
-            self.failed[code] = self.failed.get(code, 0) + count
-        y = y[ok]
-        if y.size == 0:
-            return
-        if self._shift is None:
-            self._shift = float(y[0])   # shifted sums: no cancellation
-        d = y - self._shift
-        self.n += y.size
-        self.total += float(np.sum(d))
-        self.total_sq += float(np.sum(d * d))
-        self.low = min(self.low, float(y.min()))
-        self.high = max(self.high, float(y.max()))
+        ok = count_failures(self.failed, columns["status"])
+        y = np.asarray(columns["y3_max_in"])[ok]
+        self.y3.add(y)
         if self.threshold is not None:
             self.exceed += int(np.sum(y > self.threshold))
+
+    @property
+    def n(self) -> int:
+        return self.y3.n
 
     @property
     def n_failed(self) -> int:
@@ -391,16 +403,12 @@ class Summary:
         P(max y3 > threshold) and its 95 % Wilson interval
         p_exceed_ci95."""
         n = self.n
-        mean = self._shift + self.total / n if n else None
-        var = (self.total_sq - self.total**2 / n) / (n - 1) \
-            if n > 1 else None
         out = {"n": n, "n_failed": self.n_failed,
                "n_failed_by_status": dict(sorted(self.failed.items())),
-               "y3_max_mean_in": mean,
-               "y3_max_sd_in": math.sqrt(max(var, 0.0))
-               if var is not None else None,
-               "y3_max_min_in": self.low if n else None,
-               "y3_max_max_in": self.high if n else None}
+               "y3_max_mean_in": self.y3.mean,
+               "y3_max_sd_in": self.y3.sd,
+               "y3_max_min_in": self.y3.low if n else None,
+               "y3_max_max_in": self.y3.high if n else None}
         if self.threshold is not None:
             out["threshold_in"] = self.threshold
             out["p_exceed"] = self.exceed / n if n else None
@@ -409,10 +417,23 @@ class Summary:
         return out
 
 
+def count_failures(failed: dict, status) -> np.ndarray:
+    """Add a chunk's failed designs to ``failed`` (status code -> count);
+    returns the mask of the designs with status 0."""
+    status = np.asarray(status)
+    ok = status == 0
+    codes, counts = np.unique(status[~ok], return_counts=True)
+    for code, count in zip(codes.tolist(), counts.tolist()):
+        failed[code] = failed.get(code, 0) + count
+    return ok
+
+
 def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
-              backend="compiled") -> SweepSpec:
+              backend="compiled", model="eq23", settings=None) -> SweepSpec:
     """A SweepSpec from --vary / --sample texts (or parsed tuples);
-    ``base`` the fixed fields (Design field -> value)."""
+    ``base`` the fixed fields (Design field -> value); ``model`` eq23,
+    hertz or newton; ``settings`` the fixed chatter settings (preload,
+    min_open, damping -> value; hertz and newton only)."""
     vary = tuple(parse_vary(v) if isinstance(v, str) else v for v in vary)
     sample = tuple(parse_sample(s) if isinstance(s, str) else s
                    for s in sample)
@@ -424,10 +445,15 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     if set(names) & {s[0] for s in sample}:
         raise SweepError("a field cannot be both varied and sampled")
     base = dict(base or {})
-    fixed = set(base) & (set(names) | {s[0] for s in sample})
+    settings = dict(settings or {})
+    fixed = (set(base) | set(settings)) & (set(names)
+                                           | {s[0] for s in sample})
     if fixed:
         raise SweepError(f"{', '.join(sorted(fixed))}: fixed by a design "
                          f"option and varied or sampled too")
+    swept = set(names) | {s[0] for s in sample}
+    _check_model(model, backend, swept | set(settings))
+    _check_preload(settings.get("preload"), base, swept)
     if samples is None:
         samples = 1000 if sample else 1
     if isinstance(samples, bool) or not isinstance(samples, int) or \
@@ -441,10 +467,51 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
         raise SweepError(f"--seed: found {seed!r}, expected an integer "
                          f"from 0 to 2^64 - 1")
     spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
-                     seed=seed, backend=backend)
+                     seed=seed, backend=backend, model=model,
+                     settings=settings)
     if spec.size > MAX_DESIGNS:
         raise SweepError(f"the sweep has {spec.size:.3g} designs "
                          f"({' x '.join(str(n) for n in spec.grid_shape)}"
                          f"{f' x {samples}' if sample else ''}), expected at "
                          f"most {MAX_DESIGNS:,}")
     return spec
+
+
+#: Design fields the largest preload a simulation takes depends on (the
+#: separator's and the lower contact's flexibility at the contact; the
+#: densities cancel: M p^2 does not depend on them).
+_PRELOAD_LIMIT_FIELDS = {"L2", "b2", "h2", "E2", "end2", "x2", "L3", "b3",
+                         "h3", "E3", "end3", "x3", "n_modes"}
+
+
+def _check_preload(preload, base: dict, swept: set) -> None:
+    """A fixed preload above what the simulation takes for every design
+    (the limit depends on no swept field) is refused before any work;
+    otherwise a design above its limit is its row's status 2."""
+    if preload is None or swept & _PRELOAD_LIMIT_FIELDS:
+        return
+    from contactsep.chatter.simulate import largest_preload
+    most = largest_preload(thesis_design(**base))
+    if preload > most:
+        raise SweepError(f"--preload: found {preload!r}, expected at most "
+                         f"{most:.6g} lb for this design (it would bend "
+                         f"the lower contact or the separator by more "
+                         f"than its length)")
+
+
+def _check_model(model: str, backend: str, used: set) -> None:
+    """The settings belong to the chatter models, damping to Hertz; the
+    chatter models run compiled."""
+    if model not in MODELS:
+        raise SweepError(f"--model: found {model!r}, expected one of "
+                         f"{', '.join(MODELS)}")
+    settings = sorted(used & set(design_fields.SETTINGS))
+    if model == "eq23" and settings:
+        raise SweepError(f"{', '.join(settings)}: a setting of the chatter "
+                         f"simulation; needs --model hertz or newton")
+    if model == "newton" and "damping" in used:
+        raise SweepError("damping: the Hertz contact's (--model hertz); "
+                         "Newton's impact law has e")
+    if model != "eq23" and backend != "compiled":
+        raise SweepError(f"--backend {backend}: the chatter sweeps run the "
+                         f"compiled steppers")

@@ -14,6 +14,7 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.output import json_text
+from contactsep.studies import chatter_sweep
 from contactsep.studies.study import csv_comments
 from contactsep.studies.sweep import SweepSpec
 
@@ -28,6 +29,20 @@ COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
 #: NumPy twin agree to 1e-12 relative (tests/model), so later digits are
 #: round-off; Parquet keeps every bit.
 CSV_DIGITS = 12
+
+
+def title(spec: SweepSpec | None) -> str:
+    """The sweep's title (first CSV comment, Parquet metadata)."""
+    if spec is None or spec.model == "eq23":
+        return TITLE
+    return chatter_sweep.title(spec.model)
+
+
+def column_notes(spec: SweepSpec | None) -> list[str]:
+    """How to read the columns (CSV comments, Parquet metadata)."""
+    if spec is None or spec.model == "eq23":
+        return [COLUMNS_NOTE]
+    return chatter_sweep.notes(spec.model)
 
 
 def _row_format(columns: dict) -> str:
@@ -53,8 +68,8 @@ class CsvWriter:
         self._file = output.Replacement(path, lock=True)
         self._handle = self._file.stream
         try:
-            self._handle.write(csv_comments([TITLE, *spec.describe(),
-                                             COLUMNS_NOTE, *notes]))
+            self._handle.write(csv_comments([title(spec), *spec.describe(),
+                                             *column_notes(spec), *notes]))
         except BaseException:
             self._file.discard()
             raise
@@ -99,7 +114,7 @@ class ParquetWriter:
         require_pyarrow()
         self.path = path
         self._metadata = {"contactsep": json_text({
-            "title": TITLE, "notes": [COLUMNS_NOTE],
+            "title": title(spec), "notes": column_notes(spec),
             "inputs": spec.inputs() if spec is not None else None},
             indent=None)}
         self._file = output.Replacement(path, binary=True, lock=True)

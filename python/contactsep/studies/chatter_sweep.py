@@ -1,0 +1,187 @@
+"""Chatter sweeps: each design of a sweep through the three-beam
+simulation (``contactsep sweep --model hertz|newton``).
+
+A design is one call of :func:`contactsep.chatter.simulate` with the
+summary only (``samples=1``, ``single_impulse=False``: the answers do not
+depend on the sampling, docs/chatter.md) and the default steppers.  Its
+row is the varied inputs, then :data:`RESULT_COLUMNS`.  A design the
+model or the simulation refuses, or whose stepper cannot finish, is a
+status in its row (:data:`MESSAGES`), never an exception that loses the
+chunk.  The summary (:class:`ChatterSummary`) counts the designs with a
+discontinuity event: ``p_open`` and its Wilson interval.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactsep.chatter import simulate
+from contactsep.chatter.circuit import MIN_OPEN, OPEN_THRESHOLD
+from contactsep.chatter.runners import StepperError
+from contactsep.chatter.simulate import DEFAULT_DT
+from contactsep.constants import LISTING_TAU_S
+from contactsep.errors import InputError
+from contactsep.model import thesis_design
+from contactsep.studies import fields as design_fields
+from contactsep.studies.stats import RunningMoments, wilson_interval
+from contactsep.studies.sweep import SweepSpec, chunk_inputs, count_failures
+
+#: Output columns after the varied inputs (a contract: issue 16).
+RESULT_COLUMNS = ("first_impact_s", "first_impulse_lb_s",
+                  "max_lower_gap_in", "circuit_open_s",
+                  "first_circuit_open_s", "n_events", "status")
+#: Designs per chunk: a design takes 10-400 ms, so a chunk of 8 keeps
+#: the progress bar moving and the workers evenly loaded.
+CHUNK_SIZE = 8
+#: The simulation's settings when a sweep neither fixes nor varies them.
+DEFAULT_SETTINGS = {"preload": 0.0, "min_open": MIN_OPEN,
+                    "damping": "none"}
+
+#: Per-design status codes of a chatter sweep (0, 2 and 3 mean what
+#: they mean in an eq23 sweep, contactsep.model.status).
+OK = 0
+INVALID_INPUT = 2
+NOT_FINITE = 3
+STEPPER_FAILED = 4
+MESSAGES = {
+    OK: "ok",
+    INVALID_INPUT: "invalid input: a value out of range, or one the "
+                   "chatter simulation does not take",
+    NOT_FINITE: "a result is not finite (overflow)",
+    STEPPER_FAILED: "stepper failed: the contact LCP had no solution, or "
+                    "the gaps hover at the open threshold",
+}
+
+
+def title(model: str) -> str:
+    """The first comment line of a chatter sweep's CSV."""
+    return (f"contactsep sweep of the three-beam chatter simulation "
+            f"({model}) on the thesis design")
+
+
+def notes(model: str) -> list[str]:
+    """How the designs were simulated and how to read the columns."""
+    law = ("Hertz contact" if model == "hertz"
+           else "Newton's impact law with e")
+    return [
+        f"model {model}: the three beams, {law}; the adaptive stepper at "
+        f"dt {DEFAULT_DT[model]:g} s; window 0-{LISTING_TAU_S:g} s from "
+        f"the release; a contact is open above {OPEN_THRESHOLD:g} in; the "
+        f"circuit is open while both are",
+        "settings unless fixed or varied: preload_lb = 0, min_open_s = "
+        f"{MIN_OPEN:g}" + (", damping = none" if model == "hertz" else ""),
+        "units in each column's name: _in inch, _s second, _lb_s lb s, "
+        "_lb lb; n_events = discontinuity events (openings >= min_open_s)"
+        "; first_circuit_open_s nan: never open",
+        "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed "
+        "(contactsep.studies.chatter_sweep); failed designs have nan "
+        "results and n_events -1",
+    ]
+
+
+def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
+    """One design's row values (RESULT_COLUMNS order): the design made
+    from ``fields`` (thesis_design overrides) and simulated with
+    ``settings`` (preload, min_open, damping)."""
+    try:
+        design = thesis_design(**fields)
+        result = simulate(design, model=model, samples=1,
+                          single_impulse=False, **settings)
+    except StepperError:
+        return _failed(STEPPER_FAILED)
+    except InputError:
+        return _failed(INVALID_INPUT)
+    except (ArithmeticError, np.linalg.LinAlgError):
+        return _failed(NOT_FINITE)
+    values = (result.first_impact_s, result.first_impulse_lb_s,
+              result.max_lower_gap_in, result.circuit_open_s,
+              result.first_circuit_open_s)
+    if not (math.isfinite(result.energy_ratio) and math.isfinite(
+            result.max_lower_gap_in) and math.isfinite(
+            result.circuit_open_s)):
+        return _failed(NOT_FINITE)
+    return (*values, result.n_events, OK)
+
+
+def _failed(status: int) -> tuple:
+    return (math.nan,) * 5 + (-1, status)
+
+
+def _plain(value):
+    """A NumPy scalar as the Python value simulate() and Design take."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
+    """Simulate designs first..last-1 of a chatter sweep; returns the
+    output columns: the varied and sampled inputs (output names), then
+    RESULT_COLUMNS."""
+    inputs = chunk_inputs(spec, first, last)
+    size = last - first
+    varied = {name: np.broadcast_to(values, (size,))
+              for name, values in inputs.items()}
+    rows = []
+    for i in range(size):
+        fields, settings = dict(spec.base), {**DEFAULT_SETTINGS,
+                                             **spec.settings}
+        for name, values in varied.items():
+            target = settings if name in design_fields.SETTINGS else fields
+            target[name] = _plain(values[i])
+        if spec.model != "hertz":
+            settings.pop("damping")
+        rows.append(simulate_design(fields, spec.model, settings))
+    out = {design_fields.column_name(n): varied[n] for n in spec.fields}
+    results = list(zip(*rows)) if rows else [()] * len(RESULT_COLUMNS)
+    for name, values in zip(RESULT_COLUMNS, results):
+        kind = np.int64 if name in ("n_events", "status") else np.float64
+        out[name] = np.array(values, dtype=kind)
+    return out
+
+
+@dataclass
+class ChatterSummary:
+    """Running statistics of a chatter sweep over its designs with status
+    0; failed designs are counted by status."""
+
+    #: Designs with at least one discontinuity event.
+    opened: int = 0
+    gap: RunningMoments = field(default_factory=RunningMoments)
+    open_time: RunningMoments = field(default_factory=RunningMoments)
+    #: status code -> designs that ended with it (0 excluded).
+    failed: dict = field(default_factory=dict)
+
+    def add(self, columns: dict) -> None:
+        ok = count_failures(self.failed, columns["status"])
+        self.opened += int(np.sum(np.asarray(columns["n_events"])[ok] > 0))
+        self.gap.add(np.asarray(columns["max_lower_gap_in"])[ok])
+        self.open_time.add(np.asarray(columns["circuit_open_s"])[ok])
+
+    @property
+    def n(self) -> int:
+        return self.gap.n
+
+    @property
+    def n_failed(self) -> int:
+        return sum(self.failed.values())
+
+    def as_dict(self) -> dict:
+        """n (designs with status 0: the statistics are theirs),
+        n_failed and n_failed_by_status, n_open (designs with a
+        discontinuity event), p_open = n_open / n and its 95 % Wilson
+        interval p_open_ci95, and the mean and sample sd of the largest
+        lower gap (in) and of the circuit's total open time (s); None
+        where there is nothing to compute them from."""
+        n = self.n
+        return {"n": n, "n_failed": self.n_failed,
+                "n_failed_by_status": dict(sorted(self.failed.items())),
+                "n_open": self.opened,
+                "p_open": self.opened / n if n else None,
+                "p_open_ci95": list(wilson_interval(self.opened, n))
+                if n else None,
+                "max_lower_gap_mean_in": self.gap.mean,
+                "max_lower_gap_sd_in": self.gap.sd,
+                "circuit_open_mean_s": self.open_time.mean,
+                "circuit_open_sd_s": self.open_time.sd}
