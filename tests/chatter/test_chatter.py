@@ -12,7 +12,7 @@ import pytest
 
 import contactsep
 from contactsep import chatter
-from contactsep.chatter import circuit, steppers
+from contactsep.chatter import steppers
 from contactsep.chatter.contacts import HertzLaw, solve_lcp
 from contactsep.chatter.event_driven import (
     rigid_stop_from_design,

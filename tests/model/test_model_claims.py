@@ -10,7 +10,7 @@ import pytest
 import contactsep
 from conftest import THESIS_DECKS
 from contactsep import beams
-from contactsep.model import Design, DesignError, evaluate, thesis_design
+from contactsep.model import DesignError, evaluate, thesis_design
 from contactsep.restored import reference
 
 BACKEND = "numpy"

@@ -3,14 +3,11 @@ written from the equations on its own; and its modes against mpmath."""
 
 from __future__ import annotations
 
-import re
-
 import numpy as np
 import pytest
 
-from conftest import ROOT
 from contactsep import beams
-from contactsep.model import Design, compiled, evaluate, status
+from contactsep.model import Design, compiled, evaluate
 
 SCALARS = ("t1", "v_impact", "psi", "v0", "R", "y3_max", "t_max", "y3_min",
            "t_min", "M1", "M2", "M3")

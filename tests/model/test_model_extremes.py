@@ -20,10 +20,10 @@ from __future__ import annotations
 import json
 import math
 
+import extremum_reference as reference
 import numpy as np
 import pytest
 
-import extremum_reference as reference
 from contactsep import beams
 from contactsep.model import Design, evaluate, status, thesis_design
 

@@ -8,7 +8,6 @@ import pytest
 
 from contactsep import beams
 from contactsep.model import (
-    Design,
     DesignError,
     evaluate,
     status,

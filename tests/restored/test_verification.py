@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import THESIS_DECKS, variant_data_sets, with_modes, write_deck
+from conftest import THESIS_DECKS, variant_data_sets, with_modes
 from contactsep.restored import core, reference, thesis_decks
 
 EPS64 = float(np.finfo(np.float64).eps)

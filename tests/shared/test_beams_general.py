@@ -3,8 +3,6 @@ and analytic identities (never against themselves)."""
 
 from __future__ import annotations
 
-import re
-
 import mpmath
 import numpy as np
 import pytest

@@ -14,10 +14,10 @@ import subprocess
 import sys
 import time
 
+import extremum_reference as reference
 import numpy as np
 import pytest
 
-import extremum_reference as reference
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate, thesis_design

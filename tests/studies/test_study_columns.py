@@ -9,10 +9,10 @@ from __future__ import annotations
 import functools
 import math
 
+import extremum_reference as reference
 import numpy as np
 import pytest
 
-import extremum_reference as reference
 from contactsep import studies
 from contactsep.model import evaluate, thesis_design
 

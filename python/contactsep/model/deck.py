@@ -22,7 +22,11 @@ DECK_TIME_STEP = 0.0005
 _ENDS = ("clamped-free", "clamped-clamped", "clamped-free")
 
 
-def design_from_data_set(data_set: "DataSet", *, listing: bool = True
+# "DataSet" is contactsep.restored.dataset.DataSet, named and not imported:
+# the model reaches the restoration through computed_data_set alone
+# (tests/project/test_layers.py).
+def design_from_data_set(data_set: "DataSet",  # noqa: F821
+                         *, listing: bool = True
                          ) -> Design:
     """The design of a deck data set.  ``listing=True`` also takes the
     listing's readings (ACT without sin, the hybrid L_c mass), so the
@@ -34,11 +38,13 @@ def design_from_data_set(data_set: "DataSet", *, listing: bool = True
         L1=ds.xl, b1=ds.b, h1=ds.h, gamma1=ds.rho / IN3_PER_FT3, E1=ds.e,
         L2=ds.xl2, b2=ds.b2, h2=ds.h2, gamma2=ds.rho2 / IN3_PER_FT3, E2=ds.e,
         Lc=ds.xl2c, L3=ds.xl3, b3=ds.b3, h3=ds.h3,
-        gamma3=ds.rho3 / IN3_PER_FT3, E3=ds.e, ys=ds.ystat, e=ds.er, n_modes=ds.n, gap=ds.dely, **options)
+        gamma3=ds.rho3 / IN3_PER_FT3, E3=ds.e, ys=ds.ystat, e=ds.er,
+        n_modes=ds.n, gap=ds.dely, **options)
 
 
 def data_set_from_design(design: Design, *,
-                         time_step: float = DECK_TIME_STEP) -> "DataSet":
+                         time_step: float = DECK_TIME_STEP
+                         ) -> "DataSet":  # noqa: F821
     """The deck data set of a single design that the listing can run:
     one E, the thesis's end conditions, tip and mid-span contacts, one N,
     tau = 0.060 s.  Mode cards are computed

@@ -136,7 +136,7 @@ def check_line(raw: bytes, complete: bool = True) -> tuple[int, int, str]:
             continue
         if code == 9:
             found = ("found a TAB (character 0x09), expected a blank "
-                     f"(a TAB has no fixed column on a card)")
+                     "(a TAB has no fixed column on a card)")
         elif code == 13:
             found = ("found a CR (character 0x0D) not followed by "
                      "LF, expected a printable ASCII character (a card "
