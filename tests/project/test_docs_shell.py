@@ -21,7 +21,8 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 #: Commands checked for syntax only: installing, measuring.
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/")
 #: Commands run only in the slow set (a minute or a large file).
-SLOW = ("--samples 1000000", "study chatter", "study all")
+SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
+        "study conclusion", "--preload 20")
 #: Pages whose commands belong to a layer that changes them often (the
 #: chatter layer's own page): run in the slow set.
 SLOW_PAGES = {"chatter.md"}
@@ -81,7 +82,7 @@ def checkout(tmp_path_factory) -> Path:
         pytest.skip("the contactsep command is not beside the interpreter")
     where = tmp_path_factory.mktemp("checkout")
     (where / "data").symlink_to(ROOT / "data")
-    (where / "docs").mkdir()
+    (where / "docs" / "studies").mkdir(parents=True)
     venv = where / ".venv" / "bin"
     venv.mkdir(parents=True)
     (venv / "activate").write_text(f'PATH="{bin_dir}:$PATH"\n')
