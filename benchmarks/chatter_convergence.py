@@ -12,10 +12,23 @@
    against the adaptive Newton stepper.
 3. N: both models at their default dt, N = 4 ... 64 (d = 0.25 in).
 4. Appendix E on the rigid stop, N = 1 ... 32.
+5. Sensitivity (``sensitivity``, about 15 min): where the Newton open
+   times of two steps differ (the upper contact's closed time, opening
+   by opening, and its flights inside the long closed bands); the open
+   time under relative changes of the upper contact's length L1 from
+   1e-14 to 1e-6 (both Newton steppers, Hertz and Appendix E); for
+   every thesis separator and N = 4, 16, 32, ensembles of 16 runs with
+   L2 (1 + k 1e-9), k = 0 ... 15, at each dt from 1e-7 s: the spread of
+   the open time and of the largest lower gap, and how far each
+   ensemble mean and the unperturbed run lie from theirs at the finest
+   dt; the same at open thresholds of 1e-5 and 1e-4 in; the lower
+   contact's lift-off at N = 32, d = 0.125 in; wider ensembles (64
+   runs, L2 (1 + k 1e-7)) in both Newton codes.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time
 
@@ -104,10 +117,213 @@ def appendix_e() -> None:
               f"{r.final_energy / r.initial_energy:.4g} |", flush=True)
 
 
+ENSEMBLE = 16
+WIDE = 64
+ADAPTIVE_STEPS = tuple(("adaptive", dt) for dt in STEPS[2:])
+
+
+def perturbed(n, d, rel, field="L2"):
+    """The thesis design with a length scaled by 1 + rel (L2, the
+    separator's: its frequencies move by -2 rel; L1, the upper
+    contact's, which Appendix E also sees)."""
+    design = contactsep.thesis_design(n_modes=n, d=d)
+    return dataclasses.replace(
+        design, **{field: getattr(design, field) * (1.0 + rel)})
+
+
+def ensemble(n, d, dt, stepper="adaptive", size=ENSEMBLE, spacing=1e-9,
+             **options):
+    """Open times, largest lower gaps and first openings of ``size``
+    Newton runs with L2 scaled by 1 + k spacing, k = 0 ... size - 1
+    (k = 0 is the unperturbed design)."""
+    runs = [chatter.simulate(perturbed(n, d, k * spacing), model="newton",
+                             dt=dt, samples=1, stepper=stepper,
+                             single_impulse=False, **options)
+            for k in range(size)]
+    return tuple(np.array([getattr(r, name) for r in runs]) for name in (
+        "circuit_open_s", "max_lower_gap_in", "first_circuit_open_s"))
+
+
+def closed_bands() -> None:
+    print("\n## Where two steps differ: N = 4, d = 0.5 in, adaptive\n")
+    for dt in STEPS[2:5]:
+        r = chatter.simulate(perturbed(4, 0.5, 0.0), model="newton", dt=dt,
+                             samples=600_000, single_impulse=False)
+        upper, lower = r.upper_open_intervals, r.lower_open_intervals
+        closed = np.c_[upper[:-1, 1], upper[1:, 0]]
+        closed = closed[(closed[:, 0] >= lower[0, 0])
+                        & (closed[:, 1] <= lower[0, 1])]
+        span = np.diff(closed, axis=1).ravel()
+        bands = closed[span > 1e-4]
+        inside = np.zeros(len(r.t), bool)
+        for start, end in bands:
+            inside |= (r.t > start) & (r.t < end)
+        openings = np.diff(r.circuit_open_intervals, axis=1).ravel()
+        short = openings[openings < r.min_open_s]
+        print(f"dt = {dt:.3g} s: open {r.circuit_open_s:.6f} s = lower "
+              f"contact open {np.diff(lower).sum():.6f} s ({len(lower)} "
+              f"interval) - upper contact closed {span.sum():.6f} s: "
+              f"{len(bands)} bands over 0.1 ms ({span[span > 1e-4].sum():.6f}"
+              f" s; upper gap in them {r.gap_upper[inside].min():.2e} to "
+              f"{r.gap_upper[inside].max():.2e} in, 1e-7 s samples) and "
+              f"{np.sum(span <= 1e-4)} shorter ({span[span <= 1e-4].sum():.6f}"
+              f" s); events {np.diff(r.events).sum():.6f} s, openings "
+              f"under min_open: {len(short)}, {short.sum():.2e} s",
+              flush=True)
+    # the bands at 1e-8 s samples: flights above the separator inside
+    t_end = 0.033
+    r = chatter.simulate(perturbed(4, 0.5, 0.0), model="newton", dt=1e-8,
+                         t_end=t_end, samples=int(round(t_end / 1e-8)),
+                         single_impulse=False)
+    upper = r.upper_open_intervals
+    closed = np.c_[upper[:-1, 1], upper[1:, 0]]
+    band = closed[np.argmax(np.diff(closed, axis=1))]
+    inside = (r.t > band[0]) & (r.t < band[1])
+    gap, step = r.gap_upper[inside], r.t[1] - r.t[0]
+    flying = np.flatnonzero(gap > 1e-9)
+    flights = [run for run in np.split(flying, np.flatnonzero(
+        np.diff(flying) > 1) + 1) if len(run) >= 3]
+    length = np.array([(len(run) + 1) * step for run in flights])
+    apex = np.array([gap[run].max() for run in flights])
+    print(f"dt = 1e-8 s, the longest band ({band[0]:.6f}-{band[1]:.6f} s): "
+          f"{len(flights)} flights, {np.median(length):.2e} s (median; "
+          f"longest {length.max():.2e} s), apex {np.median(apex):.2e} in "
+          f"(median; highest {apex.max():.2e} in), implying a relative "
+          f"acceleration 8 apex / length^2 = "
+          f"{np.median(8 * apex / length**2):.1e} in/s^2 (median)")
+
+
+def sensitivity_single() -> None:
+    print("\n## One design, N = 4, d = 0.5 in: L1 scaled by 1 + rel; "
+          "open time (s) and the largest shift of an upper contact's "
+          "crossing from the run at rel = 0 (s; 'branched': another "
+          "number of crossings)\n")
+    cases = (("newton", "adaptive", 2.5e-8), ("newton", "fixed", 1e-8),
+             ("hertz", "adaptive", 5e-8), ("appE", None, None))
+    print("| rel | " + " | ".join(
+        f"{m} {s or ''} {dt or ''}".replace("  ", " ") for m, s, dt in cases)
+        + " |")
+    print("|---|" + "---|" * len(cases))
+    unperturbed = {}
+    for rel in (0.0, 1e-14, 1e-13, 1e-12, 1e-10, 1e-8, 1e-6):
+        cells = []
+        for model, stepper, dt in cases:
+            options = {} if stepper is None else {"stepper": stepper}
+            r = chatter.simulate(perturbed(4, 0.5, rel, "L1"), model=model,
+                                 dt=dt, samples=1, single_impulse=False,
+                                 **options)
+            crossings = r.upper_open_intervals.ravel()
+            reference = unperturbed.setdefault(model + str(stepper),
+                                               crossings)
+            shift = (f"{np.max(np.abs(crossings - reference)):.0e}"
+                     if len(crossings) == len(reference) else "branched")
+            # appE never opens the circuit: its upper contact's open time
+            value = (r.circuit_open_s if model != "appE" else
+                     float(np.sum(np.diff(r.upper_open_intervals))))
+            cells.append(f"{value:.6f}, {shift}")
+        print(f"| {rel:.0e} | " + " | ".join(cells) + " |", flush=True)
+
+
+def lower_branching() -> None:
+    print("\n## N = 32, d = 0.125 in, adaptive: the lower contact's "
+          "lift-off\n")
+    print("| dt (s) | max lower gap (in) | lower contact openings | "
+          "open (s) |")
+    print("|---|---|---|---|")
+    for dt in (5e-8, 2e-8, 1.5e-8, 1.25e-8, 1e-8, 8e-9, 6.25e-9, 4e-9,
+               3.125e-9):
+        r = chatter.simulate(perturbed(32, 0.125, 0.0), model="newton",
+                             dt=dt, samples=1, single_impulse=False)
+        print(f"| {dt:.4g} | {r.max_lower_gap_in:.6f} | "
+              f"{len(r.lower_open_intervals)} | {r.circuit_open_s:.5f} |",
+              flush=True)
+
+
+def sensitivity_ensembles() -> None:
+    print(f"\n## Newton (adaptive), ensembles of {ENSEMBLE}: L2 (1 + k "
+          f"1e-9); per dt: sd / mean of the open time and of the max "
+          f"lower gap, and each ensemble mean's departure from the one "
+          f"at the finest dt (in units of its standard error)\n")
+    print("| N | d (in) | dt (s) | open mean (s) | open sd | open mean "
+          "departure | single run departure | gap mean (in) | gap sd | "
+          "gap mean departure | single run departure | first opening "
+          "departure |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for n in MODES:
+        for d in THICKNESSES:
+            found = [ensemble(n, d, dt) for dt in STEPS[1:]]
+            open_ref, gap_ref, first_ref = found[-1]
+            for dt, (open_s, gap, first) in zip(STEPS[1:], found):
+                print(f"| {n} | {d} | {dt:.3g} | {open_s.mean():.5f} | "
+                      f"{relative_sd(open_s):.2%} | "
+                      f"{departure(open_s, open_ref)} | "
+                      f"{open_s[0] / open_ref[0] - 1:+.2%} | "
+                      f"{gap.mean():.6f} | {relative_sd(gap):.2%} | "
+                      f"{departure(gap, gap_ref)} | "
+                      f"{gap[0] / gap_ref[0] - 1:+.2%} | "
+                      f"{first[0] / first_ref[0] - 1:+.1e} |", flush=True)
+
+
+def sensitivity_codes() -> None:
+    print(f"\n## Open time: ensemble means of {WIDE} runs, L2 (1 + k "
+          f"1e-7), k = 0 ... {WIDE - 1}, in both codes\n")
+    print("| N | d (in) | stepper | dt (s) | open mean (s) | sd | "
+          "standard error | time (s) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for n, d, cases in (
+            (4, 0.5, ADAPTIVE_STEPS + (("fixed", 1e-8), ("fixed", 5e-9))),
+            (4, 0.25, ADAPTIVE_STEPS + (("fixed", 1e-8), ("fixed", 5e-9))),
+            (16, 0.25, (("adaptive", 5e-8), ("adaptive", 6.25e-9),
+                        ("fixed", 1e-8)))):
+        for stepper, dt in cases:
+            start = time.perf_counter()
+            open_s, _, _ = ensemble(n, d, dt, stepper, WIDE, 1e-7)
+            print(f"| {n} | {d} | {stepper} | {dt:.3g} | "
+                  f"{open_s.mean():.5f} | {relative_sd(open_s):.2%} | "
+                  f"{relative_sd(open_s) / np.sqrt(WIDE):.2%} | "
+                  f"{time.perf_counter() - start:.0f} |", flush=True)
+
+
+def threshold_study() -> None:
+    print(f"\n## Open threshold, N = 4, d = 0.5 in: ensembles of "
+          f"{ENSEMBLE} (L2 (1 + k 1e-9)), adaptive\n")
+    print("| threshold (in) | " + " | ".join(
+        f"dt = {dt:.3g} s" for _, dt in ADAPTIVE_STEPS) + " |")
+    print("|---|" + "---|" * len(ADAPTIVE_STEPS))
+    for threshold in (1e-6, 1e-5, 1e-4):
+        cells = []
+        for _, dt in ADAPTIVE_STEPS:
+            open_s = ensemble(4, 0.5, dt, open_threshold=threshold)[0]
+            cells.append(f"{open_s.mean():.5f} ± "
+                         f"{relative_sd(open_s):.1%}")
+        print(f"| {threshold:.0e} | " + " | ".join(cells) + " |",
+              flush=True)
+
+
+def relative_sd(values) -> float:
+    return float(np.std(values, ddof=1) / np.mean(values))
+
+
+def departure(values, reference) -> str:
+    """Relative departure of the means and its size in standard errors
+    of the difference (both ensembles' sampling errors)."""
+    diff = values.mean() / reference.mean() - 1.0
+    error = np.hypot(np.std(values, ddof=1), np.std(reference, ddof=1)) \
+        / np.sqrt(len(values)) / reference.mean()
+    if error == 0.0:
+        return f"{diff:+.2%}"
+    return f"{diff:+.2%} ({abs(diff) / error:.1f})"
+
+
 def main(parts) -> None:
     studies = {"dt": lambda: (dt_study("hertz"), dt_study("newton")),
                "independent": independent_newton, "n": n_study,
-               "appE": appendix_e}
+               "appE": appendix_e,
+               "sensitivity": lambda: (closed_bands(), sensitivity_single(),
+                                       sensitivity_ensembles(),
+                                       threshold_study(),
+                                       lower_branching(),
+                                       sensitivity_codes())}
     for name in parts or studies:
         studies[name]()
 
