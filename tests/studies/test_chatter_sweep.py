@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 import pytest
+from sweep_collect import Collect
 
 from contactsep.chatter import simulate
 from contactsep.chatter.runners import StepperError
@@ -30,21 +31,6 @@ RESULTS = ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",
 
 def _no_constant(name):
     raise AssertionError(f"not strict JSON: {name}")
-
-
-class Collect:
-    def __init__(self):
-        self.parts = []
-
-    def write(self, columns):
-        self.parts.append({k: np.array(v) for k, v in columns.items()})
-
-    def close(self):
-        pass
-
-    def table(self):
-        return {k: np.concatenate([p[k] for p in self.parts])
-                for k in self.parts[0]}
 
 
 def read_csv(path):

@@ -17,6 +17,7 @@ import time
 import extremum_reference as reference
 import numpy as np
 import pytest
+from sweep_collect import Collect
 
 from contactsep import studies
 from contactsep.cli import main
@@ -154,21 +155,6 @@ def spec(**kw):
                            sample=["ys=normal(0.5,0.02)",
                                    "e=uniform(0.3,0.45)"],
                            samples=40, seed=7, **kw)
-
-
-class Collect:
-    def __init__(self):
-        self.parts = []
-
-    def write(self, columns):
-        self.parts.append({k: np.array(v) for k, v in columns.items()})
-
-    def close(self):
-        pass
-
-    def table(self):
-        return {k: np.concatenate([p[k] for p in self.parts])
-                for k in self.parts[0]}
 
 
 def test_sweep_is_independent_of_chunking_and_workers():

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from sweep_collect import Collect
 
 from contactsep.model import evaluate, thesis_design
 from contactsep.studies import runner, sweep
@@ -14,21 +15,6 @@ from contactsep.studies import runner, sweep
 #: Each result column and the Evaluation field it must equal.
 RESULTS = {"y3_max_in": "y3_max", "t_max_s": "t_max", "psi_lb_s": "psi",
            "v0_in_s": "v0", "status": "status"}
-
-
-class Collect:
-    def __init__(self):
-        self.parts = []
-
-    def write(self, columns):
-        self.parts.append({k: np.array(v) for k, v in columns.items()})
-
-    def close(self):
-        pass
-
-    def table(self):
-        return {k: np.concatenate([p[k] for p in self.parts])
-                for k in self.parts[0]}
 
 
 def test_every_result_column_has_a_check_here():

@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 import pytest
+from sweep_collect import Collect
 
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
@@ -34,21 +35,6 @@ def read_csv(path) -> tuple[list[str], list[dict]]:
     rows = list(csv.DictReader(io.StringIO("\n".join(
         lines[len(comments):]))))
     return comments, rows
-
-
-class Collect:
-    def __init__(self):
-        self.parts = []
-
-    def write(self, columns):
-        self.parts.append({k: np.array(v) for k, v in columns.items()})
-
-    def close(self):
-        pass
-
-    def table(self):
-        return {k: np.concatenate([p[k] for p in self.parts])
-                for k in self.parts[0]}
 
 
 # Wilson's interval against published values and scipy
