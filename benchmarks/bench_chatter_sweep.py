@@ -21,19 +21,11 @@ import sys
 import time
 
 import numpy as np
+from bench_chatter import best  # this folder: run as a script
 
 from contactsep.chatter import simulate
 from contactsep.model import thesis_design
 from contactsep.studies import chatter_sweep, preload, runner, sweep
-
-
-def best(fn, repeats) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def spec(preload_lb=None):
