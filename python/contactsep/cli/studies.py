@@ -19,6 +19,7 @@ from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies.chatter_sweep import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
+from contactsep.studies.fields import SETTINGS
 from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
@@ -145,14 +146,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     chatter = sweep.add_argument_group(
         "chatter settings (--model hertz or newton; each may instead be "
         "varied or sampled)")
-    chatter.add_argument("--preload", metavar="LB",
-                         help="force pressing the lower contact on the "
-                              "separator at the start (lb; default 0)")
-    chatter.add_argument("--min-open", metavar="S",
-                         help="shortest circuit opening counted as a "
-                              "discontinuity event (s; default 1e-05)")
-    chatter.add_argument("--damping", metavar="{none,flores}",
-                         help="Hertz contact damping (default none)")
+    for name, metavar, default in (("preload", "LB", "lb; default 0"),
+                                   ("min_open", "S", "s; default 1e-05"),
+                                   ("damping", "{none,flores}",
+                                    "default none")):
+        chatter.add_argument("--" + name.replace("_", "-"),
+                             metavar=metavar,
+                             help=f"{SETTINGS[name][2]} ({default})")
     sweep.add_argument("--csv", metavar="FILE",
                        help="one row per design, written as the sweep goes "
                             "to a temporary file beside FILE that replaces "
