@@ -12,7 +12,7 @@ from hostile_cli import main, refusal, strict_json
 from test_numbers import NEVER, VALUES
 
 
-@pytest.mark.parametrize("option", ["--preload", "--min-open"])
+@pytest.mark.parametrize("option", ["--preload", "--min-open", "--dt"])
 @pytest.mark.parametrize("value", VALUES)
 def test_chatter_sweep_settings_at_every_extreme(capsys, option, value):
     """One design at N = 2: a value the simulation refuses (a preload

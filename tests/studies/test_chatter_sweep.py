@@ -247,6 +247,55 @@ def test_fixed_settings_reach_every_design(tmp_path, capsys):
     assert summary["p_open"] == 1.0
 
 
+def test_a_fixed_and_a_varied_dt_reach_every_design(tmp_path, capsys):
+    """--dt and --vary dt: each row is simulate() at that step (a step
+    changes every instant: the rows must differ where the steps do),
+    and the CSV's notes name the step."""
+    steps = (5e-8, 3e-8)
+    csv_path = tmp_path / "steps.csv"
+    assert main(["sweep", "--model", "newton", "--n-modes", "4",
+                 "--vary", f"dt={steps[0]},{steps[1]}", "--vary",
+                 "d=0.25,0.5", "--csv", str(csv_path), "--workers",
+                 "1"]) == 0
+    comments, rows = read_csv(csv_path)
+    assert any("the adaptive stepper at dt per row;" in c
+               for c in comments)
+    assert len(rows) == 4
+    for row in rows:
+        r = simulate(thesis_design(d=float(row["d_in"]), n_modes=4),
+                     model="newton", dt=float(row["dt_s"]), samples=1,
+                     single_impulse=False)
+        for key in RESULTS:
+            assert float(row[key]) == pytest.approx(getattr(r, key),
+                                                    rel=1e-11), key
+    by_step = {s: [r["first_impact_s"] for r in rows
+                   if float(r["dt_s"]) == s] for s in steps}
+    assert by_step[steps[0]] != by_step[steps[1]]
+    capsys.readouterr()
+    assert main(["sweep", "--model", "hertz", "--n-modes", "4", "--dt",
+                 "4e-8", "--csv", str(csv_path), "--json", "--workers",
+                 "1"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["inputs"]["settings"] == {"dt_s": 4e-8}
+    comments, rows = read_csv(csv_path)
+    assert any("the adaptive stepper at dt 4e-08 s;" in c for c in comments)
+    r = simulate(thesis_design(n_modes=4), model="hertz", dt=4e-8,
+                 samples=1, single_impulse=False)
+    assert float(rows[0]["circuit_open_s"]) == pytest.approx(
+        r.circuit_open_s, rel=1e-11)
+
+
+def test_a_coarse_dt_is_warned_of_once(capsys):
+    """Four designs at 20 times the default step: one warning line, not
+    one a design."""
+    assert main(["sweep", "--model", "newton", "--n-modes", "2", "--dt",
+                 "1e-6", "--vary", "d=0.2,0.3,0.4,0.5", "--json",
+                 "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "warning: --dt: 1e-06 s is more " \
+        "than 10 times the converged default 5e-08 s" in err, err
+
+
 def test_an_eq23_sweep_is_unchanged(capsys):
     assert main(["sweep", "--vary", "d=0.2,0.3", "--json", "--workers",
                  "1"]) == 0
@@ -281,6 +330,17 @@ def test_an_eq23_sweep_is_unchanged(capsys):
      "field"),
     (["sweep", "--model", "hertz", "--sample", "damping=uniform(0,1)"],
      "damping cannot be sampled"),
+    (["sweep", "--model", "newton", "--sample", "dt=uniform(1e-8,5e-8)"],
+     "dt cannot be sampled"),
+    (["sweep", "--dt", "1e-8"],
+     "dt: a setting of the chatter simulation; needs --model"),
+    (["sweep", "--model", "newton", "--dt", "0"],
+     "--dt: found '0', expected a time step > 0 and below the window"),
+    (["sweep", "--model", "newton", "--vary", "dt=1e-12:5e-8:3"],
+     "--vary dt: found 1e-12, expected at least 7.2e-11 s at N = 4"),
+    (["sweep", "--model", "newton", "--vary", "dt=5e-8,0.1"],
+     "--vary dt: found '0.1', expected a time step > 0 and below the "
+     "window, 0.06 s"),
 ])
 def test_bad_chatter_sweeps_are_one_line_errors(argv, message, capsys):
     assert main(argv) == 2

@@ -231,6 +231,12 @@ def _check(design, model, damping, backend, preload, samples, theta, nu,
                "constant is 8(1 - e)/(5 e V))")
 
 
+def smallest_dt(n_modes: int, t_end: float = LISTING_TAU_S) -> float:
+    """The smallest step (s) a run of ``n_modes`` modes per member over
+    ``t_end`` takes: at most MAX_STEPS steps and MAX_WORK steps x modes."""
+    return t_end / min(MAX_STEPS, MAX_WORK / (3 * n_modes))
+
+
 def simulate(design, model="newton", damping="none", dt=None, *,
              t_end=LISTING_TAU_S, open_threshold=circuit.OPEN_THRESHOLD,
              min_open=circuit.MIN_OPEN, preload=0.0, nu=DEFAULT_NU,
@@ -274,7 +280,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     modes = 3 * int(design.n_modes)
-    least = t_end / min(MAX_STEPS, MAX_WORK / modes)
+    least = smallest_dt(int(design.n_modes), t_end)
     if dt < least:
         raise ChatterError(f"dt: found {dt!r}, expected at least "
                            f"{least:.3g} s at N = {int(design.n_modes)} (at "

@@ -27,6 +27,7 @@ from contactsep.studies.sweep import (
     MAX_DESIGNS,
     TARGET_CHUNK_S,
 )
+from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100
@@ -120,7 +121,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                    "contactsep sweep --model hertz --n-modes 16 "
                    "--preload 20 --sample 'd=normal(0.25,0.01)' "
                    "--samples 1000"))
-    sweep.add_argument("--model", choices=("eq23", "hertz", "newton"),
+    sweep.add_argument("--model", choices=SWEEP_MODELS,
                        default="eq23",
                        help="eq23: the general model's single impulse "
                             "(default); hertz, newton: the three-beam "
@@ -149,7 +150,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     for name, metavar, default in (("preload", "LB", "lb; default 0"),
                                    ("min_open", "S", "s; default 1e-05"),
                                    ("damping", "{none,flores}",
-                                    "default none")):
+                                    "default none"),
+                                   ("dt", "S", "s; default 5e-08; "
+                                    "varied, not sampled")):
         chatter.add_argument("--" + name.replace("_", "-"),
                              metavar=metavar,
                              help=f"{SETTINGS[name][2]} ({default})")
@@ -344,7 +347,8 @@ def _settings(args: argparse.Namespace) -> dict:
     from contactsep.studies.fields import parse_value
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
-             "damping": (args.damping, "--damping")}
+             "damping": (args.damping, "--damping"),
+             "dt": (args.dt, "--dt")}
     return {name: parse_value(name, text, option)
             for name, (text, option) in typed.items() if text is not None}
 

@@ -14,6 +14,7 @@ discontinuity event: ``p_open`` and its Wilson interval.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -21,7 +22,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.circuit import MIN_OPEN, OPEN_THRESHOLD
 from contactsep.chatter.runners import StepperError
-from contactsep.chatter.simulate import DEFAULT_DT
+from contactsep.chatter.simulate import DEFAULT_DT, CoarseStepWarning
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
@@ -38,7 +39,7 @@ RESULT_COLUMNS = ("first_impact_s", "first_impulse_lb_s",
 CHUNK_SIZE = 8
 #: The simulation's settings when a sweep neither fixes nor varies them.
 DEFAULT_SETTINGS = {"preload": 0.0, "min_open": MIN_OPEN,
-                    "damping": "none"}
+                    "damping": "none", "dt": None}
 
 #: Per-design status codes of a chatter sweep (0, 2 and 3 mean what
 #: they mean in an eq23 sweep, contactsep.model.status).
@@ -62,13 +63,17 @@ def title(model: str) -> str:
             f"({model}) on the thesis design")
 
 
-def notes(model: str) -> list[str]:
-    """How the designs were simulated and how to read the columns."""
+def notes(model: str, dt=None) -> list[str]:
+    """How the designs were simulated (``dt`` the fixed step, None for
+    the default, "per row" where it is varied) and how to read the
+    columns."""
     law = ("Hertz contact" if model == "hertz"
            else "Newton's impact law with e")
+    step = dt if isinstance(dt, str) else (
+        f"{DEFAULT_DT[model] if dt is None else dt:g} s")
     return [
         f"model {model}: the three beams, {law}; the adaptive stepper at "
-        f"dt {DEFAULT_DT[model]:g} s; window 0-{LISTING_TAU_S:g} s from "
+        f"dt {step}; window 0-{LISTING_TAU_S:g} s from "
         f"the release; a contact is open above {OPEN_THRESHOLD:g} in; the "
         f"circuit is open while both are",
         "settings unless fixed or varied: preload_lb = 0, min_open_s = "
@@ -85,11 +90,14 @@ def notes(model: str) -> list[str]:
 def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
     """One design's row values (RESULT_COLUMNS order): the design made
     from ``fields`` (thesis_design overrides) and simulated with
-    ``settings`` (preload, min_open, damping)."""
+    ``settings`` (preload, min_open, damping, dt; a coarse dt is warned
+    of once, by the sweep, not by every design)."""
     try:
         design = thesis_design(**fields)
-        result = simulate(design, model=model, samples=1,
-                          single_impulse=False, **settings)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", CoarseStepWarning)
+            result = simulate(design, model=model, samples=1,
+                              single_impulse=False, **settings)
     except StepperError:
         return _failed(STEPPER_FAILED)
     except InputError:

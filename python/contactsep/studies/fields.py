@@ -15,10 +15,11 @@ value or raises an :class:`~contactsep.errors.InputError` naming what
 the user typed.
 
 Beside the Design's fields, the chatter sweeps (``contactsep sweep
---model hertz|newton``) fix, vary or sample three settings of the
-simulation (:data:`SETTINGS`: ``preload``, ``min_open``, ``damping``);
-they are named, read and written the same way, but are not design
-fields (``--set preload=...`` is refused, naming them).
+--model hertz|newton``) fix, vary or sample four settings of the
+simulation (:data:`SETTINGS`: ``preload``, ``min_open``, ``damping``,
+``dt``; dt is fixed or varied, not sampled); they are named, read and
+written the same way, but are not design fields (``--set preload=...``
+is refused, naming them).
 """
 
 from __future__ import annotations
@@ -84,9 +85,11 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
                            "discontinuity event"),
     "damping": ("", "", "Hertz contact damping: none (elastic) or flores "
                         "(calibrated to e)"),
+    "dt": ("s", "s", "the adaptive stepper's time step (a convergence "
+                     "check: docs/chatter.md)"),
 }
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
-VARIABLE_SETTINGS = ("preload", "min_open", "damping")
+VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt")
 SAMPLED_SETTINGS = ("preload", "min_open")
 
 #: Other names accepted for a field wherever a field is named on input.
@@ -160,7 +163,8 @@ def parse_value(field: str, text, label: str):
 
     Real fields take a number (any float; the Design checks its range;
     x1, x2, x3 and Lc also None, their default), the settings preload
-    and min_open a finite number >= 0, damping none or flores,
+    and min_open a finite number >= 0, dt one > 0 below the window,
+    damping none or flores,
     end conditions and the options one of their words, ``n_modes`` an
     integer >= 1 or three of them ('4,16,4').
     """
@@ -191,15 +195,18 @@ def parse_value(field: str, text, label: str):
 
 
 def _setting(field: str, text, label: str) -> float:
-    """preload (lb) or min_open (s): a finite number >= 0 (the chatter
-    layer refuses the rest; refused here, it is one line before any
-    work)."""
+    """preload (lb) or min_open (s): a finite number >= 0; dt (s): a
+    finite number > 0 and below the window (the chatter layer refuses
+    the rest; refused here, it is one line before any work)."""
     try:
         if isinstance(text, bool):
             raise ValueError
         value = float(text)
     except (TypeError, ValueError):
         value = math.nan
+    if field == "dt" and not (0.0 < value < LISTING_TAU_S):
+        raise InputError(f"{label}: found {text!r}, expected a time step "
+                         f"> 0 and below the window, {LISTING_TAU_S:g} s")
     if not (math.isfinite(value) and value >= 0.0):
         raise InputError(f"{label}: found {text!r}, expected a "
                          f"{'force' if field == 'preload' else 'time'} "

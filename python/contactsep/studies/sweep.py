@@ -24,12 +24,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
+from contactsep.studies.sweep_checks import (
+    SweepError,
+    check_dt,
+    check_model,
+    check_preload,
+)
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
 SAMPLE_BLOCK = 65536
@@ -49,17 +54,13 @@ CHUNK_MEMORY = 64 << 20
 MAX_DESIGNS = 10**12
 #: Output columns beside the varied fields.
 RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
-#: What a sweep may evaluate: the general model, or a chatter model.
-MODELS = ("eq23", "hertz", "newton")
 
 #: What --vary and --sample take: design fields, and chatter settings
 #: (make_spec refuses the settings for eq23).
 _VARIABLE = design_fields.VARIABLE + design_fields.VARIABLE_SETTINGS
 _SAMPLED = design_fields.SAMPLED + design_fields.SAMPLED_SETTINGS
-
-
-class SweepError(InputError):
-    """A sweep specification the command refuses."""
+#: What --vary takes as START:STOP:COUNT: the numbers.
+_LINEAR = _SAMPLED + ("dt",)
 
 
 def _field(name: str, option: str, allowed: tuple) -> str:
@@ -108,7 +109,7 @@ def parse_vary(text: str) -> tuple[str, object]:
     if not sep:
         raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
                          f"NAME=V1,V2,...")
-    if ":" in values_text and field in _SAMPLED:
+    if ":" in values_text and field in _LINEAR:
         try:
             start, stop, count = values_text.split(":")
             start, stop, count = float(start), float(stop), int(count)
@@ -452,8 +453,8 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
         raise SweepError(f"{', '.join(sorted(fixed))}: fixed by a design "
                          f"option and varied or sampled too")
     swept = set(names) | {s[0] for s in sample}
-    _check_model(model, backend, swept | set(settings))
-    _check_preload(settings.get("preload"), base, swept)
+    check_model(model, backend, swept | set(settings))
+    check_preload(settings.get("preload"), base, swept)
     if samples is None:
         samples = 1000 if sample else 1
     if isinstance(samples, bool) or not isinstance(samples, int) or \
@@ -469,49 +470,16 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
+    steps = [settings["dt"]] if "dt" in settings else []
+    for name, values in vary:
+        if name == "dt":
+            steps += [values.start, values.stop] if isinstance(
+                values, LinearAxis) else np.asarray(values).tolist()
+    check_dt(steps, spec.max_modes, "--dt" if "dt" in settings
+             else "--vary dt", model)
     if spec.size > MAX_DESIGNS:
         raise SweepError(f"the sweep has {spec.size:.3g} designs "
                          f"({' x '.join(str(n) for n in spec.grid_shape)}"
                          f"{f' x {samples}' if sample else ''}), expected at "
                          f"most {MAX_DESIGNS:,}")
     return spec
-
-
-#: Design fields the largest preload a simulation takes depends on (the
-#: separator's and the lower contact's flexibility at the contact; the
-#: densities cancel: M p^2 does not depend on them).
-_PRELOAD_LIMIT_FIELDS = {"L2", "b2", "h2", "E2", "end2", "x2", "L3", "b3",
-                         "h3", "E3", "end3", "x3", "n_modes"}
-
-
-def _check_preload(preload, base: dict, swept: set) -> None:
-    """A fixed preload above what the simulation takes for every design
-    (the limit depends on no swept field) is refused before any work;
-    otherwise a design above its limit is its row's status 2."""
-    if preload is None or swept & _PRELOAD_LIMIT_FIELDS:
-        return
-    from contactsep.chatter.simulate import largest_preload
-    most = largest_preload(thesis_design(**base))
-    if preload > most:
-        raise SweepError(f"--preload: found {preload!r}, expected at most "
-                         f"{most:.6g} lb for this design (it would bend "
-                         f"the lower contact or the separator by more "
-                         f"than its length)")
-
-
-def _check_model(model: str, backend: str, used: set) -> None:
-    """The settings belong to the chatter models, damping to Hertz; the
-    chatter models run compiled."""
-    if model not in MODELS:
-        raise SweepError(f"--model: found {model!r}, expected one of "
-                         f"{', '.join(MODELS)}")
-    settings = sorted(used & set(design_fields.SETTINGS))
-    if model == "eq23" and settings:
-        raise SweepError(f"{', '.join(settings)}: a setting of the chatter "
-                         f"simulation; needs --model hertz or newton")
-    if model == "newton" and "damping" in used:
-        raise SweepError("damping: the Hertz contact's (--model hertz); "
-                         "Newton's impact law has e")
-    if model != "eq23" and backend != "compiled":
-        raise SweepError(f"--backend {backend}: the chatter sweeps run the "
-                         f"compiled steppers")

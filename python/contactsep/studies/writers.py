@@ -42,7 +42,8 @@ def column_notes(spec: SweepSpec | None) -> list[str]:
     """How to read the columns (CSV comments, Parquet metadata)."""
     if spec is None or spec.model == "eq23":
         return [COLUMNS_NOTE]
-    return chatter_sweep.notes(spec.model)
+    dt = "per row" if "dt" in spec.fields else spec.settings.get("dt")
+    return chatter_sweep.notes(spec.model, dt)
 
 
 def _row_format(columns: dict) -> str:

@@ -1,0 +1,87 @@
+"""What a sweep specification must satisfy before any work: the model
+and its settings, a fixed preload within what the simulation takes, and
+steps the simulation takes (one line each, naming the option)."""
+
+from __future__ import annotations
+
+import warnings
+
+from contactsep.errors import InputError
+from contactsep.model import thesis_design
+from contactsep.studies import fields as design_fields
+
+#: What a sweep may evaluate: the general model, or a chatter model.
+MODELS = ("eq23", "hertz", "newton")
+
+#: Design fields the largest preload a simulation takes depends on (the
+#: separator's and the lower contact's flexibility at the contact; the
+#: densities cancel: M p^2 does not depend on them).
+_PRELOAD_LIMIT_FIELDS = {"L2", "b2", "h2", "E2", "end2", "x2", "L3", "b3",
+                         "h3", "E3", "end3", "x3", "n_modes"}
+
+
+class SweepError(InputError):
+    """A sweep specification the command refuses."""
+
+
+def check_preload(preload, base: dict, swept: set) -> None:
+    """A fixed preload above what the simulation takes for every design
+    (the limit depends on no swept field) is refused before any work;
+    otherwise a design above its limit is its row's status 2."""
+    if preload is None or swept & _PRELOAD_LIMIT_FIELDS:
+        return
+    from contactsep.chatter.simulate import largest_preload
+    most = largest_preload(thesis_design(**base))
+    if preload > most:
+        raise SweepError(f"--preload: found {preload!r}, expected at most "
+                         f"{most:.6g} lb for this design (it would bend "
+                         f"the lower contact or the separator by more "
+                         f"than its length)")
+
+
+def check_dt(steps, max_modes: int, option: str, model: str) -> None:
+    """Every step (fixed or varied) is one the simulation takes at the
+    sweep's largest N: a sweep that would fail every design is refused
+    before any work.  A coarse step is warned of here, once, not by
+    every design."""
+    from contactsep.chatter.simulate import (
+        COARSE_DT,
+        DEFAULT_DT,
+        MAX_MODES,
+        MAX_STEPS,
+        MAX_WORK,
+        CoarseStepWarning,
+        smallest_dt,
+    )
+    least = smallest_dt(min(max_modes, MAX_MODES))
+    for dt in steps:
+        if dt < least:
+            raise SweepError(f"{option}: found {dt!r}, expected at least "
+                             f"{least:.3g} s at N = {max_modes} (a run "
+                             f"takes at most {MAX_STEPS:.0e} steps and "
+                             f"{MAX_WORK:.0e} steps x modes)")
+    coarse = [dt for dt in steps if dt > COARSE_DT * DEFAULT_DT[model]]
+    if coarse:
+        warnings.warn(f"{option}: {max(coarse):g} s is more than "
+                      f"{COARSE_DT:g} times the converged default "
+                      f"{DEFAULT_DT[model]:g} s: the answers may be far "
+                      f"from converged (docs/chatter.md)",
+                      CoarseStepWarning, stacklevel=3)
+
+
+def check_model(model: str, backend: str, used: set) -> None:
+    """The settings belong to the chatter models, damping to Hertz; the
+    chatter models run compiled."""
+    if model not in MODELS:
+        raise SweepError(f"--model: found {model!r}, expected one of "
+                         f"{', '.join(MODELS)}")
+    settings = sorted(used & set(design_fields.SETTINGS))
+    if model == "eq23" and settings:
+        raise SweepError(f"{', '.join(settings)}: a setting of the chatter "
+                         f"simulation; needs --model hertz or newton")
+    if model == "newton" and "damping" in used:
+        raise SweepError("damping: the Hertz contact's (--model hertz); "
+                         "Newton's impact law has e")
+    if model != "eq23" and backend != "compiled":
+        raise SweepError(f"--backend {backend}: the chatter sweeps run the "
+                         f"compiled steppers")
