@@ -149,6 +149,17 @@ def test_text_output_has_units_short_numbers_and_the_intervals(capsys):
     assert out.count(" * ") + out.count("  * ") >= r.n_events
 
 
+@pytest.mark.parametrize("model", ["newton", "hertz"])
+def test_only_newtons_open_time_carries_its_caveat(model, capsys):
+    assert main(["chatter", "--model", model, "--n-modes", "2",
+                 "--t-end", "0.03"]) == 0
+    out = capsys.readouterr().out
+    caveat = "one Newton run's open time is ill-conditioned"
+    lines = [line for line in out.splitlines() if caveat in line]
+    assert len(lines) == (model == "newton")
+    assert all(len(line) <= 79 for line in lines)
+
+
 def test_csv_exports_the_gap_histories(tmp_path, capsys):
     path = tmp_path / "gaps.csv"
     path.write_text("old\n")

@@ -183,6 +183,9 @@ def summary_text(result) -> str:
     for label, value, unit in rows:
         shown = _g(value) if isinstance(value, float) else str(value)
         lines.append(f"  {label:<28} {shown:>12} {unit}".rstrip())
+    if result.model == "newton":
+        lines.append("  (one Newton run's open time is ill-conditioned: "
+                     "docs/chatter.md)")
     if result.rigid_stop is not None:
         r = result.rigid_stop
         lines.append(f"  {'impacts, rests':<28} {len(r.impact_t):>12} "
