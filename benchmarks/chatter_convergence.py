@@ -24,6 +24,11 @@
    dt; the same at open thresholds of 1e-5 and 1e-4 in; the lower
    contact's lift-off at N = 32, d = 0.125 in; wider ensembles (64
    runs, L2 (1 + k 1e-7)) in both Newton codes.
+6. The band (``band``, about 40 min): the Newton open time's mean over a
+   tolerance band of the separator's length (256 designs, L2 uniform
+   within 1e-3 relative, through ``contactsep sweep --dt``) for every
+   thesis separator and N = 4, 16, 32 at dt = 5e-8 ... 3.125e-9 s, and
+   from the other code (Moreau-Jean) at 1e-8 and 5e-9 s for three.
 """
 
 from __future__ import annotations
@@ -300,6 +305,94 @@ def threshold_study() -> None:
               flush=True)
 
 
+#: The tolerance band of the Newton open time (docs/chatter.md, "The
+#: Newton open time over a tolerance band"): L2 uniform within a relative
+#: BAND, BAND_SAMPLES designs, through the product's own sweep.
+BAND = 1e-3
+BAND_SAMPLES = 256
+BAND_STEPS = (5e-8, 2.5e-8, 1.25e-8, 6.25e-9, 3.125e-9)
+
+
+def band_spec(n, d, dt, samples=BAND_SAMPLES):
+    """The sweep of the band: ``contactsep sweep --model newton --n-modes
+    n --d d --sample 'L2=uniform(...)' --samples 256 --dt dt``."""
+    from contactsep.studies import sweep
+    length = contactsep.thesis_design().L2
+    low, high = length * (1 - BAND / 2), length * (1 + BAND / 2)
+    return sweep.make_spec(sample=[f"L2=uniform({low!r},{high!r})"],
+                           samples=samples, base={"n_modes": n, "h2": d},
+                           model="newton", settings={"dt": dt})
+
+
+def band_means(n, d, dt):
+    """(open-time mean, sd, largest-lower-gap mean) of the band."""
+    from contactsep.studies import runner
+    summary = runner.run_sweep(band_spec(n, d, dt), progress=False)
+    assert summary["n_failed"] == 0, summary
+    return (summary["circuit_open_mean_s"], summary["circuit_open_sd_s"],
+            summary["max_lower_gap_mean_in"])
+
+
+def _moreau_jean_open(args):
+    n, d, length, dt = args
+    design = dataclasses.replace(contactsep.thesis_design(n_modes=n, d=d),
+                                 L2=length)
+    return chatter.simulate(design, model="newton", dt=dt, samples=1,
+                            stepper="fixed",
+                            single_impulse=False).circuit_open_s
+
+
+def band_moreau_jean(n, d, dt):
+    """The same band's mean open time from the other code (Moreau-Jean,
+    the fixed-step trapezoidal stepper), on the sweep's own samples."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from contactsep.studies import sweep
+    lengths = sweep.chunk_inputs(band_spec(n, d, dt), 0, BAND_SAMPLES)["L2"]
+    with ProcessPoolExecutor() as pool:
+        open_s = np.array(list(pool.map(
+            _moreau_jean_open, [(n, d, float(x), dt) for x in lengths])))
+    return open_s.mean(), np.std(open_s, ddof=1)
+
+
+def band_study() -> None:
+    print(f"\n## Newton open time over a tolerance band: {BAND_SAMPLES} "
+          f"designs, L2 uniform within a relative {BAND:g} (contactsep "
+          f"sweep); each mean's departure from the one at "
+          f"{BAND_STEPS[-1]:g} s\n")
+    print("| N | d (in) | open mean (s) | sd | standard error | "
+          + " | ".join(f"{dt:.3g} s" for dt in BAND_STEPS[:-1])
+          + " | gap mean (in) | gap, largest departure | time (s) |")
+    print("|---|---|---|---|---|" + "---|" * (len(BAND_STEPS) - 1)
+          + "---|---|---|")
+    for n in MODES:
+        for d in THICKNESSES:
+            start = time.perf_counter()
+            found = [band_means(n, d, dt) for dt in BAND_STEPS]
+            open_ref, sd_ref, gap_ref = found[-1]
+            gap_worst = max(abs(g / gap_ref - 1) for _, _, g in found)
+            print(f"| {n} | {d} | {open_ref:.5f} | {sd_ref / open_ref:.2%}"
+                  f" | {sd_ref / open_ref / np.sqrt(BAND_SAMPLES):.2%} | "
+                  + " | ".join(f"{o / open_ref - 1:+.2%}"
+                               for o, _, _ in found[:-1])
+                  + f" | {gap_ref:.6f} | {gap_worst:.3%} | "
+                  f"{time.perf_counter() - start:.0f} |", flush=True)
+    print(f"\n## The band's mean open time from the other code "
+          f"(Moreau-Jean), against the adaptive stepper's at "
+          f"{BAND_STEPS[-1]:g} s\n")
+    print("| N | d (in) | Moreau-Jean dt (s) | open mean (s) | sd | "
+          "departure | time (s) |")
+    print("|---|---|---|---|---|---|---|")
+    for n, d in ((4, 0.5), (4, 0.25), (16, 0.25)):
+        reference = band_means(n, d, BAND_STEPS[-1])[0]
+        for dt in (1e-8, 5e-9):
+            start = time.perf_counter()
+            mean, sd = band_moreau_jean(n, d, dt)
+            print(f"| {n} | {d} | {dt:.3g} | {mean:.5f} | {sd / mean:.2%}"
+                  f" | {mean / reference - 1:+.2%} | "
+                  f"{time.perf_counter() - start:.0f} |", flush=True)
+
+
 def relative_sd(values) -> float:
     return float(np.std(values, ddof=1) / np.mean(values))
 
@@ -318,7 +411,7 @@ def departure(values, reference) -> str:
 def main(parts) -> None:
     studies = {"dt": lambda: (dt_study("hertz"), dt_study("newton")),
                "independent": independent_newton, "n": n_study,
-               "appE": appendix_e,
+               "appE": appendix_e, "band": band_study,
                "sensitivity": lambda: (closed_bands(), sensitivity_single(),
                                        sensitivity_ensembles(),
                                        threshold_study(),
