@@ -111,7 +111,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "the three beams and report whether and how long the "
                     "circuit opens (p_open: the designs with a "
                     "discontinuity event), and may also fix, vary or "
-                    "sample preload, min_open and (hertz) damping. "
+                    "sample preload, min_open and (hertz) damping, and "
+                    "fix or vary the step dt. "
                     "Failed designs are counted (n_failed) and left out of "
                     "the statistics; if every design fails, exit 2.",
         **examples("contactsep sweep --vary d=0.1:1.0:19 "
