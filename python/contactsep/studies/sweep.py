@@ -209,14 +209,21 @@ class SweepSpec:
         as its mean + 8 sd."""
         taus = [self.base.get("tau",
                               Design.__dataclass_fields__["tau"].default)]
-        for name, values in self.vary:
-            if name == "tau":
-                taus += [values.start, values.stop] if isinstance(
-                    values, LinearAxis) else np.asarray(values).tolist()
+        taus += self.varied_extremes("tau")
         for name, kind, a, b in self.sample:
             if name == "tau":
                 taus.append(b if kind == "uniform" else a + 8 * b)
         return float(np.max(taus))
+
+    def varied_extremes(self, field: str) -> list:
+        """The values a --vary axis of ``field`` takes that bound the
+        rest: a linear axis's ends, a list's values ([] if not varied)."""
+        out = []
+        for name, values in self.vary:
+            if name == field:
+                out += [values.start, values.stop] if isinstance(
+                    values, LinearAxis) else np.asarray(values).tolist()
+        return out
 
     @property
     def fields(self) -> tuple:
@@ -471,12 +478,8 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
     steps = [settings["dt"]] if "dt" in settings else []
-    for name, values in vary:
-        if name == "dt":
-            steps += [values.start, values.stop] if isinstance(
-                values, LinearAxis) else np.asarray(values).tolist()
-    check_dt(steps, spec.max_modes, "--dt" if "dt" in settings
-             else "--vary dt", model)
+    check_dt(steps + spec.varied_extremes("dt"), spec.max_modes,
+             "--dt" if "dt" in settings else "--vary dt", model)
     if spec.size > MAX_DESIGNS:
         raise SweepError(f"the sweep has {spec.size:.3g} designs "
                          f"({' x '.join(str(n) for n in spec.grid_shape)}"
