@@ -149,7 +149,7 @@ from contactsep.constants import (
     LISTING_TAU_S,
 )
 from contactsep.restored.dataset import DataSet
-from contactsep.restored.reference_amplitudes import (  # re-exported
+from contactsep.restored.reference_amplitudes import (  # public ones re-exported
     AMPLITUDE_METHODS,
     _choice,
     initial_amplitudes,
