@@ -19,4 +19,12 @@ module chatter_status
   integer, parameter, public :: status_lcp_unsolved = 5
   !> Hertz (adaptive): the table of threshold crossings filled up.
   integer, parameter, public :: status_crossings_full = 6
+  !> A stepper stopped: the energy grew past its hard bound (a step too
+  !> coarse for the contact's stiffness); no circuit figures are valid.
+  integer, parameter, public :: status_energy_bound = 7
+  !> A stepper stopped: a signal (Ctrl-C, SIGTERM) asked it to.
+  integer, parameter, public :: status_interrupted = 8
+  !> The run ended but broke its energy check (elastic: energy ratio
+  !> more than 1e-6 from 1; damped: energy gained): unconverged.
+  integer, parameter, public :: status_unconverged = 9
 end module chatter_status

@@ -92,6 +92,10 @@ class ChatterResult:
     #: and after, energy after each; resting intervals), see
     #: :class:`contactsep.chatter.rigid_stop.RigidStopResult`.
     rigid_stop: object = None
+    #: How the run ended (contactsep.chatter.status): 0 ok; 7 stopped at
+    #: the energy bound (no circuit figures); 8 interrupted; 9 finished
+    #: but unconverged (its energy check failed).
+    status: int = 0
 
     def __repr__(self) -> str:
         first = ("never" if math.isnan(self.first_circuit_open_s)
@@ -121,6 +125,7 @@ class ChatterResult:
             "first_impact_s": self.first_impact_s,
             "first_impulse_lb_s": self.first_impulse_lb_s,
             "energy_ratio": self.energy_ratio,
+            "status": self.status,
             "max_lower_gap_in": self.max_lower_gap_in,
             "chatters": self.chatters,
             "n_events": self.n_events,

@@ -17,3 +17,11 @@ NO_EIGENBASIS = 4
 LCP_UNSOLVED = 5
 #: Hertz (adaptive): the table of threshold crossings filled up.
 CROSSINGS_FULL = 6
+#: A stepper stopped: the energy grew past its hard bound (a step too
+#: coarse for the contact's stiffness); no circuit figures are valid.
+ENERGY_BOUND = 7
+#: A stepper stopped: a signal (Ctrl-C, SIGTERM) asked it to.
+INTERRUPTED = 8
+#: The run ended but broke its energy check (elastic: energy ratio more
+#: than 1e-6 from 1; damped: energy gained): unconverged.
+UNCONVERGED = 9
