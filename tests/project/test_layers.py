@@ -14,7 +14,7 @@ from conftest import ROOT
 
 PACKAGE = ROOT / "python" / "contactsep"
 #: Modules every layer shares, at the package root.
-SHARED = {"beams", "constants", "errors", "output"}
+SHARED = {"beams", "constants", "errors", "output", "units"}
 #: Rank of each layer: a module imports only its own layer, the shared
 #: modules and layers of lower rank.
 RANK = {"shared": 0, "restored": 1, "model": 1, "chatter": 2, "studies": 3,

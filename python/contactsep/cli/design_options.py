@@ -26,9 +26,10 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import warnings
 
 from contactsep import output
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies import fields as F
 
 #: Where the command line's design values are kept: (field or name,
@@ -125,8 +126,42 @@ def design_overrides(args: argparse.Namespace) -> dict:
         values[field] = F.parse_value(field, text, option)
         labels[field] = option
     _check(values, labels)
+    for message in unit_system_doubts(values, labels):
+        warnings.warn(message, ContactsepWarning)
     setattr(args, _FROM_FILE, set(values) - set(typed))
     return values
+
+
+#: Beyond these a bare number was probably typed in another unit system:
+#: no metal is softer than 1e5 psi (lead: 2e6) or denser than 1 lb/in^3
+#: (osmium: 0.815), and a contact spring is not 40 in long.
+SOFTEST_PSI = 1e5
+DENSEST_LB_IN3 = 1.0
+LONGEST_IN = 40.0
+
+
+def unit_system_doubts(values: dict, labels: dict) -> list[str]:
+    """One-line warnings for given numbers that look like another unit
+    system's (a modulus in GPa, a density in g/cm^3, a length in mm)."""
+    doubts = []
+    for field, value in values.items():
+        if not isinstance(value, float):
+            continue
+        label = labels.get(field, field)
+        if field[0] == "E" and value < SOFTEST_PSI:
+            doubts.append(f"{label}: {value:g} psi is softer than any metal "
+                          f"(steel: 30e6 psi = 207 GPa): a modulus in GPa or "
+                          f"MPa? Give the unit, e.g. {value:g}GPa")
+        elif field.startswith("gamma") and value > DENSEST_LB_IN3:
+            doubts.append(f"{label}: {value:g} lb/in^3 is denser than any "
+                          f"metal (steel: 0.283 lb/in^3 = 7.85 g/cm^3): a "
+                          f"density in g/cm^3? Give the unit, e.g. "
+                          f"{value:g}g/cm3")
+        elif field[0] == "L" and field[1:] in ("1", "2", "3") and \
+                value > LONGEST_IN:
+            doubts.append(f"{label}: a member {value:g} in long: a length "
+                          f"in mm? Give the unit, e.g. {value:g}mm")
+    return doubts
 
 
 def fields_from_file(args: argparse.Namespace) -> set:

@@ -9,6 +9,9 @@ from __future__ import annotations
 import argparse
 import math
 
+from contactsep import units
+from contactsep.errors import InputError
+
 
 def integer(low: int, high: int):
     """An argparse type: a decimal integer from ``low`` to ``high``."""
@@ -27,12 +30,20 @@ def integer(low: int, high: int):
 
 
 def finite(unit: str = ""):
-    """An argparse type: a finite number (``unit`` named in the error)."""
+    """An argparse type: a finite number (``unit`` named in the error),
+    or a number with a unit of the same kind (``10us``, ``1.5N``,
+    :mod:`contactsep.units`) where ``unit`` is one."""
     def convert(text: str) -> float:
         try:
             value = float(text)
         except ValueError:
             value = math.nan
+        if unit in units.TARGETS and units.split(text) is not None:
+            try:
+                value = units.convert(text, unit, "")
+            except InputError as error:
+                raise argparse.ArgumentTypeError(
+                    str(error).removeprefix(": ")) from None
         if not math.isfinite(value):
             raise argparse.ArgumentTypeError(
                 f"found {text!r}, expected a finite number"

@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from contactsep import beams
+from contactsep import beams, units
 from contactsep.chatter.simulate import DAMPINGS
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
@@ -162,6 +162,8 @@ def parse_value(field: str, text, label: str):
     JSON file); ``label`` names it in errors ('--d', 'design.json: d_in').
 
     Real fields take a number (any float; the Design checks its range;
+    a text may carry a unit, ``'30.5mm'``, converted by
+    :mod:`contactsep.units`;
     x1, x2, x3 and Lc also None, their default), the settings preload
     and min_open a finite number >= 0, dt one > 0 below the window,
     damping none or flores,
@@ -186,6 +188,8 @@ def parse_value(field: str, text, label: str):
     if isinstance(text, bool) or not isinstance(text, (str, int, float)):
         raise InputError(f"{label}: found {text!r}, expected a number "
                          f"({unit(field) or 'dimensionless'})")
+    if units.split(text) is not None:
+        return units.convert(text, unit(field), label)
     try:
         value = float(text)
     except ValueError:
@@ -201,7 +205,8 @@ def _setting(field: str, text, label: str) -> float:
     try:
         if isinstance(text, bool):
             raise ValueError
-        value = float(text)
+        value = units.convert(text, unit(field), label) \
+            if units.split(text) is not None else float(text)
     except (TypeError, ValueError):
         value = math.nan
     if field == "dt" and not (0.0 < value < LISTING_TAU_S):
