@@ -29,17 +29,21 @@ from contactsep.restored.result import Result
 
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
+#: Names of the studies layer, imported on first use.
+_STUDIES_NAMES = {"read": "contactsep.studies.frames"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 
 __all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError",
            "Result", "cards_per_set", "replay", "solve", *_MODEL_NAMES,
-           *_LAYERS]
+           *_STUDIES_NAMES, *_LAYERS]
 
 
 def __getattr__(name: str):
     if name in _MODEL_NAMES:
         return getattr(importlib.import_module("contactsep.model"), name)
+    if name in _STUDIES_NAMES:
+        return getattr(importlib.import_module(_STUDIES_NAMES[name]), name)
     if name in _LAYERS:
         return importlib.import_module(f"contactsep.{name}")
     raise AttributeError(f"module 'contactsep' has no attribute {name!r}")

@@ -481,3 +481,13 @@ def stop_quietly(status: int) -> int:
     """After SIGINT or SIGTERM: flush what was printed, say nothing."""
     _silence_stdout()
     return status
+
+
+def require_pandas():
+    """pandas, or the InputError a DataFrame gives without it."""
+    try:
+        import pandas
+    except ImportError:
+        raise InputError("a DataFrame needs pandas: pip install "
+                         "'contactsep[tables]'") from None
+    return pandas

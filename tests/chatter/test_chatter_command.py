@@ -17,6 +17,7 @@ from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.rigid_stop import ZENO_SPEED
 from contactsep.cli import main
 from contactsep.model import Design
+from contactsep.studies import fields
 
 pytest.importorskip("contactsep.chatter._chatter")
 
@@ -74,8 +75,14 @@ def test_the_json_echoes_the_inputs_and_carries_the_answers(capsys):
     assert inputs["min_open_s"] == 2e-5
     assert inputs["open_threshold_in"] == 1e-6
     design = Design(h2=0.35, e=0.5, L3=18.0, n_modes=4)
-    assert inputs["design"] == {f.name: getattr(design, f.name)
-                                for f in dataclasses.fields(Design)}
+    # the design under the output names (one name per quantity), and
+    # read back by the input side's reader into the same design
+    echoed = inputs["design"]
+    assert (echoed["d_in"], echoed["e"], echoed["L3_in"]) == (0.35, 0.5,
+                                                              18.0)
+    assert len(echoed) == len(dataclasses.fields(Design))
+    assert Design(**{fields.field_name(k): v
+                     for k, v in echoed.items()}) == design
     r = chatter.simulate(design, model="hertz", t_end=0.03, min_open=2e-5)
     for key in ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",
                 "circuit_open_s", "first_circuit_open_s", "longest_open_s",
@@ -137,7 +144,7 @@ def test_text_output_has_units_short_numbers_and_the_intervals(capsys):
     r = chatter.simulate(contactsep.thesis_design(n_modes=4),
                          model="hertz", t_end=0.03)
     assert "model hertz, N = 4, dt = 5e-08 s" in out
-    assert "window 0 to 0.03 s" in out and "h2 0.25 in" in out
+    assert "window 0 to 0.03 s" in out and "d 0.25 in" in out
     assert re.search(r"first impact\s+0\.022\d+ s", out)
     assert re.search(r"max lower gap\s+[\d.e-]+ in", out)
     assert not re.search(r"[1-9]\d{7,}", out)     # no 17-digit floats

@@ -181,3 +181,20 @@ def test_bad_design_files_are_one_line_errors(content, message, capsys,
 def test_thesis_design_is_the_default(capsys):
     data = model_json([], capsys)
     assert data["y3_max_in"] == float(evaluate(thesis_design()).y3_max)
+
+
+@pytest.mark.parametrize("argv, expected", [
+    (["--d", "0.3", "--d", "0.5"], 0.5),
+    (["--e", "0.2", "--e", "0.4"], None),
+    (["--set", "h2=0.3", "--set", "h2=0.6"], 0.6),
+    (["--d", "0.4", "--h2", "0.4"], 0.4),
+])
+def test_a_repeated_option_the_last_one_wins(argv, expected, capsys):
+    """A base command line with an override appended (issue 30 item 6):
+    the last value of an option wins; two spellings of one field agree
+    or are refused (above)."""
+    data = model_json(argv, capsys)
+    if expected is not None:
+        assert data["design"]["d_in"] == expected
+    else:
+        assert data["design"]["e"] == 0.4

@@ -9,7 +9,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactsep import output
 from contactsep.chatter import circuit
+from contactsep.model import names
 
 
 def plain(value):
@@ -27,9 +29,9 @@ def plain(value):
 
 
 def design_dict(design) -> dict:
-    """Every field of a single Design, JSON-ready."""
-    return {f.name: plain(getattr(design, f.name))
-            for f in dataclasses.fields(design)}
+    """Every field of a single Design under its output name (``L3_in``,
+    ``d_in``: :mod:`contactsep.model.names`), JSON-ready."""
+    return plain(names.design_keys(design))
 
 
 @dataclass(frozen=True, repr=False)
@@ -140,6 +142,64 @@ class ChatterResult:
             "work": self.work,
             **self._rigid_stop_events(),
         })
+
+    def to_pandas(self, what: str = "summary"):
+        """A pandas DataFrame of the run (needs pandas, ``pip install
+        'contactsep[tables]'``), columns under the names of every output:
+
+        * ``"summary"``: one row, the inputs (``model``, ``n_modes``,
+          ``dt_s``, ..., the design's fields as ``L1_in``, ``d_in``, ...)
+          and every scalar of :meth:`to_json_dict` (``first_impact_s``,
+          ``max_lower_gap_in``, ``circuit_open_s``, ``n_events``, ...);
+        * ``"events"``: one row per discontinuity event (``start_s``,
+          ``end_s``, ``duration_s``);
+        * ``"openings"``: one row per circuit opening, events or not
+          (the same columns and ``event``: at least ``min_open_s``);
+        * ``"gaps"``: one row per sample (``t_s``, ``gap_upper_in``,
+          ``gap_lower_in``, ``circuit_open``), as ``chatter --csv``.
+
+        Examples
+        --------
+        >>> import contactsep
+        >>> from contactsep.chatter import simulate
+        >>> r = simulate(contactsep.thesis_design(n_modes=4),
+        ...              model="hertz", t_end=0.005)
+        >>> r.to_pandas("gaps").columns.tolist()
+        ['t_s', 'gap_upper_in', 'gap_lower_in', 'circuit_open']
+        """
+        pandas = output.require_pandas()
+        if what == "summary":
+            data = self.to_json_dict()
+            inputs = data.pop("inputs")
+            row = {k: v for k, v in inputs.items() if k != "design"}
+            row.update(inputs["design"] or {})
+            row.update({k: v for k, v in data.items()
+                        if v is None or isinstance(v, (bool, int, float,
+                                                       str))})
+            row.update({f"single_impulse_{k}": v
+                        for k, v in data["single_impulse"].items()})
+            return pandas.DataFrame([row])
+        if what in ("events", "openings"):
+            spans = np.asarray(self.events if what == "events"
+                               else self.circuit_open_intervals,
+                               dtype=float).reshape(-1, 2)
+            frame = pandas.DataFrame({"start_s": spans[:, 0],
+                                      "end_s": spans[:, 1],
+                                      "duration_s": spans[:, 1]
+                                      - spans[:, 0]})
+            if what == "openings":
+                frame["event"] = frame["duration_s"] >= self.min_open_s
+            return frame
+        if what == "gaps":
+            threshold = self.open_threshold_in
+            return pandas.DataFrame({
+                "t_s": self.t, "gap_upper_in": self.gap_upper,
+                "gap_lower_in": self.gap_lower,
+                "circuit_open": ((self.gap_upper > threshold)
+                                 & (self.gap_lower > threshold))
+                .astype(int)})
+        raise ValueError(f"what: found {what!r}, expected summary, events, "
+                         f"openings or gaps")
 
     def _rigid_stop_events(self) -> dict:
         """appE: its impacts and rests (times s, impulses lb s, contact

@@ -79,6 +79,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                                 f"constant (in; default "
                                 f"{DEFAULT_BUTTON_RADIUS:g})")
     out_group = parser.add_argument_group("output")
+    out_group.add_argument("--events", type=_event_count, default=10,
+                           metavar="N|all",
+                           help="circuit openings listed after the "
+                                "summary (default 10; all: every one; "
+                                "--csv and --json have them all)")
     out_group.add_argument("--json", action="store_true",
                            help="print the inputs and the summary as JSON")
     out_group.add_argument("--csv", metavar="FILE",
@@ -118,7 +123,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         output.write_json(sys.stdout, result.to_json_dict())
     else:
-        output.write_text(sys.stdout, summary_text(result))
+        output.write_text(sys.stdout, summary_text(result, args.events))
     if args.csv:
         write_csv(result, args.csv)
     if args.png:
@@ -132,19 +137,6 @@ _OPTIONS = ("dt", "t_end", "preload", "open_threshold", "min_open", "nu",
             "button_radius")
 
 
-def _unit(field: str) -> str:
-    """The unit of a numeric Design field."""
-    if field.startswith("gamma"):
-        return "lb/in^3"
-    if field[0] == "E" and field[1:].isdigit():
-        return "psi"
-    if field == "tau":
-        return "s"
-    if field in ("ys", "gap", "Lc") or field[0] in "Lbhx":
-        return "in"
-    return ""
-
-
 def _g(value, digits=6) -> str:
     """A number to ``digits`` significant digits ('-' for NaN)."""
     if value is None or (isinstance(value, float) and math.isnan(value)):
@@ -152,9 +144,16 @@ def _g(value, digits=6) -> str:
     return f"{value:.{digits}g}"
 
 
-def summary_text(result) -> str:
+def _event_count(text: str):
+    """--events: 'all' (None) or a count >= 0."""
+    if text.strip() == "all":
+        return None
+    return integer(0, 10**9)(text)
+
+
+def summary_text(result, listed: int | None = 10) -> str:
     """The inputs and the summary, with units, 6 significant digits, and
-    the circuit's open intervals."""
+    the circuit's first ``listed`` open intervals (None: all)."""
     inputs = result.inputs()
     lines = [f"model {result.model}, N = {result.n_modes}, "
              f"dt = {_g(result.dt)} s ({result.stepper}), window 0 to "
@@ -162,10 +161,7 @@ def summary_text(result) -> str:
              f"preload {_g(result.preload_lb)} lb, damping "
              f"{result.damping}, open above {_g(result.open_threshold_in)}"
              f" in, events last >= {_g(result.min_open_s)} s"]
-    design = inputs["design"] or {}
-    lines.append("design: " + ", ".join(
-        f"{k} {v:g} {_unit(k)}".rstrip() if isinstance(v, float)
-        else f"{k} {v}" for k, v in design.items() if v is not None))
+    lines.append("design: " + ", ".join(_design_parts(result.design)))
     rows = [("first impact", result.first_impact_s, "s"),
             ("first impulse", result.first_impulse_lb_s, "lb s"),
             ("max lower gap", result.max_lower_gap_in, "in"),
@@ -190,14 +186,35 @@ def summary_text(result) -> str:
         r = result.rigid_stop
         lines.append(f"  {'impacts, rests':<28} {len(r.impact_t):>12} "
                      f"{len(r.rest_intervals)} (--json lists them)")
+    openings = result.circuit_open_intervals
     lines.append("circuit open (s), events marked *:")
-    for start, end in result.circuit_open_intervals:
+    for start, end in openings[:listed]:
         mark = "*" if end - start >= result.min_open_s else " "
         lines.append(f"  {mark} {_g(start):>12} to {_g(end):>12}  "
                      f"({_g((end - start) * 1e6, 4)} us)")
-    if not len(result.circuit_open_intervals):
+    if not len(openings):
         lines.append("  never")
+    elif listed is not None and len(openings) > listed:
+        lines.append(f"  ... {len(openings) - listed} more (--events all, "
+                     f"or --csv / --json)")
     return "\n".join(lines) + "\n"
+
+
+def _design_parts(design) -> list[str]:
+    """'L1 19 in', 'd 0.25 in', ...: each given field under its output
+    name (studies.fields), with its unit."""
+    import dataclasses
+
+    from contactsep.studies import fields
+    parts = []
+    for f in dataclasses.fields(design) if design is not None else ():
+        value = getattr(design, f.name)
+        if value is None:
+            continue
+        name = fields.OUTPUT_NAMES.get(f.name, f.name)
+        shown = f"{value:g}" if isinstance(value, float) else str(value)
+        parts.append(f"{name} {shown} {fields.unit(f.name)}".rstrip())
+    return parts
 
 
 def write_csv(result, path) -> None:

@@ -15,7 +15,9 @@ Precedence: ``--design FILE`` (a JSON object of fields, or the output of
 ``contactsep model --json`` whose ``design`` it reads) is the starting
 design; the command line overrides it, and so do a study's own axes and
 a sweep's --vary and --sample (``fields_from_file(args)`` names the
-fields only the file gave).  A field given twice on the command line is
+fields only the file gave).  An option given twice: the last one wins
+(a base command line with an override appended); two spellings of one
+field (``--d`` and ``--h2``, ``--set h2=``) with different values are
 refused.  Values are read by
 :func:`contactsep.studies.fields.parse_value`, the one place that reads
 a field from text.
@@ -119,11 +121,16 @@ def design_overrides(args: argparse.Namespace) -> dict:
             if not sep:
                 raise InputError(f"--set {name}: expected FIELD=VALUE")
             field = F.field_name(name, option)
-        if field in typed:
+        value = F.parse_value(field, text, option)
+        if field in typed and typed[field] != option and \
+                values[field] != value:
             raise InputError(f"{option}: the {F.FIELDS[field][2]} is "
-                             f"already given by {typed[field]}")
+                             f"already given by {typed[field]} "
+                             f"(another value)")
+        # the same option again: the last one wins (a base command line
+        # with an override appended)
         typed[field] = option
-        values[field] = F.parse_value(field, text, option)
+        values[field] = value
         labels[field] = option
     _check(values, labels)
     for message in unit_system_doubts(values, labels):

@@ -12,26 +12,7 @@ from contactsep import output
 from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
-
-#: (attribute, key with its unit, unit as printed, meaning), in order.
-RESULTS = (
-    ("t1", "t1_s", "s", "first impact after release"),
-    ("v_impact", "v_impact_in_s", "in/s", "impact speed of the upper "
-                                          "contact"),
-    ("psi", "psi_lb_s", "lb s", "impulse"),
-    ("v0", "v0_in_s", "in/s", "separator velocity after the impact"),
-    ("R", "R", "-", "mass ratio (eq. 24)"),
-    ("y3_max", "y3_max_in", "in", "largest lower-contact separation"),
-    ("t_max", "t_max_s", "s", "its time after the impact"),
-    ("y3_min", "y3_min_in", "in", "smallest lower-contact displacement"),
-    ("t_min", "t_min_s", "s", "its time after the impact"),
-    ("M1", "M1_lb_s2_in", "lb s^2/in", "upper contact mass"),
-    ("M2", "M2_lb_s2_in", "lb s^2/in", "separator mass"),
-    ("M3", "M3_lb_s2_in", "lb s^2/in", "lower contact mass"),
-)
-#: Per-mode results: (attribute, key with its unit, member).
-PER_MODE = (("p1", "p1_rad_s", 0), ("p2", "p2_rad_s", 1),
-            ("p3", "p3_rad_s", 2), ("c3", "c3_in", 2))
+from contactsep.model.names import FLAGS, PER_MODE, RESULTS
 
 EXAMPLES = examples(
     "contactsep model --x3 14.82 --n-modes 20           # contact at 0.78 L3",
@@ -70,10 +51,9 @@ def results_dict(design, result) -> dict:
     data = {"design": describe(fields)}
     for name, key, _, _ in RESULTS:
         data[key] = float(getattr(result, name))
-    data["at_window_end"] = bool(result.at_window_end)
-    data["t_max_tied"] = bool(result.t_max_tied)
-    data["t_min_tied"] = bool(result.t_min_tied)
-    data["status"] = int(result.status)
+    for name, key in FLAGS:
+        value = getattr(result, name)
+        data[key] = int(value) if name == "status" else bool(value)
     counts = design.n_modes if isinstance(design.n_modes, tuple) \
         else (design.n_modes,) * 3
     for name, key, member in PER_MODE:

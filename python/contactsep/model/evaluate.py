@@ -19,6 +19,7 @@ from contactsep.model.design import (
     outside_domain,
     pack,
 )
+from contactsep.model.names import RESULT_KEYS
 
 BACKENDS = ("compiled", "numpy")
 
@@ -102,9 +103,44 @@ class Evaluation:
         return lookup(self.status)
 
     def to_dict(self) -> dict:
-        """Plain Python values (lists for batches): JSON-ready."""
-        return {f.name: getattr(self, f.name).tolist()
+        """Plain Python values (lists for batches) under the names every
+        output uses (``psi_lb_s``, ``y3_max_in``, ``p1_rad_s``, ...:
+        :mod:`contactsep.model.names`); NaN stays NaN (``json.dumps``
+        of a failed design needs ``contactsep.output.write_json``)."""
+        return {RESULT_KEYS[f.name]: getattr(self, f.name).tolist()
                 for f in dataclasses.fields(self)}
+
+    def to_pandas(self, modes: bool = False):
+        """A pandas DataFrame, one row per design (index ``design``, the
+        batch flattened in C order) with a column per scalar result
+        under its output name; ``modes=True``: one row per design and
+        mode (index ``design``, ``mode`` from 1) with the per-mode
+        results (``p1_rad_s``, ``p2_rad_s``, ``p3_rad_s``, ``c3_in``;
+        NaN past a member's own N).  Needs pandas
+        (``pip install 'contactsep[tables]'``).
+
+        Examples
+        --------
+        >>> import numpy as np, contactsep
+        >>> batch = contactsep.evaluate(
+        ...     contactsep.thesis_design(d=np.linspace(0.1, 1.0, 4)))
+        >>> batch.to_pandas()[["psi_lb_s", "y3_max_in"]].shape
+        (4, 2)
+        """
+        pandas = output.require_pandas()
+        count = int(np.prod(self.status.shape, dtype=np.int64))
+        if not modes:
+            columns = {RESULT_KEYS[name]: np.reshape(
+                getattr(self, name), count) for name in _SCALARS}
+            return pandas.DataFrame(columns, index=pandas.RangeIndex(
+                count, name="design"))
+        n = self.p1.shape[-1]
+        columns = {RESULT_KEYS[name]: np.reshape(getattr(self, name),
+                                                 count * n)
+                   for name in _PER_MODE}
+        index = pandas.MultiIndex.from_product(
+            [range(count), range(1, n + 1)], names=["design", "mode"])
+        return pandas.DataFrame(columns, index=index)
 
     def __repr__(self) -> str:
         shape = self.status.shape

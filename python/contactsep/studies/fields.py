@@ -39,42 +39,7 @@ from contactsep.model.design import (
     REAL_COLUMNS,
     RELEASES,
 )
-
-#: field -> (unit suffix of its column, unit as printed, meaning).
-FIELDS: dict[str, tuple[str, str, str]] = {}
-_MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
-for _m, _member in _MEMBERS.items():
-    FIELDS.update({
-        f"L{_m}": ("in", "in", f"{_member} length"),
-        f"b{_m}": ("in", "in", f"{_member} width"),
-        f"h{_m}": ("in", "in", f"{_member} thickness"
-                   + (" d" if _m == "2" else "")),
-        f"gamma{_m}": ("lb_in3", "lb/in^3", f"{_member} weight density"),
-        f"E{_m}": ("psi", "psi", f"{_member} Young's modulus"),
-        f"end{_m}": ("", "", f"{_member} end conditions (x = 0 first)"),
-    })
-FIELDS.update({
-    "x1": ("in", "in", "contact point on the upper contact, from x = 0"),
-    "x2": ("in", "in", "contact point on the separator, from x = 0"),
-    "x3": ("in", "in", "contact point on the lower contact, from x = 0"),
-    "Lc": ("in", "in", "separator equivalent length L_c (Table III)"),
-    "ys": ("in", "in", "static deflection of the upper contact before "
-                       "release"),
-    "e": ("", "", "coefficient of restitution, 0 <= e <= 1"),
-    "n_modes": ("", "", "modes per member: N, or N1,N2,N3"),
-    "tau": ("s", "s", "window of the lower-contact response, from the "
-                      "impact"),
-    "gap": ("in", "in", "position of the separator surface seen by the "
-                        "upper contact"),
-    "impact_velocity": ("", "", "exact: |dy1/dt| at t1; listing: "
-                                "Appendix G's ACT (no sin)"),
-    "lower_response": ("", "", "as-printed: eq. 13/23 with v0/L3; "
-                               "impulse: psi/M3 (eq. 19)"),
-    "lc_reading": ("", "", "reading of L_c: listing (hybrid), "
-                           "frequencies, or mass"),
-    "release": ("", "", "tip: the cantilever's tip is deflected; "
-                        "contact: the contact point x1"),
-})
+from contactsep.model.names import FIELDS, OUTPUT_NAMES
 
 #: The chatter simulation's settings a chatter sweep may fix, vary or
 #: sample (as FIELDS: unit suffix, unit as printed, meaning).
@@ -94,8 +59,6 @@ SAMPLED_SETTINGS = ("preload", "min_open")
 
 #: Other names accepted for a field wherever a field is named on input.
 ALIASES = {"d": "h2", "restitution": "e"}
-#: The name a field has in outputs, where it is not the field's own.
-OUTPUT_NAMES = {"h2": "d"}
 #: Fields whose value is one of a few words.
 CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "end3": beams.END_CONDITIONS,
@@ -244,7 +207,8 @@ def _modes(text, label: str):
 
 
 def describe(design_fields: dict) -> dict:
-    """Fields as an output shows them: column names, plain values."""
+    """Fields (and chatter settings) as an output shows them: column
+    names, plain values."""
     out = {}
     for field, value in design_fields.items():
         if isinstance(value, tuple):

@@ -1,0 +1,103 @@
+"""One name per quantity in every output (issue 30, item 5): the
+design's fields and the model's results under their snake_case name and
+unit suffix (docs/studies.md, "Names and units"), for every JSON, CSV,
+Parquet, ``to_dict()`` and DataFrame the package writes.
+
+Units are the package's: in, lb, s, psi, lb/in^3.  A key is the
+quantity's name followed by its unit's suffix (``_in``, ``_s``,
+``_lb``, ``_lb_s``, ``_in_s``, ``_psi``, ``_lb_in3``, ``_rad_s``,
+``_cps``, ``_lb_s2_in``); dimensionless names are bare.
+"""
+
+from __future__ import annotations
+
+#: field -> (unit suffix of its column, unit as printed, meaning).
+FIELDS: dict[str, tuple[str, str, str]] = {}
+_MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
+for _m, _member in _MEMBERS.items():
+    FIELDS.update({
+        f"L{_m}": ("in", "in", f"{_member} length"),
+        f"b{_m}": ("in", "in", f"{_member} width"),
+        f"h{_m}": ("in", "in", f"{_member} thickness"
+                   + (" d" if _m == "2" else "")),
+        f"gamma{_m}": ("lb_in3", "lb/in^3", f"{_member} weight density"),
+        f"E{_m}": ("psi", "psi", f"{_member} Young's modulus"),
+        f"end{_m}": ("", "", f"{_member} end conditions (x = 0 first)"),
+    })
+FIELDS.update({
+    "x1": ("in", "in", "contact point on the upper contact, from x = 0"),
+    "x2": ("in", "in", "contact point on the separator, from x = 0"),
+    "x3": ("in", "in", "contact point on the lower contact, from x = 0"),
+    "Lc": ("in", "in", "separator equivalent length L_c (Table III)"),
+    "ys": ("in", "in", "static deflection of the upper contact before "
+                       "release"),
+    "e": ("", "", "coefficient of restitution, 0 <= e <= 1"),
+    "n_modes": ("", "", "modes per member: N, or N1,N2,N3"),
+    "tau": ("s", "s", "window of the lower-contact response, from the "
+                      "impact"),
+    "gap": ("in", "in", "position of the separator surface seen by the "
+                        "upper contact"),
+    "impact_velocity": ("", "", "exact: |dy1/dt| at t1; listing: "
+                                "Appendix G's ACT (no sin)"),
+    "lower_response": ("", "", "as-printed: eq. 13/23 with v0/L3; "
+                               "impulse: psi/M3 (eq. 19)"),
+    "lc_reading": ("", "", "reading of L_c: listing (hybrid), "
+                           "frequencies, or mass"),
+    "release": ("", "", "tip: the cantilever's tip is deflected; "
+                        "contact: the contact point x1"),
+})
+
+#: The name a field has in outputs, where it is not the field's own.
+OUTPUT_NAMES = {"h2": "d"}
+
+#: The general model's results (:class:`contactsep.model.Evaluation`):
+#: (attribute, key with its unit, unit as printed, meaning), in order.
+RESULTS = (
+    ("t1", "t1_s", "s", "first impact after release"),
+    ("v_impact", "v_impact_in_s", "in/s", "impact speed of the upper "
+                                          "contact"),
+    ("psi", "psi_lb_s", "lb s", "impulse"),
+    ("v0", "v0_in_s", "in/s", "separator velocity after the impact"),
+    ("R", "R", "-", "mass ratio (eq. 24)"),
+    ("y3_max", "y3_max_in", "in", "largest lower-contact separation"),
+    ("t_max", "t_max_s", "s", "its time after the impact"),
+    ("y3_min", "y3_min_in", "in", "smallest lower-contact displacement"),
+    ("t_min", "t_min_s", "s", "its time after the impact"),
+    ("M1", "M1_lb_s2_in", "lb s^2/in", "upper contact mass"),
+    ("M2", "M2_lb_s2_in", "lb s^2/in", "separator mass"),
+    ("M3", "M3_lb_s2_in", "lb s^2/in", "lower contact mass"),
+)
+#: The model's flags and status: (attribute, key).
+FLAGS = (("at_window_end", "at_window_end"), ("t_max_tied", "t_max_tied"),
+         ("t_min_tied", "t_min_tied"), ("status", "status"))
+#: Per-mode results: (attribute, key with its unit, member index).
+PER_MODE = (("p1", "p1_rad_s", 0), ("p2", "p2_rad_s", 1),
+            ("p3", "p3_rad_s", 2), ("c3", "c3_in", 2))
+#: Every result's attribute -> key.
+RESULT_KEYS = {**{a: k for a, k, _, _ in RESULTS}, **dict(FLAGS),
+               **{a: k for a, k, _ in PER_MODE}}
+
+
+def field_key(field: str) -> str:
+    """A design field's key in every output: 'h2' -> 'd_in', 'e' -> 'e',
+    'gamma2' -> 'gamma2_lb_in3'."""
+    suffix = FIELDS[field][0]
+    name = OUTPUT_NAMES.get(field, field)
+    return f"{name}_{suffix}" if suffix else name
+
+
+def design_keys(design) -> dict:
+    """Every field of a single Design under its output key, plain values
+    (a tuple of mode counts as a list)."""
+    import dataclasses
+
+    import numpy as np
+    out = {}
+    for f in dataclasses.fields(design):
+        value = getattr(design, f.name)
+        if isinstance(value, tuple):
+            value = list(value)
+        elif isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value.item()
+        out[field_key(f.name)] = value
+    return out
