@@ -146,3 +146,27 @@ def test_numbers_of_another_unit_system_are_warned_about(argv, words,
 def test_designs_in_inches_and_psi_raise_no_doubt(argv, capsys):
     assert main(["model", *argv]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("preset, seconds", [("1us", "1e-06"),
+                                             ("10us", "1e-05"),
+                                             ("2ms", "0.002")])
+def test_detection_time_presets_are_their_seconds(preset, seconds, capsys,
+                                                  tmp_path):
+    """docs/chatter.md's table: --min-open 1us, 10us, 2ms are exactly
+    the seconds the standards name, in chatter and in chatter sweeps."""
+    argv = ["chatter", "--model", "hertz", "--n-modes", "4", "--dt",
+            "5e-8", "--t-end", "0.03", "--json"]
+    assert main([*argv, "--min-open", preset]) == 0
+    with_unit = json.loads(capsys.readouterr().out)
+    assert main([*argv, "--min-open", seconds]) == 0
+    assert with_unit == json.loads(capsys.readouterr().out)
+    assert with_unit["inputs"]["min_open_s"] == float(seconds)
+    sweep = ["sweep", "--model", "hertz", "--n-modes", "4", "--vary",
+             "h2=0.2:0.3:2", "--workers", "1", "--json"]
+    assert main([*sweep, "--min-open", preset]) == 0
+    swept = json.loads(capsys.readouterr().out)
+    assert main([*sweep, "--min-open", seconds]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    swept.pop("elapsed_s"), plain.pop("elapsed_s")
+    assert swept == plain
