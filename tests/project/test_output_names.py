@@ -34,7 +34,8 @@ DIMENSIONLESS = {
     "flow_evaluations", "impacts", "circuit_open", "mode", "n_unconverged",
     "n_exceed", "model", "damping", "stepper", "backend", "precision",
     "end1", "end2", "end3", "impact_velocity", "lower_response",
-    "lc_reading", "release", "data_set", "title", "event", "curve"}
+    "lc_reading", "release", "data_set", "title", "event", "curve",
+    "first_mode_share", "n_maxima"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",

@@ -275,7 +275,11 @@ def test_every_column_is_checked_here():
         "table2": ["d_in", "printed_theoretical_cps", "model_cps",
                    "relative_difference", "experimental_cps"],
         "table3": ["d_in", "p_rad_s", "printed_Lc_in", "Lc_formula_in",
-                   "relative_difference", "Lc_model_in"]}
+                   "relative_difference", "Lc_model_in"],
+        # checked in tests/studies/test_conclusion8.py (the share against
+        # the cantilever's formulas, the swings against a naive count)
+        "conclusion8": ["r", "x3_in", "first_mode_share", "n_maxima",
+                        "y3_max_in"]}
     assert set(checked) == set(studies.STUDIES) - {"chatter"}
     for name, columns in checked.items():
         assert list(getattr(studies, name)().columns) == columns, name

@@ -240,6 +240,20 @@ def _conclusion(axes, c, name):
         top.set_xscale("log")
 
 
+def _conclusion8(axes, c, node):
+    top, bottom = axes
+    top.plot(c["r"], c["first_mode_share"], "o-", ms=3,
+             label="first mode's share of y3's mean square")
+    top.set(ylabel="first-mode share", ylim=(0.0, 1.05))
+    bottom.step(c["r"], c["n_maxima"], where="mid", color="C1",
+                label="swings (maxima) in the first period")
+    bottom.set(xlabel="contact point x3/L3", ylabel="maxima",
+               ylim=(0, max(2, int(np.max(c["n_maxima"]))) + 1))
+    for ax in axes:
+        ax.axvline(node, color="0.4", lw=0.8, ls=":",
+                   label=f"second mode's node, {node:.4f}")
+
+
 _ONE_PANEL = {"fig5": _fig5, "fig6": _fig6, "fig7": _fig7, "fig8": _fig8,
               "fig23": _fig23, "convergence": _convergence,
               "preload": _preload}
@@ -254,12 +268,17 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig, ax = plt.subplots(figsize=(6.0, 4.0))
         _ONE_PANEL[name](ax, study.columns)
         axes = [ax]
-    elif name in _TABLES or name == "chatter" or name in _CONCLUSION_AXES:
+    elif name in _TABLES or name in ("chatter", "conclusion8") or \
+            name in _CONCLUSION_AXES:
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0),
                                  height_ratios=(2, 1) if name in _TABLES
                                  else (1, 1))
         if name == "chatter":
             _chatter(axes, study.columns)
+        elif name == "conclusion8":
+            # the study's first note: "...'s node ...: x3/L3 = 0.783445"
+            _conclusion8(axes, study.columns,
+                         float(study.notes[0].rsplit("=", 1)[1]))
         elif name in _CONCLUSION_AXES:
             _conclusion(axes, study.columns, name)
         else:
