@@ -23,6 +23,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.chatter import circuit, runners, system
+from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
@@ -317,6 +318,10 @@ def simulate(design, model="newton", damping="none", dt=None, *,
                                           open_threshold, backend)
     run = output.interruptible(steps * modes >= FORKED_WORK, run, stack,
                                *args)
+    if run.status != chatter_status.OK:
+        return _blown_up(run, model, design, dt, preload, damping,
+                         stepper if backend == "compiled" else "fixed",
+                         settings)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
     return ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
@@ -328,6 +333,24 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         preload_lb=float(preload), damping=damping,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, **settings)
+
+
+def _blown_up(run, model, design, dt, preload, damping, stepper,
+              settings) -> ChatterResult:
+    """A run its stepper stopped at the energy bound (status
+    ENERGY_BOUND): the samples it reached, and no circuit figures (NaN;
+    n_events -1, as a failed design's row in a chatter sweep)."""
+    nan, none = math.nan, np.empty((0, 2))
+    return ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
+        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
+        energy=run.energy, upper_open_intervals=none,
+        lower_open_intervals=none, circuit_open_intervals=none,
+        circuit_open_s=nan, first_circuit_open_s=nan, longest_open_s=nan,
+        events=none, n_events=-1, chatters=False, max_lower_gap_in=nan,
+        first_impact_s=nan, first_impulse_lb_s=nan, energy_ratio=nan,
+        preload_lb=float(preload), damping=damping, stepper=stepper,
+        work=run.work, status=run.status, **settings)
 
 
 def _appendix_e(design, backend, settings) -> ChatterResult:
