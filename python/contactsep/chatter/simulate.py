@@ -28,7 +28,7 @@ from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design import SIZE_RANGE
 
 MODELS = ("appE", "newton", "hertz")
@@ -132,8 +132,15 @@ def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
     printed and in the impulse form (psi/M3)."""
     from contactsep.model import evaluate
+    from contactsep.model.status import explain
     ev = evaluate(design)
     impulse = evaluate(design.replace(lower_response="impulse"))
+    if ev.status != 0:
+        # the figures are null: say why, once (issue 31: tau = 1e300
+        # gave them all null and nothing on stderr)
+        warnings.warn(f"single impulse (eq. 23): {explain(int(ev.status), design)}"
+                      f"; its figures are null (the simulation does not "
+                      f"depend on them)", ContactsepWarning, stacklevel=3)
     return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
             "v_impact_in_s": float(ev.v_impact),
             "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
@@ -148,7 +155,13 @@ def _real(name: str, value, unit: str) -> float:
             value, (int, float, np.integer, np.floating)):
         raise ChatterError(f"{name}: found {value!r}, expected a number"
                            + (f" ({unit})" if unit else ""))
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        from contactsep.errors import shown
+        raise ChatterError(f"{name}: found {shown(value)}, expected a "
+                           f"finite number" + (f" ({unit})" if unit else "")
+                           ) from None
 
 
 def _check(design, model, damping, backend, preload, samples, theta, nu,
@@ -277,11 +290,20 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         return output.interruptible(
             int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
             backend, settings)
+    default = dt is None
     dt = DEFAULT_DT[model] if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     modes = 3 * int(design.n_modes)
     least = smallest_dt(int(design.n_modes), t_end)
+    if dt < least and default:
+        # the budget, with the numbers, before any work (issue 31)
+        raise ChatterError(
+            f"t_end: found {t_end:g} s at N = {int(design.n_modes)} with the "
+            f"default dt {dt:g} s: {t_end / dt:.3g} steps x {modes} modes = "
+            f"{t_end / dt * modes:.3g}, expected at most {MAX_WORK:.0e} "
+            f"steps x modes and {MAX_STEPS:.0e} steps a run (shorten t_end, "
+            f"lower n_modes, or give dt >= {least:.3g} s)")
     if dt < least:
         raise ChatterError(f"dt: found {dt!r}, expected at least "
                            f"{least:.3g} s at N = {int(design.n_modes)} (at "
