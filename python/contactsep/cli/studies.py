@@ -27,6 +27,7 @@ from contactsep.studies.sweep import (
     MAX_DESIGNS,
     TARGET_CHUNK_S,
 )
+from contactsep.studies.sweep_checks import CHATTER_UNUSED
 from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
@@ -196,14 +197,40 @@ def _need_matplotlib() -> None:
     require_matplotlib()
 
 
+def drop_echoes(args, overrides: dict, unused) -> dict:
+    """``overrides`` less the fields in ``unused`` (fields the command
+    does not read) that only the --design file gave, at the thesis rig's
+    default: a file from ``contactsep model --json`` lists every field,
+    and its echo of a default changes nothing.  A value the user set
+    (another value, or on the command line) stays, to be refused."""
+    from contactsep.model import thesis_design
+    rig = thesis_design()
+    return {k: v for k, v in overrides.items() if not (
+        k in unused and k in fields_from_file(args)
+        and _same(v, getattr(rig, k)))}
+
+
+def _same(value, default) -> bool:
+    try:
+        return bool(value == default)
+    except (TypeError, ValueError):
+        return False
+
+
 def _compute(name: str, args, overrides: dict):
     from contactsep.studies import OWN_FIELDS, STUDIES
 
-    # a --design file's value of a study's own field gives way to it
-    overrides = {k: v for k, v in overrides.items() if not (
-        k in fields_from_file(args) and k in OWN_FIELDS.get(name, ()))}
-
     from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.preload import FIXED as PRELOAD_FIXED
+
+    # a --design file's value of a study's own field gives way to it (a
+    # file from model --json lists every field: issue 31)
+    own = {**OWN_FIELDS, "preload": set(PRELOAD_FIXED),
+           **{n: {field} for n, (field, _, _) in CONCLUSIONS.items()}}
+    overrides = {k: v for k, v in overrides.items() if not (
+        k in fields_from_file(args) and k in own.get(name, ()))}
+    if name == "preload":
+        overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
     searches = ("preload", *CONCLUSIONS)
     if name not in searches and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
@@ -236,10 +263,20 @@ def _search_study(name: str, args, overrides: dict):
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
                "workers": args.workers}
-    if name == "preload":
-        return preload_chart(**options, damping=args.damping or "none",
-                             **overrides)
-    return conclusion(name, **options, **overrides)
+    from contactsep.studies.search_checks import SearchError
+    try:
+        if name == "preload":
+            return preload_chart(**options, damping=args.damping or "none",
+                                 **overrides)
+        return conclusion(name, **options, **overrides)
+    except SearchError as error:
+        # the study names its arguments; the command, its options
+        names, sep, rest = str(error).partition(":")
+        if not sep:
+            raise
+        options = ", ".join("--" + n.strip().replace("_", "-")
+                            for n in names.split(","))
+        raise InputError(f"{options}:{rest}") from None
 
 
 def _save(study, out: Path, dpi: int) -> None:
@@ -361,9 +398,12 @@ def run_sweep(args: argparse.Namespace) -> int:
     vary = [parse_vary(text) for text in args.vary]
     sample = [parse_sample(text) for text in args.sample]
     swept = {name for name, _ in vary} | {s[0] for s in sample}
-    # a --design file's value of a swept field gives way to the sweep
+    # a --design file's value of a swept field gives way to the sweep;
+    # its echo of a default the chatter models do not read is dropped
     base = {k: v for k, v in design_overrides(args).items()
             if not (k in swept and k in fields_from_file(args))}
+    if args.model != "eq23":
+        base = drop_echoes(args, base, CHATTER_UNUSED)
     spec = make_spec(vary=vary, sample=sample, samples=args.samples,
                      seed=args.seed, base=base,
                      backend=args.backend or "compiled", model=args.model,
@@ -401,8 +441,13 @@ def run_sweep(args: argparse.Namespace) -> int:
     if summary["n_failed"]:
         if not summary["n"]:
             sys.stdout.flush()
+            why = ""
+            if args.model != "eq23" and 2 in summary["n_failed_by_status"]:
+                from contactsep.studies.chatter_sweep import first_refusal
+                first = first_refusal(spec)
+                why = f"; the first design: {first}" if first else ""
             raise InputError(f"{_failures(summary, args.model)}: every "
-                             f"one; nothing to summarise")
+                             f"one; nothing to summarise{why}")
         warnings.warn(f"{_failures(summary, args.model)}; the statistics "
                       f"are over the other {summary['n']:,}",
                       ContactsepWarning)

@@ -97,6 +97,12 @@ def conclusion(name: str, model: str = "hertz",
     max_lower_gap_in, circuit_open_s, n_events (no preload) and
     min_preload_lb; any other design field overridden by keyword;
     ``dt`` the stepper's step (default: the model's)."""
+    from contactsep.errors import shown
+    from contactsep.studies.search_checks import SearchError, check_search
+    if name not in STUDIES:
+        raise SearchError(f"name: found {shown(name)}, expected one of "
+                          f"{', '.join(STUDIES)}")
+    check_search(name, model, n_modes, workers, overrides, False)
     own, why, claim = STUDIES[name]
     refuse_fixed(name, overrides, {own: why})
     base = thesis_design(n_modes=n_modes, **overrides)
