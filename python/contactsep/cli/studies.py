@@ -299,10 +299,27 @@ def _study_targets(args, names) -> dict:
         out = Path(args.out)
         if out.exists() and not out.is_dir():
             raise InputError(f"--out {args.out}: not a directory")
+        if not out.exists():
+            # made at the end: the nearest existing folder must take it
+            _check_creatable(args.out)
+            return targets
         for name in names:
             targets[f"--out ({name}.csv)"] = out / f"{name}.csv"
             targets[f"--out ({name}.png)"] = out / f"{name}.png"
     return targets
+
+
+def _check_creatable(path: str) -> None:
+    """The folder ``path`` (not there yet) can be made: its nearest
+    existing ancestor is a writable directory."""
+    import os
+    parent = os.path.dirname(os.path.abspath(path))
+    while not os.path.exists(parent):
+        parent = os.path.dirname(parent)
+    if not os.path.isdir(parent) or not os.access(parent, os.W_OK
+                                                  | os.X_OK):
+        raise InputError(f"--out {path}: cannot be made in {parent} (not "
+                         f"a writable directory)")
 
 
 def run_study(args: argparse.Namespace) -> int:
@@ -348,6 +365,36 @@ def run_study(args: argparse.Namespace) -> int:
         out.mkdir(parents=True, exist_ok=True)
         _save(study, out, args.dpi)
     return 0
+
+
+class _Named:
+    """A sweep's writer whose write errors name its file: a full disk
+    with --csv and --parquet said only 'No space left on device' (issue
+    31).  Everything else goes to the writer."""
+
+    def __init__(self, writer, option: str, path: str) -> None:
+        self._writer, self._option, self._path = writer, option, path
+
+    def __getattr__(self, name):
+        return getattr(self._writer, name)
+
+    def _named(self, error: OSError) -> OSError:
+        if error.filename is not None or error.strerror is None:
+            return error
+        return OSError(error.errno, f"{self._option}: {error.strerror}",
+                       self._path)
+
+    def write(self, columns) -> None:
+        try:
+            self._writer.write(columns)
+        except OSError as error:
+            raise self._named(error) from None
+
+    def close(self, *args, **kwargs) -> None:
+        try:
+            self._writer.close(*args, **kwargs)
+        except OSError as error:
+            raise self._named(error) from None
 
 
 def _failures(summary: dict, model: str) -> str:
@@ -420,9 +467,11 @@ def run_sweep(args: argparse.Namespace) -> int:
     writers = []
     try:
         if args.parquet:
-            writers.append(runner.ParquetWriter(args.parquet, spec))
+            writers.append(_Named(runner.ParquetWriter(args.parquet, spec),
+                                  "--parquet", args.parquet))
         if args.csv:
-            writers.append(runner.CsvWriter(args.csv, spec))
+            writers.append(_Named(runner.CsvWriter(args.csv, spec), "--csv",
+                                  args.csv))
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
