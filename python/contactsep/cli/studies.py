@@ -13,6 +13,7 @@ from contactsep.cli.design_options import (
     design_overrides,
     fields_from_file,
 )
+from contactsep.cli.guards import NamedWriter, check_creatable, drop_echoes
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
@@ -197,26 +198,6 @@ def _need_matplotlib() -> None:
     require_matplotlib()
 
 
-def drop_echoes(args, overrides: dict, unused) -> dict:
-    """``overrides`` less the fields in ``unused`` (fields the command
-    does not read) that only the --design file gave, at the thesis rig's
-    default: a file from ``contactsep model --json`` lists every field,
-    and its echo of a default changes nothing.  A value the user set
-    (another value, or on the command line) stays, to be refused."""
-    from contactsep.model import thesis_design
-    rig = thesis_design()
-    return {k: v for k, v in overrides.items() if not (
-        k in unused and k in fields_from_file(args)
-        and _same(v, getattr(rig, k)))}
-
-
-def _same(value, default) -> bool:
-    try:
-        return bool(value == default)
-    except (TypeError, ValueError):
-        return False
-
-
 def _compute(name: str, args, overrides: dict):
     from contactsep.studies import OWN_FIELDS, STUDIES
 
@@ -301,25 +282,12 @@ def _study_targets(args, names) -> dict:
             raise InputError(f"--out {args.out}: not a directory")
         if not out.exists():
             # made at the end: the nearest existing folder must take it
-            _check_creatable(args.out)
+            check_creatable(args.out)
             return targets
         for name in names:
             targets[f"--out ({name}.csv)"] = out / f"{name}.csv"
             targets[f"--out ({name}.png)"] = out / f"{name}.png"
     return targets
-
-
-def _check_creatable(path: str) -> None:
-    """The folder ``path`` (not there yet) can be made: its nearest
-    existing ancestor is a writable directory."""
-    import os
-    parent = os.path.dirname(os.path.abspath(path))
-    while not os.path.exists(parent):
-        parent = os.path.dirname(parent)
-    if not os.path.isdir(parent) or not os.access(parent, os.W_OK
-                                                  | os.X_OK):
-        raise InputError(f"--out {path}: cannot be made in {parent} (not "
-                         f"a writable directory)")
 
 
 def run_study(args: argparse.Namespace) -> int:
@@ -365,36 +333,6 @@ def run_study(args: argparse.Namespace) -> int:
         out.mkdir(parents=True, exist_ok=True)
         _save(study, out, args.dpi)
     return 0
-
-
-class _Named:
-    """A sweep's writer whose write errors name its file: a full disk
-    with --csv and --parquet said only 'No space left on device' (issue
-    31).  Everything else goes to the writer."""
-
-    def __init__(self, writer, option: str, path: str) -> None:
-        self._writer, self._option, self._path = writer, option, path
-
-    def __getattr__(self, name):
-        return getattr(self._writer, name)
-
-    def _named(self, error: OSError) -> OSError:
-        if error.filename is not None or error.strerror is None:
-            return error
-        return OSError(error.errno, f"{self._option}: {error.strerror}",
-                       self._path)
-
-    def write(self, columns) -> None:
-        try:
-            self._writer.write(columns)
-        except OSError as error:
-            raise self._named(error) from None
-
-    def close(self, *args, **kwargs) -> None:
-        try:
-            self._writer.close(*args, **kwargs)
-        except OSError as error:
-            raise self._named(error) from None
 
 
 def _failures(summary: dict, model: str) -> str:
@@ -467,10 +405,10 @@ def run_sweep(args: argparse.Namespace) -> int:
     writers = []
     try:
         if args.parquet:
-            writers.append(_Named(runner.ParquetWriter(args.parquet, spec),
+            writers.append(NamedWriter(runner.ParquetWriter(args.parquet, spec),
                                   "--parquet", args.parquet))
         if args.csv:
-            writers.append(_Named(runner.CsvWriter(args.csv, spec), "--csv",
+            writers.append(NamedWriter(runner.CsvWriter(args.csv, spec), "--csv",
                                   args.csv))
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,

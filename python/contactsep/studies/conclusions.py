@@ -31,6 +31,7 @@ from contactsep.model import thesis_design
 from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
+    MODELS,
     Simulations,
     limit_notes,
     min_preloads,
@@ -102,7 +103,7 @@ def conclusion(name: str, model: str = "hertz",
     if name not in STUDIES:
         raise SearchError(f"name: found {shown(name)}, expected one of "
                           f"{', '.join(STUDIES)}")
-    check_search(name, model, n_modes, workers, overrides, False)
+    check_search(name, model, MODELS, n_modes, workers, overrides, False)
     own, why, claim = STUDIES[name]
     refuse_fixed(name, overrides, {own: why})
     base = thesis_design(n_modes=n_modes, **overrides)

@@ -336,7 +336,8 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
     to e), ``dt`` the stepper's step (default: the model's)."""
     from contactsep.studies import search_checks as checks
-    checks.check_search("preload", model, n_modes, workers, overrides, True)
+    checks.check_search("preload", model, MODELS, n_modes, workers,
+                        overrides, True)
     thicknesses = checks.check_values("thicknesses", thicknesses, "in")
     heights = checks.check_values("heights", heights, "in")
     refuse_fixed("preload", overrides, FIXED)

@@ -53,15 +53,15 @@ def check_values(name: str, values, unit: str) -> tuple:
     return items
 
 
-def check_search(study: str, model, n_modes, workers, overrides: dict,
-                 simulation_only: bool) -> None:
-    """The arguments every search study shares; ``simulation_only``
-    (the preload chart: no eq. 23 column) refuses the fields only the
-    single-impulse model reads (tau, ...), which it would ignore."""
-    from contactsep.studies.preload import MODELS
-    if model not in MODELS:
+def check_search(study: str, model, models, n_modes, workers,
+                 overrides: dict, simulation_only: bool) -> None:
+    """The arguments every search study shares (``models`` the contact
+    models it runs); ``simulation_only`` (the preload chart: no eq. 23
+    column) refuses the fields only the single-impulse model reads
+    (tau, ...), which it would ignore."""
+    if model not in models:
         raise SearchError(f"model: found {shown(model)}, expected one of "
-                          f"{', '.join(MODELS)}")
+                          f"{', '.join(models)}")
     check_modes(n_modes)
     check_workers(workers)
     unused = sorted(set(overrides) & set(CHATTER_UNUSED))

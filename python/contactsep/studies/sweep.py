@@ -25,13 +25,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep.model import evaluate, thesis_design
-from contactsep.chatter.simulate import MAX_MODES as MAX_CHATTER_MODES
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep_checks import (
     SweepError,
+    check_chatter_modes,
     check_dt,
     check_fixed,
     check_model,
@@ -486,10 +486,7 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
-    if model != "eq23" and spec.max_modes > MAX_CHATTER_MODES:
-        raise SweepError(f"--n-modes: found {spec.max_modes}, expected at "
-                         f"most {MAX_CHATTER_MODES} modes per member for "
-                         f"the chatter simulation (--model {model})")
+    check_chatter_modes(model, spec.max_modes)
     steps = [settings["dt"]] if "dt" in settings else []
     check_dt(steps + spec.varied_extremes("dt"), spec.max_modes,
              "--dt" if "dt" in settings else "--vary dt", model)

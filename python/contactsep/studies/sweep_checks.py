@@ -75,6 +75,16 @@ def _fixed(base, settings) -> tuple[dict, dict]:
     return fields, chosen
 
 
+def check_chatter_modes(model: str, max_modes: int) -> None:
+    """A chatter sweep's largest N within the simulation's limit, before
+    any work (each design was refused on its own)."""
+    from contactsep.chatter.simulate import MAX_MODES
+    if model != "eq23" and max_modes > MAX_MODES:
+        raise SweepError(f"--n-modes: found {max_modes}, expected at most "
+                         f"{MAX_MODES} modes per member for the chatter "
+                         f"simulation (--model {model})")
+
+
 def check_used(model: str, given: set) -> None:
     """A chatter sweep refuses the design fields its simulation does
     not read (CHATTER_UNUSED): fixed or varied, every row would be the
