@@ -206,3 +206,20 @@ def test_a_sweep_counts_blown_up_designs_as_status_7(capsys):
     message = refusal(code, err)
     assert "2 energy bound" in message
     assert strict_json(out)["n_failed_by_status"] == {"7": 2}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("signum, code", [(2, 130), (15, 143)])
+@pytest.mark.parametrize("args", [
+    # the regression: 5 s of work given Ctrl-C at 2 s exited 0
+    # after finishing (a child process: 3e8 steps x modes and more)
+    ["--n-modes", "1024", "--t-end", "0.15"],
+    # below the forked size: the thread and the compiled loop's flag
+    ["--stepper", "fixed", "--n-modes", "16", "--dt", "1e-8"],
+])
+def test_a_long_hertz_run_stops_at_a_signal(tmp_path, signum, code, args):
+    from test_signals import PROMPT, _stop
+    status_, took, err = _stop(["chatter", "--model", "hertz", *args],
+                               signum, 1.0, tmp_path, signum == 2)
+    assert status_ == code, err
+    assert took < PROMPT

@@ -486,7 +486,7 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
-    check_chatter_modes(model, spec.max_modes)
+    check_chatter_modes(model, base.get("n_modes"))
     steps = [settings["dt"]] if "dt" in settings else []
     check_dt(steps + spec.varied_extremes("dt"), spec.max_modes,
              "--dt" if "dt" in settings else "--vary dt", model)

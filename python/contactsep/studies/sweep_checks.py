@@ -75,11 +75,16 @@ def _fixed(base, settings) -> tuple[dict, dict]:
     return fields, chosen
 
 
-def check_chatter_modes(model: str, max_modes: int) -> None:
-    """A chatter sweep's largest N within the simulation's limit, before
-    any work (each design was refused on its own)."""
+def check_chatter_modes(model: str, fixed) -> None:
+    """A chatter sweep's fixed N (``fixed``: one N or three, None when
+    varied or the default) within the simulation's limit, before any
+    work: every design would be refused on its own.  A varied N past it
+    is the status of its rows."""
     from contactsep.chatter.simulate import MAX_MODES
-    if model != "eq23" and max_modes > MAX_MODES:
+    if fixed is None or model == "eq23":
+        return
+    max_modes = max(fixed) if isinstance(fixed, tuple) else int(fixed)
+    if max_modes > MAX_MODES:
         raise SweepError(f"--n-modes: found {max_modes}, expected at most "
                          f"{MAX_MODES} modes per member for the chatter "
                          f"simulation (--model {model})")
