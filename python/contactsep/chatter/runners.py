@@ -45,11 +45,12 @@ def _stoppable(work, call):
     A stepper that returns INTERRUPTED of itself is a KeyboardInterrupt.
     Off the main thread (no signal arrives there) or for a short run,
     the call runs here."""
-    if work < STOPPABLE_WORK or \
-            threading.current_thread() is not threading.main_thread():
-        return _interrupted_check(call())
     api = _api()
-    api.clear_stop()
+    if threading.current_thread() is not threading.main_thread():
+        return _interrupted_check(call())
+    api.clear_stop()        # a stop asked of an earlier run is done
+    if work < STOPPABLE_WORK:
+        return _interrupted_check(call())
     box = {}
 
     def target():
@@ -60,13 +61,17 @@ def _stoppable(work, call):
 
     worker = threading.Thread(target=target, name="contactsep-stepper",
                               daemon=True)
-    worker.start()
     try:
+        worker.start()
         while worker.is_alive():
             worker.join(0.1)
     except BaseException:
+        # (a signal inside start() may come before the thread is seen
+        # alive: the flag, left set, stops it at its first look)
         api.request_stop()
-        worker.join()
+        if worker.is_alive():
+            worker.join()
+            api.clear_stop()
         raise
     if "error" in box:
         raise box["error"]
