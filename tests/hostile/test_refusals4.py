@@ -26,6 +26,7 @@ from contactsep.studies.sweep import make_spec, parse_vary
     (["--sample", "tau=uniform(0.01,0.05)"], "tau: not used"),
     (["--lower-response", "impulse", "--vary", "h2=0.2,0.3"],
      "lower_response: not used"),
+    (["--vary", "e=0.2,0.5"], "e: not used by elastic Hertz contact"),
 ])
 def test_a_chatter_sweep_refuses_fields_its_simulation_ignores(
         capsys, args, start):
@@ -151,3 +152,11 @@ def test_make_spec_keeps_a_valid_base_by_field_name():
 def test_contactsep_warning_is_the_category_of_the_eq23_note():
     with pytest.warns(ContactsepWarning, match="single impulse"):
         simulate(thesis_design(tau=1e300, n_modes=2), model="hertz")
+
+
+def test_e_is_swept_where_it_is_read(capsys):
+    """Flores damping reads e (calibrated to it): the sweep runs."""
+    code, out, err = main(capsys, "sweep", "--model", "hertz", "--vary",
+                          "e=0.2,0.5", "--damping", "flores", "--n-modes",
+                          "2", "--json", "--workers", "1")
+    assert code == 0, err

@@ -36,6 +36,7 @@ from contactsep.studies.sweep_checks import (
     check_fixed,
     check_model,
     check_preload,
+    check_elastic,
     check_used,
 )
 
@@ -470,6 +471,7 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     swept = set(names) | {s[0] for s in sample}
     check_model(model, backend, swept | set(settings))
     check_used(model, swept | set(base))
+    check_elastic(model, swept, settings)
     check_preload(settings.get("preload"), base, swept)
     if samples is None:
         samples = 1000 if sample else 1

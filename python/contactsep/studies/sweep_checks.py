@@ -90,6 +90,17 @@ def check_chatter_modes(model: str, fixed) -> None:
                          f"simulation (--model {model})")
 
 
+def check_elastic(model: str, swept: set, settings: dict) -> None:
+    """Elastic Hertz contact (damping none, not varied) reads no e: a
+    sweep of e would give equal rows."""
+    if model == "hertz" and "e" in swept and "damping" not in swept and \
+            settings.get("damping", "none") == "none":
+        raise SweepError("e: not used by elastic Hertz contact (--model "
+                         "hertz, damping none); with --damping flores it "
+                         "sets the damping, with --model newton the "
+                         "impact law")
+
+
 def check_used(model: str, given: set) -> None:
     """A chatter sweep refuses the design fields its simulation does
     not read (CHATTER_UNUSED): fixed or varied, every row would be the
