@@ -261,3 +261,33 @@ def test_the_bound_never_stops_a_converged_run_of_the_family(model):
             assert abs(result.energy_ratio - 1.0) < 1e-3
         else:
             assert result.energy_ratio <= 1.0 + 1e-9
+
+
+def test_a_long_run_stops_at_a_signal_with_other_threads_running():
+    """With another thread running (a progress bar's monitor, Dask's),
+    a long run cannot go to a forked child and ran in-process, deaf to
+    Ctrl-C until its end (one way to the issue's 'exits 0 after
+    finishing'): the compiled loop's flag stops it now."""
+    import _thread
+
+    design = thesis_design(n_modes=1024)
+    simulate(design, model="hertz", t_end=1e-4)    # modes cached
+    busy = threading.Event()
+    other = threading.Thread(target=busy.wait, daemon=True)
+    other.start()
+    fired = []
+
+    def interrupt():
+        fired.append(time.monotonic())
+        _thread.interrupt_main()
+
+    timer = threading.Timer(1.0, interrupt)
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            simulate(design, model="hertz", t_end=0.15)
+        ended = time.monotonic()
+    finally:
+        timer.cancel()
+        busy.set()
+    assert fired and ended - fired[0] < 0.5
