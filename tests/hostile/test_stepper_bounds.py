@@ -58,6 +58,12 @@ def test_a_blown_up_hertz_run_stops_with_no_circuit_figures(stepper):
     assert result.n_events == -1 and not result.chatters
     data = result.to_json_dict()
     assert data["status"] == 7 and data["circuit_open_s"] is None
+    # the samples it reached (every 1 ms), NaN after the stop
+    reached = ~np.isnan(result.t)
+    assert reached[0] and not reached[-1]
+    assert np.array_equal(reached, np.arange(len(result.t)) < reached.sum())
+    assert np.allclose(result.t[reached], 1e-3 * np.arange(reached.sum()))
+    assert np.all(np.isnan(result.gap_upper[~reached]))
 
 
 @pytest.mark.parametrize("d, dt", [(0.1, 3e-5), (0.1, 1e-4)])

@@ -128,6 +128,17 @@ def _energy_bound(system, law=None) -> float:
     return ENERGY_MARGIN * float(energy0)
 
 
+def _reached(t, g, energy, status):
+    """An adaptive run stopped early: its samples not reached (t left
+    at 0 after the first) as NaN."""
+    if status == chatter_status.OK:
+        return t, g, energy
+    missed = t <= 0.0
+    missed[0] = False
+    return (np.where(missed, np.nan, t), np.where(missed, np.nan, g),
+            np.where(missed, np.nan, energy))
+
+
 def _checked(status, bound=None, energy=None, t=None):
     """The run's status: a stepper's LCP failure is an error; the
     energy past ``bound`` (or not a number) at a sample reached (t >= 0)
@@ -193,6 +204,7 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
             stride, samples, threshold, s.n_upper, bound, room),
             steps * s.m.size)
     status = _checked(status)
+    t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
@@ -213,6 +225,7 @@ def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
             threshold, s.n_upper, _energy_bound(s), room),
             steps * s.m.size)
     status = _checked(status)
+    t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
