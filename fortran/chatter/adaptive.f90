@@ -53,7 +53,8 @@
 !> the flight steps.
 module chatter_adaptive
   use contactsep_kinds, only: wp
-  use chatter_status, only: status_ok
+  use chatter_status, only: status_ok, status_interrupted
+  use chatter_stop, only: stop_requested, stop_check_every
   use chatter_adaptive_state, only: adaptive_run, max_level, head, &
       max_waiting
   use chatter_adaptive_flow, only: table, flow, gaps, energy, &
@@ -108,13 +109,17 @@ contains
     real(wp), intent(out) :: gap_max(2, k)
     !> Flight steps, fixed steps, flow evaluations of the searches.
     integer, intent(out) :: counts(3)
-    !> status_ok, status_crossings_full (the table filled up) or
-    !> status_lcp_unsolved (Newton: the contact LCP had no solution).
+    !> status_ok, status_crossings_full (the table filled up),
+    !> status_lcp_unsolved (Newton: the contact LCP had no solution),
+    !> status_energy_bound (a fixed step took the energy past
+    !> energy_bound, chatter_adaptive_crossings' watch_fixed) or
+    !> status_interrupted (chatter_stop's flag, read every
+    !> stop_check_every passes of the loop).
     integer, intent(out) :: status
 
     type(adaptive_run) :: run
     real(wp) :: span, safe
-    integer :: step, i_next, level, c, sample, units
+    integer :: step, i_next, level, c, sample, units, passes
 
     t_out = 0.0_wp
     g_out = 0.0_wp
@@ -129,7 +134,13 @@ contains
     g_out(:, 1) = run%gap
     call energy(run, e_out(1))
     step = 0
+    passes = 0
     do while (step < steps)
+      passes = passes + 1
+      if (mod(passes, stop_check_every) == 0) then
+        if (stop_requested /= 0) run%status = status_interrupted
+        if (run%status /= status_ok) exit
+      end if
       i_next = min(steps, sample * stride)
       if (sample >= samples) i_next = steps
       ! a flight step if no (considered) contact is closed
@@ -232,6 +243,7 @@ contains
     run%restitution = restitution
     run%dt = dt
     run%threshold = threshold
+    run%energy_bound = energy_bound
     run%max_cross = max_cross
     run%ht = transpose(h)
     allocate(run%half_kick(n, k), run%inv_mh(n, k), run%energy_b(k))

@@ -7,10 +7,10 @@
 !> only where none can, the searches.
 module chatter_adaptive_crossings
   use contactsep_kinds, only: wp
-  use chatter_status, only: status_crossings_full
+  use chatter_status, only: status_crossings_full, status_energy_bound
   use chatter_adaptive_state, only: adaptive_run, max_stack
   use chatter_adaptive_flow, only: amplitude_bounds, chord, end_rates, &
-      gap_at, monotone
+      gap_at, monotone, energy
   use chatter_adaptive_gap_max, only: new_max, tolerance, wait_for_max
   implicit none
   private
@@ -19,14 +19,24 @@ module chatter_adaptive_crossings
 contains
 
   !> watch() of every contact over a fixed step's flow: the energy
-  !> bound first (free), the amplitudes if need be.
+  !> bound first (free), the amplitudes if need be.  Every bound here
+  !> assumes the energy within run%energy_bound: a step that took it
+  !> past (a kick of a step too coarse for the contact; energy() is
+  !> cached between kicks) or made it not a number stops the run with
+  !> status_energy_bound before any search (issue 31: a blown-up state
+  !> sent the crossings' bisection down an endless tree).
   subroutine watch_fixed(run, span, slot, t_end)
     type(adaptive_run), intent(inout) :: run
     real(wp), intent(in) :: span, t_end
     integer, intent(in) :: slot
-    real(wp) :: margin
+    real(wp) :: margin, e_now
     integer :: j
 
+    call energy(run, e_now)
+    if (.not. e_now <= run%energy_bound) then
+      run%status = status_energy_bound
+      return
+    end if
     do j = 1, run%k
       margin = 0.125_wp * run%energy_b(j) * span**2
       if (crossing_possible(run, run%gap(j), run%gap_new(j), margin) &

@@ -41,6 +41,9 @@ module chatter_adaptive_state
     !> coefficient of restitution, step dt (s), open threshold (in).
     real(wp) :: stiffness = 0.0_wp, chi = 0.0_wp, restitution = 0.0_wp
     real(wp) :: dt = 0.0_wp, threshold = 0.0_wp
+    !> The energy's hard bound (in lb): a fixed step past it stops the
+    !> run (status_energy_bound), as every bound above assumes it.
+    real(wp) :: energy_bound = huge(1.0_wp)
     !> Rotation by the exact flow: cos(p tau), sin(p tau) / p and
     !> p sin(p tau) for tau in slot -1 (dt/2), 0 (the sample stride),
     !> 1..levels (2^(slot-1) dt).

@@ -6,23 +6,41 @@ module chatter_api
   use chatter_adaptive, only: adaptive, law_hertz, law_newton
   use chatter_event_driven, only: rigid_stop, jacobi_eigen
   use chatter_status, only: status_ok, status_no_eigenbasis
+  use chatter_stop, only: stop_requested
   implicit none
   private
   public :: run_moreau_jean, run_hertz, run_hertz_adaptive
   public :: run_newton_adaptive, run_rigid_stop
-  public :: symmetric_eigen
+  public :: symmetric_eigen, request_stop, clear_stop
+
+  ! The steppers' entries release the GIL (f2py threadsafe) so that
+  ! Python's main thread can wait for them and, on Ctrl-C or SIGTERM,
+  ! call request_stop (contactsep/chatter/runners.py).
 
 contains
+
+  !> Ask every running stepper to stop (status_interrupted) within
+  !> chatter_stop's stop_check_every steps.
+  subroutine request_stop()
+    stop_requested = 1
+  end subroutine request_stop
+
+  !> Let steppers run again (before a new run).
+  subroutine clear_stop()
+    stop_requested = 0
+  end subroutine clear_stop
 
   !> Moreau-Jean (see chatter_moreau_jean); q, v are copied, not changed.
   !> crossings(:, i) = time, +c / -c (contact c opens / closes);
   !> gap_max(:, c) = largest gap c, its time; status: chatter_status.
   subroutine run_moreau_jean(n, k, m, p, h, g0, q0, v0, e, dt, theta, &
       steps, stride, samples, threshold, max_cross, t_out, g_out, e_out, &
-      p_out, first, crossings, n_cross, gap_max, status)
+      p_out, first, crossings, n_cross, gap_max, status, energy_bound)
+    !f2py threadsafe
+    !f2py real(wp), optional, intent(in) :: energy_bound = 1.0e300
     integer, intent(in) :: n, k, steps, stride, samples, max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
-    real(wp), intent(in) :: e, dt, theta, threshold
+    real(wp), intent(in) :: e, dt, theta, threshold, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
     !> First episode of contact 1: time, impulse (-1: none).
@@ -35,25 +53,31 @@ contains
     v = v0
     call moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, steps, &
         stride, samples, threshold, max_cross, t_out, g_out, e_out, &
-        p_out, first, crossings, n_cross, gap_max, status)
+        p_out, first, crossings, n_cross, gap_max, energy_bound, status)
   end subroutine run_moreau_jean
 
   !> Hertz splitting (see chatter_hertz); q, v are copied, not changed.
+  !> status: chatter_status (ok, energy_bound, interrupted).
   subroutine run_hertz(n, k, m, p, h, g0, q0, v0, stiffness, chi, dt, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first)
+      steps, stride, samples, t_out, g_out, e_out, p_out, first, status, &
+      energy_bound)
+    !f2py threadsafe
+    !f2py real(wp), optional, intent(in) :: energy_bound = 1.0e300
     integer, intent(in) :: n, k, steps, stride, samples
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
-    real(wp), intent(in) :: stiffness, chi, dt
+    real(wp), intent(in) :: stiffness, chi, dt, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
     !> First episode of contact 1: time, impulse (-1: none).
     real(wp), intent(out) :: first(2)
+    integer, intent(out) :: status
     real(wp) :: q(n), v(n)
 
     q = q0
     v = v0
     call hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, steps, &
-        stride, samples, t_out, g_out, e_out, p_out, first)
+        stride, samples, t_out, g_out, e_out, p_out, first, energy_bound, &
+        status)
   end subroutine run_hertz
 
   !> Hertz, adaptive (see chatter_adaptive); q0, v0 are copied.
@@ -64,6 +88,7 @@ contains
       chi, dt, steps, stride, samples, threshold, n_moving, &
       energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
       n_cross, gap_max, counts, status)
+    !f2py threadsafe
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
     integer, intent(in) :: max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
@@ -89,6 +114,7 @@ contains
       steps, stride, samples, threshold, n_moving, energy_bound, &
       max_cross, t_out, g_out, e_out, first, crossings, n_cross, &
       gap_max, counts, status)
+    !f2py threadsafe
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
     integer, intent(in) :: max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)

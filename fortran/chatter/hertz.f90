@@ -3,6 +3,9 @@
 !> Twin: contactsep/chatter/steppers.py.
 module chatter_hertz
   use contactsep_kinds, only: wp
+  use chatter_status, only: status_ok, status_energy_bound, &
+      status_interrupted
+  use chatter_stop, only: stop_requested, stop_check_every
   implicit none
   private
   public :: hertz
@@ -35,8 +38,13 @@ contains
   !> The gap after the flow is the next step's gap before it (a kick
   !> changes v, not q), so one 2 x n product a step finds both; kicks
   !> and contact rates cost only while a contact is closed.
-  pure subroutine hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first)
+  !> Hard bounds (issue 31): the run stops with status_energy_bound
+  !> when the energy at a sample or a stop check exceeds energy_bound
+  !> (or is not a number), and with status_interrupted when
+  !> chatter_stop's flag is set; the samples not reached keep t = -1.
+  subroutine hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, &
+      steps, stride, samples, t_out, g_out, e_out, p_out, first, &
+      energy_bound, status)
     integer, intent(in) :: n, k
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k)
     real(wp), intent(inout) :: q(n), v(n)
@@ -50,6 +58,9 @@ contains
     !> Contact 1's first episode: the start of its first step with a
     !> force, and the impulse of its consecutive steps with one.
     real(wp), intent(out) :: first(2)
+    !> The energy's hard bound (in lb) and how the run ended.
+    real(wp), intent(in) :: energy_bound
+    integer, intent(out) :: status
     real(wp) :: c(n), sine_over_p(n), p_sine(n), ht(n, k), half_kick(n, k)
     real(wp) :: force(k), gap(k), qn(n)
     integer :: step, i, sample, episode
@@ -64,6 +75,10 @@ contains
     p_out = 0.0_wp
     first = -1.0_wp
     episode = 0
+    status = status_ok
+    t_out = -1.0_wp
+    g_out = 0.0_wp
+    e_out = 0.0_wp
     t_out(1) = 0.0_wp
     gap = gaps()
     g_out(:, 1) = gap
@@ -97,8 +112,17 @@ contains
         t_out(sample) = step * dt
         g_out(:, sample) = gap
         e_out(sample) = energy()
+        if (.not. e_out(sample) <= energy_bound) status = &
+            status_energy_bound
       end if
+      if (mod(step, stop_check_every) == 0) then
+        if (.not. energy() <= energy_bound) status = status_energy_bound
+        if (stop_requested /= 0) status = status_interrupted
+      end if
+      if (status /= status_ok) exit
     end do
+    if (status == status_ok .and. .not. energy() <= energy_bound) &
+        status = status_energy_bound
 
   contains
 

@@ -5,7 +5,8 @@ module chatter_moreau_jean
   use contactsep_kinds, only: wp
   use chatter_lcp, only: solve_lcp
   use chatter_status, only: status_ok, status_lcp_unsolved, &
-      status_crossings_full
+      status_crossings_full, status_energy_bound, status_interrupted
+  use chatter_stop, only: stop_requested, stop_check_every
   implicit none
   private
   public :: moreau_jean
@@ -17,9 +18,12 @@ contains
   !> (1 - theta) v)), so each crossing of the open threshold is found
   !> there by linear interpolation, and each gap's largest value is its
   !> largest at a step's end.
-  pure subroutine moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, &
+  !> Hard bounds (issue 31): status_energy_bound when the energy at a
+  !> sample or a stop check exceeds energy_bound (or is not a number),
+  !> status_interrupted when chatter_stop's flag is set.
+  subroutine moreau_jean(n, k, m, p, h, g0, q, v, e, dt, theta, &
       steps, stride, samples, threshold, max_cross, t_out, g_out, e_out, &
-      p_out, first, crossings, n_cross, gap_max, status)
+      p_out, first, crossings, n_cross, gap_max, energy_bound, status)
     !> Modes (all members stacked) and contacts (1 or 2).
     integer, intent(in) :: n, k
     !> Mass and frequency of every mode; contact Jacobian; gap offsets.
@@ -42,8 +46,11 @@ contains
     integer, intent(out) :: n_cross
     !> gap_max(:, c) = largest gap c at a step's end and its time.
     real(wp), intent(out) :: gap_max(2, k)
-    !> status_ok, status_lcp_unsolved (the LCP had no solution) or
-    !> status_crossings_full (the crossings filled their table).
+    !> The energy's hard bound (in lb).
+    real(wp), intent(in) :: energy_bound
+    !> status_ok, status_lcp_unsolved (the LCP had no solution),
+    !> status_crossings_full (the crossings filled their table), or a
+    !> hard bound's status (above).
     integer, intent(out) :: status
     real(wp) :: stiff(n), w(n), v_free(n), v_new(n), u(k), gap(k)
     real(wp) :: d(2, 2), b(2), z(2), hw(k, n), gap_new(k)
@@ -60,6 +67,9 @@ contains
       hw(i, :) = h(i, :) * w
     end do
     p_out = 0.0_wp
+    t_out = -1.0_wp
+    g_out = 0.0_wp
+    e_out = 0.0_wp
     t_out(1) = 0.0_wp
     g_out(:, 1) = matmul(h, q) + g0
     e_out(1) = 0.5_wp * sum(m * v**2 + stiff * q**2)
@@ -149,8 +159,17 @@ contains
         t_out(s) = step * dt
         g_out(:, s) = gap
         e_out(s) = 0.5_wp * sum(m * v**2 + stiff * q**2)
+        if (.not. e_out(s) <= energy_bound) status = status_energy_bound
       end if
+      if (mod(step, stop_check_every) == 0) then
+        if (.not. 0.5_wp * sum(m * v**2 + stiff * q**2) <= energy_bound) &
+            status = status_energy_bound
+        if (stop_requested /= 0) status = status_interrupted
+      end if
+      if (status /= status_ok) return
     end do
+    if (.not. 0.5_wp * sum(m * v**2 + stiff * q**2) <= energy_bound) &
+        status = status_energy_bound
   end subroutine moreau_jean
 
 end module chatter_moreau_jean

@@ -89,6 +89,18 @@ def printable(message: str) -> str:
     return "".join(out)
 
 
+def shown(value) -> str:
+    """repr(value) for a message, a long one cut (10**400 is 401
+    digits): 'an integer of 401 digits'."""
+    if isinstance(value, int) and abs(value) > 10**30:
+        # (repr of an int past 4300 digits is itself an error)
+        return f"an integer of about {int(value.bit_length() * 0.30103) + 1}" \
+            f" digits"
+    text = repr(value)
+    return text if len(text) <= 40 else \
+        text[:24] + f"... ({len(text)} characters)"
+
+
 class InputError(ValueError):
     """Input the package refuses (a design, a study or sweep option, a
     simulation setting); the message is one printable line naming the

@@ -314,7 +314,9 @@ def check_targets(outputs: dict, inputs: dict | None = None) -> None:
     for label, path in outputs.items():
         if path is None:
             continue
-        target_info(path)
+        info = target_info(path)
+        if info is None or stat.S_ISREG(info.st_mode):
+            _check_directory(label, path)
         for other, earlier in {**seen, **(inputs or {})}.items():
             if same_file(path, earlier):
                 what = f"the same file as {other} {earlier}" if \
@@ -322,6 +324,20 @@ def check_targets(outputs: dict, inputs: dict | None = None) -> None:
                 raise InputError(f"{label} {path}: {what}; write each "
                                  f"output to its own file")
         seen[label] = path
+
+
+def _check_directory(label: str, path: str | os.PathLike) -> None:
+    """The directory a regular output file is written in (its temporary
+    file beside it) exists and can be written, or an InputError names
+    ``label`` and ``path`` (issue 31: refused before the work, not
+    after it)."""
+    directory = os.path.dirname(os.path.realpath(path)) or "."
+    if not os.path.isdir(directory):
+        raise InputError(f"{label} {os.fspath(path)}: no such directory "
+                         f"{directory}")
+    if not os.access(directory, os.W_OK | os.X_OK):
+        raise InputError(f"{label} {os.fspath(path)}: directory "
+                         f"{directory} is not writable")
 
 
 def same_file(first: str | os.PathLike, second: str | os.PathLike) -> bool:

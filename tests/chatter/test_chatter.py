@@ -146,7 +146,7 @@ def test_hertz_splitting_against_a_general_ode_solver():
                               dense_output=True)
     dt = 1e-8
     steps = int(round(span / dt))
-    t, g, _, _, first = api.run_hertz(m, p, h, np.zeros(2), q, v, law.k,
+    t, g, _, _, first, _ = api.run_hertz(m, p, h, np.zeros(2), q, v, law.k,
                                       law.chi, dt, steps, 100,
                                       steps // 100 + 1)
     reference = h @ ode.sol(t)[:p.size]
@@ -314,7 +314,7 @@ def test_stiff_hertz_tends_to_appendix_e_at_the_predicted_rate(n, order):
         dt = 2e-8
         steps = int(0.0235 / dt)
         stride = steps // 100
-        *_, first = api.run_hertz(
+        *_, first, _ = api.run_hertz(
             np.full(n, upper.mass), upper.p, upper.x.reshape(1, n),
             np.zeros(1), upper.q0, upper.v0, law.k * scale, 0.0, dt, steps,
             stride, steps // stride + 1)

@@ -5,6 +5,8 @@ contact's open intervals, the largest lower gap, the first impact)."""
 from __future__ import annotations
 
 import importlib
+import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,8 +26,62 @@ MAX_CROSSINGS = 4096 * 16**3
 ENERGY_MARGIN = 2.0
 
 
+#: A compiled run of at least this many steps x modes runs in a thread
+#: that Ctrl-C and SIGTERM stop (:func:`_stoppable`); a shorter one
+#: ends within milliseconds anyway.
+STOPPABLE_WORK = 1e6
+
+
 class StepperError(InputError):
     """A stepper could not finish (the contact LCP had no solution)."""
+
+
+def _stoppable(work, call):
+    """``call()`` (a compiled stepper; it releases the GIL) in a thread
+    while this, the main thread, waits: Ctrl-C or SIGTERM (an exception
+    raised here by the handler) sets the compiled loops' stop flag
+    (chatter_api's request_stop), the stepper returns within a few
+    thousand steps with status INTERRUPTED, and the exception goes on.
+    A stepper that returns INTERRUPTED of itself is a KeyboardInterrupt.
+    Off the main thread (no signal arrives there) or for a short run,
+    the call runs here."""
+    api = _api()
+    if threading.current_thread() is not threading.main_thread():
+        return _interrupted_check(call())
+    api.clear_stop()        # a stop asked of an earlier run is done
+    if work < STOPPABLE_WORK:
+        return _interrupted_check(call())
+    box = {}
+
+    def target():
+        try:
+            box["out"] = call()
+        except BaseException as error:   # noqa: BLE001 - sent back
+            box["error"] = error
+
+    worker = threading.Thread(target=target, name="contactsep-stepper",
+                              daemon=True)
+    try:
+        worker.start()
+        while worker.is_alive():
+            worker.join(0.1)
+    except BaseException:
+        # (a signal inside start() may come before the thread is seen
+        # alive: the flag, left set, stops it at its first look)
+        api.request_stop()
+        if worker.is_alive():
+            worker.join()
+            api.clear_stop()
+        raise
+    if "error" in box:
+        raise box["error"]
+    return _interrupted_check(box["out"])
+
+
+def _interrupted_check(out):
+    if out[-1] == chatter_status.INTERRUPTED:
+        raise KeyboardInterrupt
+    return out
 
 
 @dataclass(frozen=True)
@@ -56,6 +112,46 @@ class Run:
     max_lower_gap_in: float
     first: tuple              # (time s, impulse lb s); NaN: none
     work: dict
+    #: chatter_status: OK, or ENERGY_BOUND (the stepper stopped: its
+    #: energy passed ENERGY_MARGIN times the start's; the samples not
+    #: reached are NaN)
+    status: int = chatter_status.OK
+
+
+def _energy_bound(system, law=None) -> float:
+    """ENERGY_MARGIN times the energy at the start (with the contacts'
+    for Hertz): the steppers' hard bound."""
+    s = system
+    energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
+    if law is not None:
+        energy0 += np.sum(law.energy(s.h @ s.q0 + s.g0))
+    return ENERGY_MARGIN * float(energy0)
+
+
+def _reached(t, g, energy, status):
+    """An adaptive run stopped early: its samples not reached (t left
+    at 0 after the first) as NaN."""
+    if status == chatter_status.OK:
+        return t, g, energy
+    missed = t <= 0.0
+    missed[0] = False
+    return (np.where(missed, np.nan, t), np.where(missed, np.nan, g),
+            np.where(missed, np.nan, energy))
+
+
+def _checked(status, bound=None, energy=None, t=None):
+    """The run's status: a stepper's LCP failure is an error; the
+    energy past ``bound`` (or not a number) at a sample reached (t >= 0)
+    is ENERGY_BOUND whatever the stepper said."""
+    if status == chatter_status.LCP_UNSOLVED:
+        raise StepperError("the contact LCP had no solution")
+    if status not in (chatter_status.OK, chatter_status.ENERGY_BOUND):
+        raise StepperError(f"the stepper stopped with status {status}")
+    if energy is not None:
+        reached = energy if t is None else energy[t >= 0.0]
+        if not np.all(reached <= bound):
+            return chatter_status.ENERGY_BOUND
+    return int(status)
 
 
 def _api():
@@ -79,11 +175,12 @@ def _open_from_crossings(crossings, n_cross, g_start, threshold, t_end):
     return spans
 
 
-def _with_room(call):
-    """Run call(room) with growing crossing tables until they suffice."""
+def _with_room(call, work=0.0):
+    """Run call(room) with growing crossing tables until they suffice
+    (each run stoppable, :func:`_stoppable`)."""
     room = FIRST_CROSSINGS
     while True:
-        out = call(room)
+        out = _stoppable(work, lambda: call(room))
         if out[-1] != chatter_status.CROSSINGS_FULL:
             return out
         if room >= MAX_CROSSINGS:
@@ -100,18 +197,19 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     s = system
     samples = steps // stride + 1
     gap0 = s.h @ s.q0 + s.g0
-    energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2)) + np.sum(
-        law.energy(gap0))
-    t, g, energy, first, crossings, n_cross, gap_max, counts, _ = \
+    bound = _energy_bound(s, law)
+    t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
         _with_room(lambda room: _api().run_hertz_adaptive(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, law.k, law.chi, dt, steps,
-            stride, samples, threshold, s.n_upper,
-            ENERGY_MARGIN * energy0, room))
+            stride, samples, threshold, s.n_upper, bound, room),
+            steps * s.m.size)
+    status = _checked(status)
+    t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work=_work(counts))
+               first=_first(first), work=_work(counts), status=status)
 
 
 def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
@@ -121,18 +219,18 @@ def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
     s = system
     samples = steps // stride + 1
     gap0 = s.h @ s.q0 + s.g0
-    energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
     t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
         _with_room(lambda room: _api().run_newton_adaptive(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, e, dt, steps, stride, samples,
-            threshold, s.n_upper, ENERGY_MARGIN * energy0, room))
-    if status != chatter_status.OK:
-        raise StepperError("the contact LCP had no solution")
+            threshold, s.n_upper, _energy_bound(s), room),
+            steps * s.m.size)
+    status = _checked(status)
+    t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work=_work(counts))
+               first=_first(first), work=_work(counts), status=status)
 
 
 def _work(counts) -> dict:
@@ -145,18 +243,20 @@ def moreau_jean(system, e, dt, theta, steps, stride, threshold) -> Run:
     linear interpolation within a step (its positions are linear)."""
     s = system
     samples = steps // stride + 1
+    bound = _energy_bound(s)
     t, g, energy, _, first, crossings, n_cross, gap_max, status = \
         _with_room(lambda room: _api().run_moreau_jean(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, e, dt, theta, steps, stride,
-            samples, threshold, room))
-    if status != chatter_status.OK:
-        raise StepperError("the contact LCP had no solution")
+            samples, threshold, room, energy_bound=bound),
+            steps * s.m.size)
+    status = _checked(status, bound, energy, t)
     upper, lower = _open_from_crossings(crossings, n_cross,
                                         s.h @ s.q0 + s.g0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work={"fixed_steps": steps})
+               first=_first(first), work={"fixed_steps": steps},
+               status=status)
 
 
 def hertz_fixed(system, law, dt, steps, stride, threshold,
@@ -166,6 +266,8 @@ def hertz_fixed(system, law, dt, steps, stride, threshold,
     and the largest lower gap from the samples (every ``stride`` steps).
     """
     s = system
+    bound = _energy_bound(s, law)
+    status = chatter_status.OK
     if backend == "numpy":
         from contactsep.chatter import steppers
         t, g, energy, _, first = steppers.hertz(
@@ -173,12 +275,14 @@ def hertz_fixed(system, law, dt, steps, stride, threshold,
             stride=stride)
     else:
         samples = steps // stride + 1
-        t, g, energy, _, first = _api().run_hertz(
-            s.m, s.p, s.h, s.g0, s.q0, s.v0, law.k, law.chi, dt, steps,
-            stride, samples)
+        t, g, energy, _, first, status = _stoppable(
+            steps * s.m.size, lambda: _api().run_hertz(
+                s.m, s.p, s.h, s.g0, s.q0, s.v0, law.k, law.chi, dt, steps,
+                stride, samples, energy_bound=bound))
         g = g.T
     return _from_samples(t, g, energy, first, threshold, steps * dt,
-                         {"fixed_steps": steps})
+                         {"fixed_steps": steps},
+                         _checked(status, bound, energy, t))
 
 
 def moreau_jean_numpy(system, e, dt, theta, steps, stride,
@@ -190,15 +294,28 @@ def moreau_jean_numpy(system, e, dt, theta, steps, stride,
     t, g, energy, _, first = steppers.moreau_jean(
         s.m, s.p, s.h, s.g0, s.q0, s.v0, e=e, dt=dt, steps=steps,
         theta=theta, stride=stride)
+    bound = _energy_bound(s)
     return _from_samples(t, g, energy, first, threshold, steps * dt,
-                         {"fixed_steps": steps})
+                         {"fixed_steps": steps},
+                         _checked(chatter_status.OK, bound, energy))
 
 
-def _from_samples(t, g, energy, first, threshold, t_end, work) -> Run:
+def _from_samples(t, g, energy, first, threshold, t_end, work,
+                  status=chatter_status.OK) -> Run:
+    if status != chatter_status.OK:
+        # the samples the stepper did not reach (t = -1) are no answer
+        missed = t < 0.0
+        t, g, energy = (np.where(missed, np.nan, t),
+                        np.where(missed[:, None], np.nan, g),
+                        np.where(missed, np.nan, energy))
+        return Run(t=t, gaps=g, energy=energy, upper_open=np.empty((0, 2)),
+                   lower_open=np.empty((0, 2)),
+                   max_lower_gap_in=math.nan, first=_first(first),
+                   work=work, status=status)
     return Run(t=t, gaps=g, energy=energy,
                upper_open=circuit.open_from_samples(t, g[:, 0], t_end,
                                                     threshold),
                lower_open=circuit.open_from_samples(t, g[:, 1], t_end,
                                                     threshold),
                max_lower_gap_in=float(g[:, 1].max()), first=_first(first),
-               work=work)
+               work=work, status=status)

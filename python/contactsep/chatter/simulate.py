@@ -23,11 +23,12 @@ import numpy as np
 
 from contactsep import output
 from contactsep.chatter import circuit, runners, system
+from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design import SIZE_RANGE
 
 MODELS = ("appE", "newton", "hertz")
@@ -131,8 +132,15 @@ def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
     printed and in the impulse form (psi/M3)."""
     from contactsep.model import evaluate
+    from contactsep.model.status import explain
     ev = evaluate(design)
     impulse = evaluate(design.replace(lower_response="impulse"))
+    if ev.status != 0:
+        # the figures are null: say why, once (issue 31: tau = 1e300
+        # gave them all null and nothing on stderr)
+        warnings.warn(f"single impulse (eq. 23): {explain(int(ev.status), design)}"
+                      f"; its figures are null (the simulation does not "
+                      f"depend on them)", ContactsepWarning, stacklevel=3)
     return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
             "v_impact_in_s": float(ev.v_impact),
             "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
@@ -147,7 +155,13 @@ def _real(name: str, value, unit: str) -> float:
             value, (int, float, np.integer, np.floating)):
         raise ChatterError(f"{name}: found {value!r}, expected a number"
                            + (f" ({unit})" if unit else ""))
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        from contactsep.errors import shown
+        raise ChatterError(f"{name}: found {shown(value)}, expected a "
+                           f"finite number" + (f" ({unit})" if unit else "")
+                           ) from None
 
 
 def _check(design, model, damping, backend, preload, samples, theta, nu,
@@ -276,11 +290,20 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         return output.interruptible(
             int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
             backend, settings)
+    default = dt is None
     dt = DEFAULT_DT[model] if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     modes = 3 * int(design.n_modes)
     least = smallest_dt(int(design.n_modes), t_end)
+    if dt < least and default:
+        # the budget, with the numbers, before any work (issue 31)
+        raise ChatterError(
+            f"t_end: found {t_end:g} s at N = {int(design.n_modes)} with the "
+            f"default dt {dt:g} s: {t_end / dt:.3g} steps x {modes} modes = "
+            f"{t_end / dt * modes:.3g}, expected at most {MAX_WORK:.0e} "
+            f"steps x modes and {MAX_STEPS:.0e} steps a run (shorten t_end, "
+            f"lower n_modes, or give dt >= {least:.3g} s)")
     if dt < least:
         raise ChatterError(f"dt: found {dt!r}, expected at least "
                            f"{least:.3g} s at N = {int(design.n_modes)} (at "
@@ -317,6 +340,10 @@ def simulate(design, model="newton", damping="none", dt=None, *,
                                           open_threshold, backend)
     run = output.interruptible(steps * modes >= FORKED_WORK, run, stack,
                                *args)
+    if run.status != chatter_status.OK:
+        return _blown_up(run, model, design, dt, preload, damping,
+                         stepper if backend == "compiled" else "fixed",
+                         settings)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
     return ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
@@ -328,6 +355,24 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         preload_lb=float(preload), damping=damping,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, **settings)
+
+
+def _blown_up(run, model, design, dt, preload, damping, stepper,
+              settings) -> ChatterResult:
+    """A run its stepper stopped at the energy bound (status
+    ENERGY_BOUND): the samples it reached, and no circuit figures (NaN;
+    n_events -1, as a failed design's row in a chatter sweep)."""
+    nan, none = math.nan, np.empty((0, 2))
+    return ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
+        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
+        energy=run.energy, upper_open_intervals=none,
+        lower_open_intervals=none, circuit_open_intervals=none,
+        circuit_open_s=nan, first_circuit_open_s=nan, longest_open_s=nan,
+        events=none, n_events=-1, chatters=False, max_lower_gap_in=nan,
+        first_impact_s=nan, first_impulse_lb_s=nan, energy_ratio=nan,
+        preload_lb=float(preload), damping=damping, stepper=stepper,
+        work=run.work, status=run.status, **settings)
 
 
 def _appendix_e(design, backend, settings) -> ChatterResult:

@@ -120,6 +120,7 @@ def run(args: argparse.Namespace) -> int:
         if sep and name in _OPTIONS:
             raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
         raise
+    refuse_blown_up(result)
     if args.json:
         output.write_json(sys.stdout, result.to_json_dict())
     else:
@@ -130,6 +131,19 @@ def run(args: argparse.Namespace) -> int:
         from contactsep.studies.plots import save_chatter_png
         save_chatter_png(result, args.png, dpi=args.dpi)
     return 0
+
+
+def refuse_blown_up(result) -> None:
+    """A run its stepper stopped at the energy bound has no circuit
+    figures: refuse it (exit 2) rather than print NaN as an answer."""
+    from contactsep.chatter import status
+
+    if result.status == status.ENERGY_BOUND:
+        raise InputError(
+            f"--dt: the {result.model} run stopped: its energy grew past "
+            f"twice the release's (status {status.ENERGY_BOUND}): the step "
+            f"{result.dt:g} s is too coarse for the contact; no circuit "
+            f"figures (use a smaller --dt, or the default)")
 
 
 #: simulate()'s arguments that are options of the command.

@@ -111,6 +111,11 @@ def design_overrides(args: argparse.Namespace) -> dict:
         for key, value in _read_design_file(path).items():
             label = f"{path}: {key}"
             field = F.field_name(key, label)
+            if field in labels:
+                # two names of one field ("d_in" and "h2"), refused as
+                # on the command line (issue 31: the last one won)
+                raise InputError(f"{label}: the {F.FIELDS[field][2]} is "
+                                 f"already given by {labels[field]}")
             values[field] = F.parse_value(field, value, label)
             labels[field] = label
     typed = {}
@@ -189,7 +194,12 @@ def _read_design_file(path: str) -> dict:
         raise InputError(f"--design {path}: larger than "
                          f"{MAX_DESIGN_BYTES >> 20} MB, not a design")
     try:
-        data = json.loads(raw.decode("utf-8"))
+        data = json.loads(raw.decode("utf-8"),
+                          object_pairs_hook=_no_duplicates)
+    except _DuplicateKey as error:
+        raise InputError(f"--design {path}: {error.args[0]}: given twice "
+                         f"(JSON keeps only the last; give it once)"
+                         ) from None
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise InputError(f"--design {path}: not a JSON file "
                          f"({output.one_line(error)})") from None
@@ -202,6 +212,20 @@ def _read_design_file(path: str) -> dict:
         raise InputError(f"--design {path}: expected a JSON object of "
                          f"design fields")
     return data
+
+
+class _DuplicateKey(Exception):
+    """A JSON object with a key twice (args[0] the key)."""
+
+
+def _no_duplicates(pairs) -> dict:
+    """json's object_pairs_hook: a dict, or _DuplicateKey."""
+    out = {}
+    for key, value in pairs:
+        if key in out:
+            raise _DuplicateKey(key)
+        out[key] = value
+    return out
 
 
 def _check(values: dict, labels: dict) -> None:

@@ -13,6 +13,7 @@ from contactsep.cli.design_options import (
     design_overrides,
     fields_from_file,
 )
+from contactsep.cli.guards import NamedWriter, check_creatable, drop_echoes
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
@@ -27,6 +28,7 @@ from contactsep.studies.sweep import (
     MAX_DESIGNS,
     TARGET_CHUNK_S,
 )
+from contactsep.studies.sweep_checks import CHATTER_UNUSED
 from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
@@ -199,11 +201,17 @@ def _need_matplotlib() -> None:
 def _compute(name: str, args, overrides: dict):
     from contactsep.studies import OWN_FIELDS, STUDIES
 
-    # a --design file's value of a study's own field gives way to it
-    overrides = {k: v for k, v in overrides.items() if not (
-        k in fields_from_file(args) and k in OWN_FIELDS.get(name, ()))}
-
     from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.preload import FIXED as PRELOAD_FIXED
+
+    # a --design file's value of a study's own field gives way to it (a
+    # file from model --json lists every field: issue 31)
+    own = {**OWN_FIELDS, "preload": set(PRELOAD_FIXED),
+           **{n: {field} for n, (field, _, _) in CONCLUSIONS.items()}}
+    overrides = {k: v for k, v in overrides.items() if not (
+        k in fields_from_file(args) and k in own.get(name, ()))}
+    if name == "preload":
+        overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
     searches = ("preload", *CONCLUSIONS)
     if name not in searches and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
@@ -236,10 +244,20 @@ def _search_study(name: str, args, overrides: dict):
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
                "workers": args.workers}
-    if name == "preload":
-        return preload_chart(**options, damping=args.damping or "none",
-                             **overrides)
-    return conclusion(name, **options, **overrides)
+    from contactsep.studies.search_checks import SearchError
+    try:
+        if name == "preload":
+            return preload_chart(**options, damping=args.damping or "none",
+                                 **overrides)
+        return conclusion(name, **options, **overrides)
+    except SearchError as error:
+        # the study names its arguments; the command, its options
+        names, sep, rest = str(error).partition(":")
+        if not sep:
+            raise
+        options = ", ".join("--" + n.strip().replace("_", "-")
+                            for n in names.split(","))
+        raise InputError(f"{options}:{rest}") from None
 
 
 def _save(study, out: Path, dpi: int) -> None:
@@ -262,6 +280,10 @@ def _study_targets(args, names) -> dict:
         out = Path(args.out)
         if out.exists() and not out.is_dir():
             raise InputError(f"--out {args.out}: not a directory")
+        if not out.exists():
+            # made at the end: the nearest existing folder must take it
+            check_creatable(args.out)
+            return targets
         for name in names:
             targets[f"--out ({name}.csv)"] = out / f"{name}.csv"
             targets[f"--out ({name}.png)"] = out / f"{name}.png"
@@ -361,9 +383,12 @@ def run_sweep(args: argparse.Namespace) -> int:
     vary = [parse_vary(text) for text in args.vary]
     sample = [parse_sample(text) for text in args.sample]
     swept = {name for name, _ in vary} | {s[0] for s in sample}
-    # a --design file's value of a swept field gives way to the sweep
+    # a --design file's value of a swept field gives way to the sweep;
+    # its echo of a default the chatter models do not read is dropped
     base = {k: v for k, v in design_overrides(args).items()
             if not (k in swept and k in fields_from_file(args))}
+    if args.model != "eq23":
+        base = drop_echoes(args, base, CHATTER_UNUSED)
     spec = make_spec(vary=vary, sample=sample, samples=args.samples,
                      seed=args.seed, base=base,
                      backend=args.backend or "compiled", model=args.model,
@@ -380,9 +405,11 @@ def run_sweep(args: argparse.Namespace) -> int:
     writers = []
     try:
         if args.parquet:
-            writers.append(runner.ParquetWriter(args.parquet, spec))
+            writers.append(NamedWriter(runner.ParquetWriter(args.parquet, spec),
+                                  "--parquet", args.parquet))
         if args.csv:
-            writers.append(runner.CsvWriter(args.csv, spec))
+            writers.append(NamedWriter(runner.CsvWriter(args.csv, spec), "--csv",
+                                  args.csv))
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
@@ -401,8 +428,13 @@ def run_sweep(args: argparse.Namespace) -> int:
     if summary["n_failed"]:
         if not summary["n"]:
             sys.stdout.flush()
+            why = ""
+            if args.model != "eq23" and 2 in summary["n_failed_by_status"]:
+                from contactsep.studies.chatter_sweep import first_refusal
+                first = first_refusal(spec)
+                why = f"; the first design: {first}" if first else ""
             raise InputError(f"{_failures(summary, args.model)}: every "
-                             f"one; nothing to summarise")
+                             f"one; nothing to summarise{why}")
         warnings.warn(f"{_failures(summary, args.model)}; the statistics "
                       f"are over the other {summary['n']:,}",
                       ContactsepWarning)

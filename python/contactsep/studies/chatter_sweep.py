@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep.chatter import simulate
+from contactsep.chatter import status as chatter_status
 from contactsep.chatter.circuit import MIN_OPEN, OPEN_THRESHOLD
 from contactsep.chatter.runners import StepperError
 from contactsep.chatter.simulate import DEFAULT_DT, CoarseStepWarning
@@ -47,6 +48,8 @@ OK = 0
 INVALID_INPUT = 2
 NOT_FINITE = 3
 STEPPER_FAILED = 4
+#: The stepper stopped at its energy bound (contactsep.chatter.status).
+ENERGY_BOUND = chatter_status.ENERGY_BOUND
 MESSAGES = {
     OK: "ok",
     INVALID_INPUT: "invalid input: a value out of range, or one the "
@@ -54,6 +57,8 @@ MESSAGES = {
     NOT_FINITE: "a result is not finite (overflow)",
     STEPPER_FAILED: "stepper failed: the contact LCP had no solution, or "
                     "the gaps hover at the open threshold",
+    ENERGY_BOUND: "energy bound: the stepper stopped, its energy past "
+                  "twice the release's (dt too coarse for the contact)",
 }
 
 
@@ -81,7 +86,8 @@ def notes(model: str, dt=None) -> list[str]:
         "units in each column's name: _in inch, _s second, _lb_s lb s, "
         "_lb lb; n_events = discontinuity events (openings >= min_open_s)"
         "; first_circuit_open_s nan: never open",
-        "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed "
+        "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed, "
+        "7 energy bound "
         "(contactsep.studies.chatter_sweep); failed designs have nan "
         "results and n_events -1",
     ]
@@ -104,6 +110,8 @@ def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
         return _failed(INVALID_INPUT)
     except (ArithmeticError, np.linalg.LinAlgError):
         return _failed(NOT_FINITE)
+    if result.status == ENERGY_BOUND:
+        return _failed(ENERGY_BOUND)
     values = (result.first_impact_s, result.first_impulse_lb_s,
               result.max_lower_gap_in, result.circuit_open_s,
               result.first_circuit_open_s)
@@ -112,6 +120,45 @@ def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
             result.circuit_open_s)):
         return _failed(NOT_FINITE)
     return (*values, result.n_events, OK)
+
+
+def _row(spec: SweepSpec, varied: dict, i: int) -> tuple[dict, dict]:
+    """Design i's fields (thesis_design overrides) and settings."""
+    fields, settings = dict(spec.base), {**DEFAULT_SETTINGS,
+                                         **spec.settings}
+    for name, values in varied.items():
+        target = settings if name in design_fields.SETTINGS else fields
+        target[name] = _plain(values[i])
+    if spec.model != "hertz":
+        settings.pop("damping")
+    return fields, settings
+
+
+def first_refusal(spec: SweepSpec) -> str | None:
+    """Why the sweep's first design is refused, naming the option
+    (``--preload: found 1e+300, expected at most ...``; a varied field
+    as ``--vary NAME``), or None if it is not: the message a sweep whose
+    every design failed as invalid input adds (issue 31)."""
+    fields, settings = _row(spec, chunk_inputs(spec, 0, 1), 0)
+    try:
+        design = thesis_design(**fields)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            simulate(design, model=spec.model, samples=1,
+                     single_impulse=False, **settings)
+    except StepperError:
+        return None
+    except InputError as error:
+        name, sep, rest = str(error).partition(":")
+        if not sep:
+            return str(error)
+        swept = {s[0] for s in spec.sample} | {n for n, _ in spec.vary}
+        option = f"--vary {name}" if name in swept else \
+            "--" + name.replace("_", "-")
+        return f"{option}:{rest}"
+    except (ArithmeticError, np.linalg.LinAlgError):
+        return None
+    return None
 
 
 def _failed(status: int) -> tuple:
@@ -133,13 +180,7 @@ def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
               for name, values in inputs.items()}
     rows = []
     for i in range(size):
-        fields, settings = dict(spec.base), {**DEFAULT_SETTINGS,
-                                             **spec.settings}
-        for name, values in varied.items():
-            target = settings if name in design_fields.SETTINGS else fields
-            target[name] = _plain(values[i])
-        if spec.model != "hertz":
-            settings.pop("damping")
+        fields, settings = _row(spec, varied, i)
         rows.append(simulate_design(fields, spec.model, settings))
     out = {design_fields.column_name(n): varied[n] for n in spec.fields}
     results = list(zip(*rows)) if rows else [()] * len(RESULT_COLUMNS)

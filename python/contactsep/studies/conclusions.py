@@ -31,6 +31,7 @@ from contactsep.model import thesis_design
 from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
+    MODELS,
     Simulations,
     limit_notes,
     min_preloads,
@@ -97,6 +98,12 @@ def conclusion(name: str, model: str = "hertz",
     max_lower_gap_in, circuit_open_s, n_events (no preload) and
     min_preload_lb; any other design field overridden by keyword;
     ``dt`` the stepper's step (default: the model's)."""
+    from contactsep.errors import shown
+    from contactsep.studies.search_checks import SearchError, check_search
+    if name not in STUDIES:
+        raise SearchError(f"name: found {shown(name)}, expected one of "
+                          f"{', '.join(STUDIES)}")
+    check_search(name, model, MODELS, n_modes, workers, overrides, False)
     own, why, claim = STUDIES[name]
     refuse_fixed(name, overrides, {own: why})
     base = thesis_design(n_modes=n_modes, **overrides)

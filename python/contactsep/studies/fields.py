@@ -31,7 +31,7 @@ import numpy as np
 from contactsep import beams, units
 from contactsep.chatter.simulate import DAMPINGS
 from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import InputError
+from contactsep.errors import InputError, shown
 from contactsep.model.design import (
     IMPACT_VELOCITIES,
     LC_READINGS,
@@ -104,8 +104,9 @@ def field_name(name: str, label: str | None = None,
             return _SETTING_NAMES[name]
         option = "--" + _SETTING_NAMES[name].replace("_", "-")
         raise InputError(f"{label or name}: a setting of the chatter "
-                         f"simulation, not a design field (contactsep "
-                         f"sweep --model hertz takes {option})")
+                         f"simulation, not a design field: give it as "
+                         f"{option} (contactsep chatter, and contactsep "
+                         f"sweep --model hertz or newton, take it)")
     if field is None:
         also = f"; the chatter settings {', '.join(SETTINGS)}" \
             if settings else ""
@@ -155,10 +156,11 @@ def parse_value(field: str, text, label: str):
         return units.convert(text, unit(field), label)
     try:
         value = float(text)
-    except ValueError:
-        raise InputError(f"{label}: found {text!r}, expected a number "
+    except (ValueError, OverflowError):
+        raise InputError(f"{label}: found {shown(text)}, expected a number "
                          f"({unit(field) or 'dimensionless'})") from None
     return value
+
 
 
 def _setting(field: str, text, label: str) -> float:
@@ -170,7 +172,7 @@ def _setting(field: str, text, label: str) -> float:
             raise ValueError
         value = units.convert(text, unit(field), label) \
             if units.split(text) is not None else float(text)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         value = math.nan
     if field == "dt" and not (0.0 < value < LISTING_TAU_S):
         raise InputError(f"{label}: found {text!r}, expected a time step "

@@ -294,7 +294,9 @@ def min_preloads(designs, model: str = "hertz", settings=None,
         raise InputError(f"model: found {model!r}, expected one of "
                          f"{', '.join(MODELS)}")
     settings = dict(settings or {})
-    designs = list(designs)
+    from contactsep.studies.search_checks import check_designs, check_workers
+    designs = check_designs(designs)
+    check_workers(workers)
 
     def has_event(tasks, sims):
         return sims.events([(designs[row], model, settings, preload)
@@ -333,6 +335,11 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
     to e), ``dt`` the stepper's step (default: the model's)."""
+    from contactsep.studies import search_checks as checks
+    checks.check_search("preload", model, MODELS, n_modes, workers,
+                        overrides, True)
+    thicknesses = checks.check_values("thicknesses", thicknesses, "in")
+    heights = checks.check_values("heights", heights, "in")
     refuse_fixed("preload", overrides, FIXED)
     if damping != "none" and model != "hertz":
         raise InputError("damping: the Hertz contact's (--model hertz)")

@@ -31,9 +31,13 @@ from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep_checks import (
     SweepError,
+    check_chatter_modes,
     check_dt,
+    check_fixed,
     check_model,
     check_preload,
+    check_elastic,
+    check_used,
 )
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
@@ -94,8 +98,11 @@ class LinearAxis:
             raise IndexError("axis index out of range")
         if self.count == 1:
             return np.full(k.shape, self.start)[()]
-        step = (self.stop - self.start) / (self.count - 1)
-        values = k * step + self.start
+        # ends a whole float range apart (-1e308:1e308) overflow STOP -
+        # START: the halves' axis, doubled (exact), is the same grid
+        scale = 1.0 if math.isfinite(self.stop - self.start) else 0.5
+        step = (scale * self.stop - scale * self.start) / (self.count - 1)
+        values = (k * step + scale * self.start) / scale
         return np.where(k == self.count - 1, self.stop, values)[()]
 
 
@@ -159,6 +166,9 @@ def parse_sample(text: str) -> tuple[str, str, float, float]:
     if not (math.isfinite(a) and math.isfinite(b)) or (
             kind == "normal" and b < 0) or (kind == "uniform" and b < a):
         raise SweepError(f"--sample {text}: the parameters are out of range")
+    if kind == "uniform" and not math.isfinite(b - a):
+        raise SweepError(f"--sample {text}: HI - LO overflows (more than "
+                         f"the largest float); expected a narrower range")
     return field, kind, a, b
 
 
@@ -452,8 +462,7 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
         raise SweepError("--sample: a field is sampled twice")
     if set(names) & {s[0] for s in sample}:
         raise SweepError("a field cannot be both varied and sampled")
-    base = dict(base or {})
-    settings = dict(settings or {})
+    base, settings = check_fixed(base, settings)
     fixed = (set(base) | set(settings)) & (set(names)
                                            | {s[0] for s in sample})
     if fixed:
@@ -461,6 +470,8 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
                          f"option and varied or sampled too")
     swept = set(names) | {s[0] for s in sample}
     check_model(model, backend, swept | set(settings))
+    check_used(model, swept | set(base))
+    check_elastic(model, swept, settings)
     check_preload(settings.get("preload"), base, swept)
     if samples is None:
         samples = 1000 if sample else 1
@@ -477,6 +488,7 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
     spec = SweepSpec(base=base, vary=vary, sample=sample, samples=samples,
                      seed=seed, backend=backend, model=model,
                      settings=settings)
+    check_chatter_modes(model, base.get("n_modes"))
     steps = [settings["dt"]] if "dt" in settings else []
     check_dt(steps + spec.varied_extremes("dt"), spec.max_modes,
              "--dt" if "dt" in settings else "--vary dt", model)

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import warnings
 
+import numpy as np
+
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies import fields as design_fields
@@ -20,8 +22,95 @@ _PRELOAD_LIMIT_FIELDS = {"L2", "b2", "h2", "E2", "end2", "x2", "L3", "b3",
                          "h3", "E3", "end3", "x3", "n_modes"}
 
 
+#: Design fields the three-beam simulation does not read: the single-
+#: impulse model's window, impact speed, lower response and L_c reading
+#: (a chatter sweep's window is 0-0.06 s from the release).
+CHATTER_UNUSED = ("tau", "impact_velocity", "lower_response", "lc_reading")
+
+
 class SweepError(InputError):
     """A sweep specification the command refuses."""
+
+
+def check_fixed(base, settings) -> tuple[dict, dict]:
+    """The fixed design fields (``base``: field or alias -> value) and
+    chatter settings, each read as the command line reads it: an unknown
+    name, a value of the wrong type or out of range is one line naming
+    it (issue 31: {"bogus": 1} was a KeyError, {"dt": nan} ran no
+    design, {"dt": "abc"} a TypeError).  Returns them by field name."""
+    if base is not None and not isinstance(base, dict):
+        raise SweepError(f"base: found {type(base).__name__}, expected a "
+                         f"dict of design fields")
+    if settings is not None and not isinstance(settings, dict):
+        raise SweepError(f"settings: found {type(settings).__name__}, "
+                         f"expected a dict of chatter settings")
+    try:
+        return _fixed(base, settings)
+    except SweepError:
+        raise
+    except InputError as error:
+        raise SweepError(str(error)) from None
+
+
+def _fixed(base, settings) -> tuple[dict, dict]:
+    fields = {}
+    for name, value in (base or {}).items():
+        if isinstance(value, np.generic):
+            value = value.item()
+        field = design_fields.field_name(str(name), f"base: {name}")
+        fields[field] = design_fields.parse_value(field, value,
+                                                  f"base: {name}")
+    if fields:
+        try:
+            thesis_design(**fields)
+        except InputError as error:
+            raise SweepError(f"base: {error}") from None
+    chosen = {}
+    for name, value in (settings or {}).items():
+        if str(name) not in design_fields.SETTINGS:
+            raise SweepError(f"settings: {name}: not a chatter setting "
+                             f"(one of {', '.join(design_fields.SETTINGS)})")
+        chosen[name] = design_fields.parse_value(
+            name, value, f"--{name.replace('_', '-')}")
+    return fields, chosen
+
+
+def check_chatter_modes(model: str, fixed) -> None:
+    """A chatter sweep's fixed N (``fixed``: one N or three, None when
+    varied or the default) within the simulation's limit, before any
+    work: every design would be refused on its own.  A varied N past it
+    is the status of its rows."""
+    from contactsep.chatter.simulate import MAX_MODES
+    if fixed is None or model == "eq23":
+        return
+    max_modes = max(fixed) if isinstance(fixed, tuple) else int(fixed)
+    if max_modes > MAX_MODES:
+        raise SweepError(f"--n-modes: found {max_modes}, expected at most "
+                         f"{MAX_MODES} modes per member for the chatter "
+                         f"simulation (--model {model})")
+
+
+def check_elastic(model: str, swept: set, settings: dict) -> None:
+    """Elastic Hertz contact (damping none, not varied) reads no e: a
+    sweep of e would give equal rows."""
+    if model == "hertz" and "e" in swept and "damping" not in swept and \
+            settings.get("damping", "none") == "none":
+        raise SweepError("e: not used by elastic Hertz contact (--model "
+                         "hertz, damping none); with --damping flores it "
+                         "sets the damping, with --model newton the "
+                         "impact law")
+
+
+def check_used(model: str, given: set) -> None:
+    """A chatter sweep refuses the design fields its simulation does
+    not read (CHATTER_UNUSED): fixed or varied, every row would be the
+    same, and a note would name a value nothing used."""
+    unused = sorted(given & set(CHATTER_UNUSED)) if model != "eq23" else []
+    if unused:
+        raise SweepError(f"{', '.join(unused)}: not used by the chatter "
+                         f"simulation (--model {model}; its window is "
+                         f"0-0.06 s from the release): a field of the "
+                         f"single-impulse model (--model eq23)")
 
 
 def check_preload(preload, base: dict, swept: set) -> None:
