@@ -140,6 +140,10 @@ def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
             target[name] = _plain(values[i])
         if spec.model != "hertz":
             settings.pop("damping")
+            settings.pop("static_correction", None)
+        elif "static_correction" in settings:
+            settings["static_correction"] = \
+                settings["static_correction"] == "on"
         rows.append(simulate_design(fields, spec.model, settings))
     out = {design_fields.column_name(n): varied[n] for n in spec.fields}
     results = list(zip(*rows)) if rows else [()] * len(RESULT_COLUMNS)
