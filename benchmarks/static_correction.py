@@ -106,13 +106,55 @@ def table(label, rows, modes) -> list[str]:
     return lines
 
 
+def summary(raw) -> list[str]:
+    """Per quantity, one row per case: |relative difference| to the
+    corrected run at the largest N, plain / corrected, per N; (!) where a
+    run's energy error exceeds 1e-6 (that run is not converged in dt)."""
+    lines = []
+    for key, title in QUANTITIES:
+        modes = None
+        body = []
+        for label, case in raw.items():
+            rows = {(r["n_modes"], r["static_correction"]): r
+                    for r in case["rows"]}
+            modes = sorted({n for n, _ in rows})
+            reference = rows[(modes[-1], True)][key]
+            cells = []
+            for n in modes[:-1]:
+                pair = []
+                for correction in (False, True):
+                    r = rows[(n, correction)]
+                    value = r[key]
+                    text = "-" if not (math.isfinite(value) and
+                                       math.isfinite(reference)
+                                       and reference != 0.0) \
+                        else f"{abs(value - reference) / abs(reference):.0e}"
+                    if r["energy_error"] > 1e-6:
+                        text += "(!)"
+                    pair.append(text)
+                cells.append(" / ".join(pair))
+            body.append(f"| {label} | " + " | ".join(cells) + " |")
+        lines += [f"{title}: |relative difference| to the corrected "
+                  f"N = {modes[-1]}, plain / corrected", "",
+                  "| case | " + " | ".join(f"N = {n}" for n in modes[:-1])
+                  + " |", "|---" * len(modes) + "|", *body, ""]
+    return lines
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--n-max", type=int, default=256)
     parser.add_argument("--only", default=None,
                         help="comma-separated case labels")
     parser.add_argument("--json", default=None, help="raw results")
+    parser.add_argument("--from-json", default=None,
+                        help="print the summary of earlier raw results "
+                             "instead of running")
     args = parser.parse_args(argv)
+    if args.from_json:
+        print("\n".join(summary(json.loads(Path(args.from_json)
+                                             .read_text()))))
+        return 0
     modes = tuple(n for n in MODES if n <= args.n_max)
     chosen = None if args.only is None else set(args.only.split(","))
     raw = {}
@@ -129,6 +171,7 @@ def main(argv=None) -> int:
                               + (f", preload {preload:g} lb" if preload
                                  else "") + ")", rows, modes)),
               flush=True)
+    print("\n".join(summary(raw)))
     if args.json:
         Path(args.json).write_text(json.dumps(raw, indent=1))
     return 0
