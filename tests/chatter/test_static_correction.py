@@ -272,3 +272,18 @@ def test_corrected_n64_is_within_1pct_of_plain_n256(name, dt, t_end, keys):
     for key in keys:
         assert getattr(runs[64], key) == pytest.approx(
             getattr(runs[256], key), rel=1e-2), key
+
+
+@pytest.mark.parametrize("word,flag", [("on", True), ("off", False)])
+def test_the_command_takes_on_and_off(word, flag, capsys):
+    import json
+
+    from contactsep.cli import main
+    assert main(["chatter", "--model", "hertz", "--n-modes", "4",
+                 "--t-end", "0.03", "--static-correction", word,
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["inputs"]["static_correction"] is flag
+    r = chatter.simulate(FAMILY["thesis"].replace(n_modes=4), model="hertz",
+                         t_end=0.03, static_correction=flag)
+    assert out["first_impulse_lb_s"] == r.first_impulse_lb_s

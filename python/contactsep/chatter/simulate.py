@@ -255,7 +255,8 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     ``dt`` defaults per model (DEFAULT_DT; it is rounded so that a whole
     number of steps ends at ``t_end``); ``preload`` (lb, >= 0) presses
     the lower contact up against the separator at the start (static
-    equilibrium of the N-mode models, :func:`system.preload_state`; the
+    equilibrium of the N-mode models, with the static correction the
+    exact point-load deflections, :func:`system.preload_state`; the
     release height stays y_s above the preloaded separator; appE has no
     lower contact and takes only 0); ``open_threshold`` (in) is the gap
     above which a contact is open, ``min_open`` (s) the shortest circuit
