@@ -62,6 +62,7 @@ module chatter_adaptive
   use chatter_adaptive_crossings, only: watch
   use chatter_adaptive_gap_max, only: search_waiting
   use chatter_adaptive_laws, only: hertz_step, newton_step
+  use chatter_hertz_series, only: series_forces
   implicit none
   private
   public :: adaptive, law_hertz, law_newton
@@ -72,8 +73,8 @@ module chatter_adaptive
 contains
 
   !> Integrate `steps` steps of dt from t = 0; sample every `stride`.
-  subroutine adaptive(law, n, k, m, p, h, g0, q, v, stiffness, chi, &
-      restitution, dt, steps, stride, samples, threshold, n_moving, &
+  subroutine adaptive(law, n, k, m, p, h, g0, cmat, q, v, stiffness, &
+      chi, restitution, dt, steps, stride, samples, threshold, n_moving, &
       energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
       n_cross, gap_max, counts, status)
     !> law_hertz or law_newton.
@@ -82,6 +83,9 @@ contains
     integer, intent(in) :: n, k
     !> Mass and frequency of every mode; contact Jacobian; gap offsets.
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k)
+    !> Hertz: the static correction's series flexibilities (in/lb;
+    !> 0: the plain truncation; chatter_hertz_series).
+    real(wp), intent(in) :: cmat(k, k)
     !> Initial modal displacements and velocities (overwritten: final).
     real(wp), intent(inout) :: q(n), v(n)
     !> Hertz constant k (lb/in^1.5; 0 for Newton), damping chi (s/in),
@@ -128,10 +132,11 @@ contains
     call start(run, n, k, m, p, h, g0, q, v, stiffness, chi, &
         restitution, dt, steps, stride, threshold, n_moving, &
         energy_bound, max_cross)
+    if (law == law_hertz) call correct(run, cmat)
     run%crossings => crossings
     sample = 1
     t_out(1) = 0.0_wp
-    g_out(:, 1) = run%gap
+    g_out(:, 1) = sampled_gaps(run)
     call energy(run, e_out(1))
     step = 0
     passes = 0
@@ -158,8 +163,8 @@ contains
         end if
         safe = huge(1.0_wp)
         do c = 1, considered(run)
-          safe = min(safe, safe_time(run%gap(c), run%rate(c), &
-              run%bound(c)))
+          safe = min(safe, safe_time(run%gap(c) + run%shift(c), &
+              run%rate(c), run%bound(c)))
         end do
         if (safe / dt >= real(i_next - step, wp)) then
           units = i_next - step
@@ -204,7 +209,7 @@ contains
       if (step == sample * stride .and. sample < samples) then
         sample = sample + 1
         t_out(sample) = real(step, wp) * dt
-        g_out(:, sample) = run%gap
+        g_out(:, sample) = sampled_gaps(run)
         call energy(run, e_out(sample))
       end if
       if (run%status /= status_ok) exit
@@ -247,6 +252,11 @@ contains
     run%max_cross = max_cross
     run%ht = transpose(h)
     allocate(run%half_kick(n, k), run%inv_mh(n, k), run%energy_b(k))
+    allocate(run%cmat(k, k), run%shift(k))
+    run%cmat(:, :) = 0.0_wp
+    run%shift(:) = 0.0_wp
+    allocate(run%force(k))
+    run%force(:) = 0.0_wp
     do c = 1, k
       run%half_kick(:, c) = 0.5_wp * dt * run%ht(:, c) / m
       run%inv_mh(:, c) = run%ht(:, c) / m
@@ -288,7 +298,7 @@ contains
       run%g_still(c) = g0(c) + dot(n - moving, run%ht(moving + 1:, c), &
           q(moving + 1:))
     end do
-    allocate(run%amp(n), run%bound(k), run%force(k), run%rate(k), &
+    allocate(run%amp(n), run%bound(k), run%rate(k), &
         run%rate_new(k), run%gap_new(k), run%gap_max(2, k))
     run%gap = gaps(run)
     do c = 1, k
@@ -296,6 +306,47 @@ contains
       run%gap_max(2, c) = 0.0_wp
     end do
   end subroutine start
+
+  !> The static correction (Hertz): the series flexibilities, and while
+  !> frozen the shift of the considered contact's gap by the still
+  !> contacts' forces (their static equilibrium's, from the gaps at the
+  !> start): with the correction, contact 1's Hertz element closes where
+  !> g_1 + C_12 lambda_2 < 0, not g_1 < 0.
+  subroutine correct(run, cmat)
+    type(adaptive_run), intent(inout) :: run
+    real(wp), intent(in) :: cmat(run%k, run%k)
+    real(wp) :: force(run%k), stiff(run%k)
+    integer :: c, d
+
+    run%cmat(:, :) = cmat
+    run%series = any(cmat /= 0.0_wp)
+    if (.not. run%series) return
+    stiff = run%stiffness
+    call series_forces(run%k, stiff, cmat, run%gap, force)
+    ! the forces at the start (a preload's): sampled_gaps's, and the
+    ! physical gaps are the largest so far
+    run%force(:) = force
+    run%gap_max(1, :) = sampled_gaps(run)
+    if (.not. run%frozen) return
+    do c = 1, considered(run)
+      do d = considered(run) + 1, run%k
+        run%shift(c) = run%shift(c) + cmat(c, d) * force(d)
+      end do
+    end do
+  end subroutine correct
+
+  !> The gaps a sample records: the modal gaps, plus with the static
+  !> correction the series springs' C lambda (the physical gaps).
+  !> run%force holds the forces at the current state: the last fixed
+  !> step's end forces (0 after a flight step, which no force precedes),
+  !> or while frozen the still contacts' (correct()).
+  function sampled_gaps(run) result(g)
+    type(adaptive_run), intent(in) :: run
+    real(wp) :: g(run%k)
+
+    g = run%gap
+    if (run%series) g = g + matmul(run%cmat, run%force)
+  end function sampled_gaps
 
   !> Contacts whose forces act: all, or contact 1 while frozen.
   integer function considered(run)
@@ -308,7 +359,8 @@ contains
   logical function any_closed(run)
     type(adaptive_run), intent(in) :: run
 
-    any_closed = any(run%gap(1:considered(run)) < 0.0_wp)
+    any_closed = any(run%gap(1:considered(run)) &
+        + run%shift(1:considered(run)) < 0.0_wp)
   end function any_closed
 
   !> Every mode moves from the first fixed step on.
@@ -321,6 +373,7 @@ contains
     run%amp_fresh = .false.
     run%rate_fresh = .false.
     run%g_still(:) = run%g0
+    run%shift(:) = 0.0_wp
   end subroutine thaw
 
 

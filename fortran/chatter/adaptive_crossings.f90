@@ -14,9 +14,33 @@ module chatter_adaptive_crossings
   use chatter_adaptive_gap_max, only: new_max, tolerance, wait_for_max
   implicit none
   private
-  public :: watch, watch_fixed
+  public :: watch, watch_fixed, watch_grid
 
 contains
+
+  !> The static correction's fixed steps with a force at either end:
+  !> the physical gaps (modal + C lambda) are known at the grid points
+  !> only (the series springs' displacement follows the forces, which
+  !> the splitting applies there), so a crossing is placed by linear
+  !> interpolation between them and the largest gap taken among them,
+  !> as the fixed-step stepper's samples at every step are.  ga, gb: the
+  !> physical gaps at the step's start and end (t_end).
+  subroutine watch_grid(run, ga, gb, t_end)
+    type(adaptive_run), intent(inout) :: run
+    real(wp), intent(in) :: ga(run%k), gb(run%k), t_end
+    real(wp) :: fa, fb
+    integer :: c
+
+    do c = 1, run%k
+      fa = ga(c) - run%threshold
+      fb = gb(c) - run%threshold
+      if ((fa > 0.0_wp) .neqv. (fb > 0.0_wp)) call record(run, &
+          t_end - run%dt + run%dt * fa / (fa - fb), &
+          merge(-c, c, fa > 0.0_wp))
+      if (c == run%k .and. gb(c) > run%gap_max(1, c)) &
+          call new_max(run, c, gb(c), t_end)
+    end do
+  end subroutine watch_grid
 
   !> watch() of every contact over a fixed step's flow: the energy
   !> bound first (free), the amplitudes if need be.  Every bound here

@@ -8,6 +8,7 @@
 module chatter_adaptive_flow
   use contactsep_kinds, only: wp
   use chatter_adaptive_state, only: adaptive_run
+  use chatter_hertz_series, only: series_energy
   implicit none
   private
   public :: table, flow, gaps, energy, amplitude_bounds, chord
@@ -71,6 +72,11 @@ contains
         run%p, run%q, run%v)
     run%e_fresh = .true.
     total = run%e_modal
+    if (run%series) then
+      total = total + series_energy(run%k, run%stiffness, run%cmat, &
+          run%gap)
+      return
+    end if
     do j = 1, run%k
       if (run%gap(j) < 0.0_wp) total = total + 0.4_wp * run%stiffness &
           * run%gap(j)**2 * sqrt(-run%gap(j))

@@ -10,7 +10,8 @@ module chatter_adaptive_laws
   use chatter_status, only: status_lcp_unsolved
   use chatter_adaptive_state, only: adaptive_run
   use chatter_adaptive_flow, only: flow
-  use chatter_adaptive_crossings, only: watch_fixed
+  use chatter_adaptive_crossings, only: watch_fixed, watch_grid
+  use chatter_hertz_series, only: series_forces
   implicit none
   private
   public :: hertz_step, newton_step
@@ -23,6 +24,7 @@ contains
     type(adaptive_run), intent(inout) :: run
     integer, intent(in) :: step
     logical :: kicked
+    real(wp) :: force_a(run%k), gap_a(run%k)
 
     call contact_forces(run)
     if (run%force(1) > 0.0_wp .and. run%episode == 0) then
@@ -41,9 +43,26 @@ contains
     call kick(run)
     call flow(run, 1)
     run%t_now = real(step + 1, wp) * run%dt
-    call watch_fixed(run, run%dt, 1, run%t_now)
-    run%gap(:) = run%gap_new
-    call contact_forces(run)
+    if (run%series) then
+      ! the end's forces first: where either end has one, the physical
+      ! gaps are watched on the grid (watch_grid)
+      force_a = run%force
+      gap_a = run%gap
+      run%gap(:) = run%gap_new
+      call contact_forces(run)
+      if (any(force_a /= 0.0_wp) .or. any(run%force /= 0.0_wp)) then
+        call watch_grid(run, gap_a + matmul(run%cmat, force_a), &
+            run%gap + matmul(run%cmat, run%force), run%t_now)
+      else
+        run%gap(:) = gap_a
+        call watch_fixed(run, run%dt, 1, run%t_now)
+        run%gap(:) = run%gap_new
+      end if
+    else
+      call watch_fixed(run, run%dt, 1, run%t_now)
+      run%gap(:) = run%gap_new
+      call contact_forces(run)
+    end if
     kicked = kicked .or. any(run%force /= 0.0_wp)
     call kick(run)
     run%amp_fresh = run%amp_fresh .and. .not. kicked
@@ -122,9 +141,26 @@ contains
   !> the current gaps, into run%force.
   subroutine contact_forces(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: depth
+    real(wp) :: depth, stiff(run%k)
     integer :: j
 
+    if (run%series) then
+      ! the static correction (chatter_hertz_series), Flores's factor
+      ! on each element's stiffness, as chatter_hertz
+      if (all(run%gap >= 0.0_wp)) then
+        run%force(:) = 0.0_wp
+        return
+      end if
+      stiff = run%stiffness
+      if (run%chi /= 0.0_wp) then
+        do j = 1, run%k
+          stiff(j) = run%stiffness * max(1.0_wp - run%chi &
+              * dot_product(run%ht(:, j), run%v), 0.0_wp)
+        end do
+      end if
+      call series_forces(run%k, stiff, run%cmat, run%gap, run%force)
+      return
+    end if
     do j = 1, run%k
       if (run%gap(j) < 0.0_wp) then
         depth = -run%gap(j)

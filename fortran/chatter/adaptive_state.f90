@@ -44,6 +44,13 @@ module chatter_adaptive_state
     !> The energy's hard bound (in lb): a fixed step past it stops the
     !> run (status_energy_bound), as every bound above assumes it.
     real(wp) :: energy_bound = huge(1.0_wp)
+    !> The static correction's series flexibilities (in/lb) and whether
+    !> any is nonzero (else the plain truncation's forces, bit for bit);
+    !> while frozen, shift(c) = (C lambda)_c of the still contacts'
+    !> forces, which the physical gap of a considered contact adds to
+    !> its modal gap (0 once thawed, or without the correction).
+    real(wp), allocatable :: cmat(:, :), shift(:)
+    logical :: series = .false.
     !> Rotation by the exact flow: cos(p tau), sin(p tau) / p and
     !> p sin(p tau) for tau in slot -1 (dt/2), 0 (the sample stride),
     !> 1..levels (2^(slot-1) dt).

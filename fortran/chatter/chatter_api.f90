@@ -58,13 +58,16 @@ contains
 
   !> Hertz splitting (see chatter_hertz); q, v are copied, not changed.
   !> status: chatter_status (ok, energy_bound, interrupted).
-  subroutine run_hertz(n, k, m, p, h, g0, q0, v0, stiffness, chi, dt, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first, status, &
-      energy_bound)
+  !> cmat: the static correction's series flexibilities (in/lb; 0: the
+  !> plain truncation).
+  subroutine run_hertz(n, k, m, p, h, g0, cmat, q0, v0, stiffness, chi, &
+      dt, steps, stride, samples, t_out, g_out, e_out, p_out, first, &
+      status, energy_bound)
     !f2py threadsafe
     !f2py real(wp), optional, intent(in) :: energy_bound = 1.0e300
     integer, intent(in) :: n, k, steps, stride, samples
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: cmat(k, k)
     real(wp), intent(in) :: stiffness, chi, dt, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
@@ -75,7 +78,7 @@ contains
 
     q = q0
     v = v0
-    call hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, steps, &
+    call hertz(n, k, m, p, h, g0, cmat, q, v, stiffness, chi, dt, steps, &
         stride, samples, t_out, g_out, e_out, p_out, first, energy_bound, &
         status)
   end subroutine run_hertz
@@ -83,15 +86,17 @@ contains
   !> Hertz, adaptive (see chatter_adaptive); q0, v0 are copied.
   !> crossings(:, i) = time, +c / -c (contact c opens / closes);
   !> gap_max(:, c) = largest gap c, its time; counts = flight steps,
-  !> fixed steps, flow evaluations; status: chatter_status.
-  subroutine run_hertz_adaptive(n, k, m, p, h, g0, q0, v0, stiffness, &
-      chi, dt, steps, stride, samples, threshold, n_moving, &
+  !> fixed steps, flow evaluations; status: chatter_status; cmat as
+  !> run_hertz's.
+  subroutine run_hertz_adaptive(n, k, m, p, h, g0, cmat, q0, v0, &
+      stiffness, chi, dt, steps, stride, samples, threshold, n_moving, &
       energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
       n_cross, gap_max, counts, status)
     !f2py threadsafe
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
     integer, intent(in) :: max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: cmat(k, k)
     real(wp), intent(in) :: stiffness, chi, dt, threshold, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), first(2)
@@ -101,8 +106,8 @@ contains
 
     q = q0
     v = v0
-    call adaptive(law_hertz, n, k, m, p, h, g0, q, v, stiffness, chi, &
-        0.0_wp, dt, steps, stride, samples, threshold, n_moving, &
+    call adaptive(law_hertz, n, k, m, p, h, g0, cmat, q, v, stiffness, &
+        chi, 0.0_wp, dt, steps, stride, samples, threshold, n_moving, &
         energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
         n_cross, gap_max, counts, status)
   end subroutine run_hertz_adaptive
@@ -123,11 +128,14 @@ contains
     real(wp), intent(out) :: e_out(samples), first(2)
     real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
     integer, intent(out) :: n_cross, counts(3), status
-    real(wp) :: q(n), v(n)
+    real(wp) :: q(n), v(n), no_series(k, k)
 
     q = q0
     v = v0
-    call adaptive(law_newton, n, k, m, p, h, g0, q, v, 0.0_wp, 0.0_wp, &
+    ! Newton's rigid law takes no series compliance
+    no_series = 0.0_wp
+    call adaptive(law_newton, n, k, m, p, h, g0, no_series, q, v, &
+        0.0_wp, 0.0_wp, &
         e, dt, steps, stride, samples, threshold, n_moving, &
         energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
         n_cross, gap_max, counts, status)

@@ -1,11 +1,16 @@
 !> Hertz contact between the modal members by Strang splitting: half
 !> kick of the contact forces, the exact modal flow over dt, half kick.
+!> With the static correction (cmat /= 0) the forces are those of the
+!> Hertz elements in series with the truncated modes' residual
+!> flexibility (chatter_hertz_series); cmat = 0 is the plain truncation,
+!> bit for bit.
 !> Twin: contactsep/chatter/steppers.py.
 module chatter_hertz
   use contactsep_kinds, only: wp
   use chatter_status, only: status_ok, status_energy_bound, &
       status_interrupted
   use chatter_stop, only: stop_requested, stop_check_every
+  use chatter_hertz_series, only: series_forces, series_energy
   implicit none
   private
   public :: hertz
@@ -33,6 +38,32 @@ contains
     end do
   end subroutine contact_forces
 
+  !> The forces of the Hertz elements in series with cmat (see
+  !> chatter_hertz_series): Flores's factor max(1 - chi u, 0), u = h v
+  !> the rate of the modal gap, scales each element's stiffness.
+  pure subroutine series_contact_forces(n, k, stiffness, chi, cmat, gap, &
+      ht, v, force)
+    integer, intent(in) :: n, k
+    real(wp), intent(in) :: stiffness, chi, cmat(k, k), gap(k), ht(n, k)
+    real(wp), intent(in) :: v(n)
+    real(wp), intent(out) :: force(k)
+    real(wp) :: stiff(k)
+    integer :: i
+
+    if (all(gap >= 0.0_wp)) then
+      force = 0.0_wp
+      return
+    end if
+    stiff = stiffness
+    if (chi /= 0.0_wp) then
+      do i = 1, k
+        stiff(i) = stiffness * max(1.0_wp - chi &
+            * dot_product(ht(:, i), v), 0.0_wp)
+      end do
+    end if
+    call series_forces(k, stiff, cmat, gap, force)
+  end subroutine series_contact_forces
+
   !> Integrate `steps` steps of dt; sample every `stride` steps.
   !>
   !> The gap after the flow is the next step's gap before it (a kick
@@ -42,16 +73,18 @@ contains
   !> when the energy at a sample or a stop check exceeds energy_bound
   !> (or is not a number), and with status_interrupted when
   !> chatter_stop's flag is set; the samples not reached keep t = -1.
-  subroutine hertz(n, k, m, p, h, g0, q, v, stiffness, chi, dt, &
-      steps, stride, samples, t_out, g_out, e_out, p_out, first, &
+  subroutine hertz(n, k, m, p, h, g0, cmat, q, v, stiffness, chi, &
+      dt, steps, stride, samples, t_out, g_out, e_out, p_out, first, &
       energy_bound, status)
     integer, intent(in) :: n, k
-    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k)
+    !> cmat: the series flexibilities (in/lb; 0: the plain truncation).
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), cmat(k, k)
     real(wp), intent(inout) :: q(n), v(n)
     !> Hertz constant k (lb/in^1.5) and damping chi (s/in).
     real(wp), intent(in) :: stiffness, chi, dt
     integer, intent(in) :: steps, stride, samples
-    !> Sampled times, gaps, energy (with the contacts'), and impulses
+    !> Sampled times, gaps (with the correction, the physical gaps
+    !> g + C lambda), energy (with the contacts'), and impulses
     !> (force x dt) summed over each sample.
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
@@ -64,6 +97,7 @@ contains
     real(wp) :: c(n), sine_over_p(n), p_sine(n), ht(n, k), half_kick(n, k)
     real(wp) :: force(k), gap(k), qn(n)
     integer :: step, i, sample, episode
+    logical :: series
 
     c = cos(p * dt)
     sine_over_p = sin(p * dt) / p
@@ -72,6 +106,7 @@ contains
     do i = 1, k
       half_kick(:, i) = 0.5_wp * dt * ht(:, i) / m
     end do
+    series = any(cmat /= 0.0_wp)
     p_out = 0.0_wp
     first = -1.0_wp
     episode = 0
@@ -82,9 +117,13 @@ contains
     t_out(1) = 0.0_wp
     gap = gaps()
     g_out(:, 1) = gap
+    if (series) then
+      call forces(force)
+      g_out(:, 1) = gap + matmul(cmat, force)
+    end if
     e_out(1) = energy()
     do step = 1, steps
-      call contact_forces(n, k, stiffness, chi, gap, ht, v, force)
+      call forces(force)
       sample = (step - 1) / stride + 2
       if (sample <= samples) p_out(:, sample) = p_out(:, sample) &
           + force * dt
@@ -105,12 +144,14 @@ contains
       v = v * c - q * p_sine
       q = qn
       gap = gaps()
-      call contact_forces(n, k, stiffness, chi, gap, ht, v, force)
+      call forces(force)
       call kick(v)
       if (mod(step, stride) == 0) then
         sample = step / stride + 1
         t_out(sample) = step * dt
         g_out(:, sample) = gap
+        ! the physical gaps: the series springs' displacements added
+        if (series) g_out(:, sample) = gap + matmul(cmat, force)
         e_out(sample) = energy()
         if (.not. e_out(sample) <= energy_bound) status = &
             status_energy_bound
@@ -125,6 +166,17 @@ contains
         status = status_energy_bound
 
   contains
+
+    pure subroutine forces(f)
+      real(wp), intent(out) :: f(k)
+
+      if (series) then
+        call series_contact_forces(n, k, stiffness, chi, cmat, gap, ht, &
+            v, f)
+      else
+        call contact_forces(n, k, stiffness, chi, gap, ht, v, f)
+      end if
+    end subroutine forces
 
     pure function gaps() result(g)
       real(wp) :: g(k)
@@ -149,8 +201,13 @@ contains
       real(wp) :: total, g(k)
 
       g = gaps()
-      total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
-          + 0.4_wp * stiffness * sum(max(-g, 0.0_wp)**2.5_wp)
+      if (series) then
+        total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
+            + series_energy(k, stiffness, cmat, g)
+      else
+        total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
+            + 0.4_wp * stiffness * sum(max(-g, 0.0_wp)**2.5_wp)
+      end if
     end function energy
 
   end subroutine hertz

@@ -190,6 +190,30 @@ def static_flexibility(end: str, xi) -> np.ndarray:
     return xi**2 * b**2 / 3.0
 
 
+def residual_flexibility(end: str, n: int, xi) -> np.ndarray:
+    """r_N(xi) = G(xi) - sum_{j<=n} X_j(xi)^2 / (k_jL)^4: the static point
+    flexibility at a = xi L of the modes the n-mode model leaves out, in
+    the same units as :func:`static_flexibility` (EI / L^3).
+
+    Times L^3 / (EI) = 1 / (M p_j^2 / (k_jL)^4) it is the flexibility
+    (in/lb) of a massless spring that, in series with the n-mode model at
+    that point, gives its exact static deflection under a point load (the
+    "static correction", docs/chatter.md).  Falls like n^-3 (the terms
+    X_j^2/(k_jL)^4 like j^-4); summed with compensation (math.fsum), so
+    that its absolute error is a few ulps of G, not n of them.
+    """
+    import math
+    end = _check(end, n)
+    xi = np.atleast_1d(np.asarray(xi, dtype=np.float64))
+    flex = np.atleast_1d(static_flexibility(end, xi))
+    terms = mode_shapes(end, n, xi)**2 / eigenvalues(end, n)[:, None]**4
+    out = np.array([math.fsum([float(flex[i])] + list(-terms[:, i]))
+                    for i in range(xi.size)])
+    # the n-mode sum of a positive series cannot exceed its limit; a
+    # negative residue is round-off (a point where G is ~0: a support)
+    return np.maximum(out, 0.0)
+
+
 #: The thesis's name for sigma_j (the listing's ALPHA).
 alphas = sigmas
 

@@ -119,7 +119,7 @@ def test_one_hertz_impact_has_the_closed_form_duration_and_peak_force():
     # one mode of negligible stiffness: a free mass (p t_end ~ 1e-6)
     p = np.array([1e-3])
     out = api.run_hertz_adaptive(
-        np.array([mass]), p, np.ones((1, 1)), np.zeros(1),
+        np.array([mass]), p, np.ones((1, 1)), np.zeros(1), np.zeros((1, 1)),
         np.array([height]), np.array([-speed]), law.k, 0.0, dt, steps, 1,
         steps + 1, 0.0, 1, mass * speed**2, 100)
     t, gaps, _, first, crossings, n_cross, _, _, status = out

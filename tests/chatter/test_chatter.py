@@ -146,9 +146,10 @@ def test_hertz_splitting_against_a_general_ode_solver():
                               dense_output=True)
     dt = 1e-8
     steps = int(round(span / dt))
-    t, g, _, _, first, _ = api.run_hertz(m, p, h, np.zeros(2), q, v, law.k,
-                                      law.chi, dt, steps, 100,
-                                      steps // 100 + 1)
+    t, g, _, _, first, _ = api.run_hertz(m, p, h, np.zeros(2),
+                                         np.zeros((2, 2)), q, v, law.k,
+                                         law.chi, dt, steps, 100,
+                                         steps // 100 + 1)
     reference = h @ ode.sol(t)[:p.size]
     scale = np.abs(reference).max()
     assert np.max(np.abs(g - reference)) < 1e-5 * scale
@@ -171,8 +172,8 @@ def test_compiled_steppers_equal_their_twins():
     law = HertzLaw.for_materials(10.0e6)
     c = steppers.hertz(m, p, h, np.zeros(2), q0, v0, law=law, dt=dt,
                        steps=steps, stride=stride)
-    d = api.run_hertz(m, p, h, np.zeros(2), q0, v0, law.k, law.chi, dt,
-                      steps, stride, samples)
+    d = api.run_hertz(m, p, h, np.zeros(2), np.zeros((2, 2)), q0, v0,
+                      law.k, law.chi, dt, steps, stride, samples)
     assert np.allclose(c[1], d[1].T, rtol=0, atol=1e-12)
     assert np.allclose(c[2], d[2], rtol=1e-12, atol=0)
 
@@ -316,8 +317,8 @@ def test_stiff_hertz_tends_to_appendix_e_at_the_predicted_rate(n, order):
         stride = steps // 100
         *_, first, _ = api.run_hertz(
             np.full(n, upper.mass), upper.p, upper.x.reshape(1, n),
-            np.zeros(1), upper.q0, upper.v0, law.k * scale, 0.0, dt, steps,
-            stride, steps // stride + 1)
+            np.zeros(1), np.zeros((1, 1)), upper.q0, upper.v0,
+            law.k * scale, 0.0, dt, steps, stride, steps // stride + 1)
         assert abs(first[0] - newton.impact_t[0]) < 2 * dt
         errors.append(abs(first[1] / newton.impulse[0] - 1))
     assert errors[0] < 1e-2

@@ -75,7 +75,8 @@ def _free_modes(p, amplitude, offset, t_end, dt, threshold):
     energy = 0.5 * np.sum(m * (p * q0)**2)
     steps = int(round(t_end / dt))
     out = api.run_hertz_adaptive(
-        m, p, h, np.asarray(offset, float), q0, v0, 1.0, 0.0, dt, steps,
+        m, p, h, np.asarray(offset, float), np.zeros((len(offset),) * 2),
+        q0, v0, 1.0, 0.0, dt, steps,
         steps, 2, threshold, n, 2.0 * energy, 1000)
     _, _, _, _, crossings, n_cross, gap_max, counts, status = out
     assert status == 0

@@ -85,6 +85,10 @@ class ChatterResult:
     min_open_s: float = circuit.MIN_OPEN
     damping: str = "none"
     stepper: str = "fixed"
+    #: Whether the Hertz law had the static correction (the truncated
+    #: modes' residual flexibility in series; always False for Newton and
+    #: appE, which take no compliance).
+    static_correction: bool = False
     #: The simulated design (a contactsep.Design).
     design: object = None
     #: Work done: flight steps, fixed steps and flow evaluations of the
@@ -117,6 +121,7 @@ class ChatterResult:
                 "dt_s": self.dt, "t_end_s": self.t_end_s,
                 "preload_lb": self.preload_lb, "damping": self.damping,
                 "stepper": self.stepper,
+                "static_correction": self.static_correction,
                 "open_threshold_in": self.open_threshold_in,
                 "min_open_s": self.min_open_s}
 

@@ -7,12 +7,13 @@ from __future__ import annotations
 import importlib
 import math
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from contactsep.chatter import circuit
 from contactsep.chatter import status as chatter_status
+from contactsep.chatter.contacts import series_energy
 from contactsep.errors import InputError
 
 #: First size of the crossing tables; a run that fills one is repeated
@@ -89,7 +90,9 @@ class System:
     """Stacked modes of the three members (mass, frequency per mode), the
     contact Jacobian h (2 x n), the gap offsets g0, the initial state,
     and how many leading modes (the upper contact's) move before the
-    first impact while the rest stay in static equilibrium."""
+    first impact while the rest stay in static equilibrium; c the static
+    correction's series flexibilities (2 x 2, in/lb; zero: the plain
+    truncation; the Hertz laws only)."""
 
     m: np.ndarray
     p: np.ndarray
@@ -98,6 +101,7 @@ class System:
     q0: np.ndarray
     v0: np.ndarray
     n_upper: int
+    c: np.ndarray = field(default_factory=lambda: np.zeros((2, 2)))
 
 
 @dataclass(frozen=True)
@@ -124,7 +128,9 @@ def _energy_bound(system, law=None) -> float:
     s = system
     energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
     if law is not None:
-        energy0 += np.sum(law.energy(s.h @ s.q0 + s.g0))
+        gap0 = s.h @ s.q0 + s.g0
+        energy0 += series_energy(law.k, s.c, gap0) if np.any(s.c != 0.0) \
+            else np.sum(law.energy(gap0))
     return ENERGY_MARGIN * float(energy0)
 
 
@@ -200,7 +206,7 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     bound = _energy_bound(s, law)
     t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
         _with_room(lambda room: _api().run_hertz_adaptive(
-            s.m, s.p, s.h, s.g0, s.q0, s.v0, law.k, law.chi, dt, steps,
+            s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi, dt, steps,
             stride, samples, threshold, s.n_upper, bound, room),
             steps * s.m.size)
     status = _checked(status)
@@ -272,13 +278,13 @@ def hertz_fixed(system, law, dt, steps, stride, threshold,
         from contactsep.chatter import steppers
         t, g, energy, _, first = steppers.hertz(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, law=law, dt=dt, steps=steps,
-            stride=stride)
+            stride=stride, c_matrix=s.c)
     else:
         samples = steps // stride + 1
         t, g, energy, _, first, status = _stoppable(
             steps * s.m.size, lambda: _api().run_hertz(
-                s.m, s.p, s.h, s.g0, s.q0, s.v0, law.k, law.chi, dt, steps,
-                stride, samples, energy_bound=bound))
+                s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi, dt,
+                steps, stride, samples, energy_bound=bound))
         g = g.T
     return _from_samples(t, g, energy, first, threshold, steps * dt,
                          {"fixed_steps": steps},

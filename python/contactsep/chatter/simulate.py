@@ -108,9 +108,13 @@ def largest_preload(design) -> float:
     return _largest_preload(design, sep, lower)
 
 
-def _system(design, preload, law) -> runners.System:
-    """The stacked system, the lower contact preloaded if asked."""
+def _system(design, preload, law, static_correction=False
+            ) -> runners.System:
+    """The stacked system, the lower contact preloaded if asked; with
+    ``static_correction`` (Hertz only: ``law`` given) the residual
+    flexibilities in series with the contacts."""
     m, p, h, q0, v0, (upper, sep, lower) = _stack(design)
+    correct = bool(static_correction) and law is not None
     g0 = np.zeros(2)
     most = _largest_preload(design, sep, lower)
     if preload > most:
@@ -119,13 +123,16 @@ def _system(design, preload, law) -> runners.System:
                            f"the lower contact by more than its length)")
     if preload > 0.0:
         depth = 0.0 if law is None else (preload / law.k) ** (2.0 / 3.0)
-        q_sep, q_low, g0 = system.preload_state(sep, lower, preload, depth)
+        q_sep, q_low, g0 = system.preload_state(sep, lower, preload, depth,
+                                                correct)
         n1, n2 = upper.p.size, sep.p.size
         q0 = q0.copy()
         q0[n1:n1 + n2] += q_sep
         q0[n1 + n2:] += q_low
+    c = system.series_matrix(upper, sep, lower) if correct \
+        else np.zeros((2, 2))
     return runners.System(m=m, p=p, h=h, g0=g0, q0=q0, v0=v0,
-                          n_upper=upper.p.size)
+                          n_upper=upper.p.size, c=c)
 
 
 def _single_impulse(design) -> dict:
@@ -256,13 +263,14 @@ def simulate(design, model="newton", damping="none", dt=None, *,
              min_open=circuit.MIN_OPEN, preload=0.0, nu=DEFAULT_NU,
              button_radius=DEFAULT_BUTTON_RADIUS, backend="compiled",
              samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive",
-             single_impulse=True) -> ChatterResult:
+             single_impulse=True, static_correction=True) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
     ``dt`` defaults per model (DEFAULT_DT; it is rounded so that a whole
     number of steps ends at ``t_end``); ``preload`` (lb, >= 0) presses
     the lower contact up against the separator at the start (static
-    equilibrium of the N-mode models, :func:`system.preload_state`; the
+    equilibrium of the N-mode models, with the static correction the
+    exact point-load deflections, :func:`system.preload_state`; the
     release height stays y_s above the preloaded separator; appE has no
     lower contact and takes only 0); ``open_threshold`` (in) is the gap
     above which a contact is open, ``min_open`` (s) the shortest circuit
@@ -274,14 +282,24 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     NumPy twins of the fixed-step steppers (slow: tests only);
     ``single_impulse=False`` skips the thesis's eq. 23 figures (two model
     evaluations, ~1 ms: a sweep of chatter runs need not pay them).
+    ``static_correction`` (Hertz): the truncated modes' residual
+    flexibility in series with each contact and in the preload's static
+    state (docs/chatter.md, "The static correction"); False is the plain
+    N-mode truncation.  Newton's rigid law cannot take a series
+    compliance: for it (and appE) the option changes nothing.
     """
+    if not isinstance(static_correction, (bool, np.bool_)):
+        raise ChatterError(f"static_correction: found "
+                           f"{static_correction!r}, expected True or False")
+    static_correction = bool(static_correction) and model == "hertz"
     _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper)
     single = _single_impulse(design) if single_impulse else {}
     settings = dict(t_end_s=float(t_end),
                     open_threshold_in=float(open_threshold),
                     min_open_s=float(min_open), design=design,
-                    single_impulse=single)
+                    single_impulse=single,
+                    static_correction=static_correction)
     if model == "appE":
         if dt is not None:
             raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
@@ -324,7 +342,7 @@ def simulate(design, model="newton", damping="none", dt=None, *,
             if damping == "flores" else {}
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
                                      **flores)
-    stack = _system(design, preload, law)
+    stack = _system(design, preload, law, static_correction)
     if model == "newton" and stepper == "adaptive" and backend == "compiled":
         run, args = runners.newton_adaptive, (float(design.e), dt, steps,
                                               stride, open_threshold)

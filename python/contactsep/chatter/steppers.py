@@ -11,7 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.chatter.contacts import HertzLaw, solve_lcp
+from contactsep.chatter.contacts import (
+    HertzLaw,
+    series_energy,
+    series_forces,
+    solve_lcp,
+)
 
 EPS = float(np.finfo(float).eps)
 
@@ -79,13 +84,18 @@ def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
     return t_out, g_out, e_out, impulses, np.array(first)
 
 
-def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1):
+def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
+          c_matrix=None):
     """Hertz contact by Strang splitting: half kick of the contact forces,
     the exact modal flow over dt (every mode, however stiff), half kick.
     Symplectic for chi = 0; the step resolves the contact, not the modes.
+    ``c_matrix`` (k x k, in/lb): the static correction's series
+    flexibilities (None or 0: the plain truncation).
     Returns sampled (t, gaps, energy incl. the contact's) and the
     impulses (force at each step's start x dt) summed per sample."""
     q, v = q.astype(float).copy(), v.astype(float).copy()
+    series = c_matrix is not None and bool(np.any(np.asarray(c_matrix)
+                                                  != 0.0))
     c, s = np.cos(p * dt), np.sin(p * dt)
     samples = steps // stride + 1
     t_out = np.empty(samples)
@@ -95,15 +105,33 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1):
 
     def energy(q, v):
         gap = h_matrix @ q + g0
+        if series:
+            return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + series_energy(
+                law.k, c_matrix, gap)
         return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + np.sum(
             law.energy(gap))
 
+    def series_force(gap, v):
+        # Flores's factor on each element's stiffness (hertz.f90)
+        stiff = [law.k] * len(gap)
+        if law.chi != 0.0 and np.any(gap < 0.0):
+            stiff = [law.k * max(1.0 - law.chi * float(r), 0.0)
+                     for r in h_matrix @ v]
+        return series_forces(stiff, c_matrix, gap)
+
     def kick(q, v):
         gap = h_matrix @ q + g0
-        force = law.force(gap, h_matrix @ v)
+        force = series_force(gap, v) if series else law.force(
+            gap, h_matrix @ v)
         return force, v + 0.5 * dt * (h_matrix.T @ force) / m
 
-    t_out[0], g_out[0], e_out[0] = 0.0, h_matrix @ q + g0, energy(q, v)
+    def sampled(q, force):
+        # with the correction, the physical gaps g + C lambda
+        gap = h_matrix @ q + g0
+        return gap + np.asarray(c_matrix) @ force if series else gap
+
+    t_out[0], e_out[0] = 0.0, energy(q, v)
+    g_out[0] = sampled(q, kick(q, v)[0])
     first, episode = [-1.0, -1.0], 0
     for step in range(steps):
         force, v = kick(q, v)
@@ -117,10 +145,10 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1):
             else:
                 episode = 2
         q, v = q * c + v / p * s, -q * p * s + v * c
-        _, v = kick(q, v)
+        force, v = kick(q, v)
         if (step + 1) % stride == 0:
             k = (step + 1) // stride
             t_out[k] = (step + 1) * dt
-            g_out[k] = h_matrix @ q + g0
+            g_out[k] = sampled(q, force)
             e_out[k] = energy(q, v)
     return t_out, g_out, e_out, impulses, np.array(first)

@@ -39,6 +39,10 @@ class Member:
     #: Initial modal displacements q_j (in) and velocities (in/s).
     q0: np.ndarray
     v0: np.ndarray
+    #: Residual flexibility (in/lb) of the modes past N at the contact
+    #: point: G(x) L^3/(EI) minus the N-mode sum (the static correction's
+    #: series spring, docs/chatter.md; :func:`beams.residual_flexibility`).
+    residual: float = 0.0
 
     def energy(self, q, v) -> np.ndarray:
         """Kinetic + strain energy (in lb), for states (..., n)."""
@@ -59,6 +63,12 @@ def _modes(end: str, n: int, xi: float):
     return kl, values
 
 
+@functools.lru_cache(maxsize=256)
+def _residual(end: str, n: int, xi: float) -> float:
+    """r_N(xi), in units of L^3 / (EI) (cached as :func:`_modes`)."""
+    return float(beams.residual_flexibility(end, n, xi)[0])
+
+
 def _member(design: Design, i: str, n: int, q0=None) -> Member:
     length = float(getattr(design, "L" + i))
     width = float(getattr(design, "b" + i))
@@ -73,7 +83,11 @@ def _member(design: Design, i: str, n: int, q0=None) -> Member:
     kl, values = _modes(str(end), n, float(x) / length)
     p = kl**2 * a / length**2
     q = np.zeros(n) if q0 is None else q0
-    return Member(p=p, x=values, mass=mass, q0=q, v0=np.zeros(n))
+    inertia = width * thick**3 / 12.0
+    residual = _residual(str(end), n, float(x) / length) * length**3 / (
+        modulus * inertia)
+    return Member(p=p, x=values, mass=mass, q0=q, v0=np.zeros(n),
+                  residual=residual)
 
 
 def release_state(design: Design, n: int) -> np.ndarray:
@@ -106,8 +120,19 @@ def flexibility(member: Member) -> float:
     return float(np.sum(member.x**2 / (member.mass * member.p**2)))
 
 
+def series_matrix(upper: Member, separator: Member,
+                  lower: Member) -> np.ndarray:
+    """C = [[c1 + c2, -c2], [-c2, c2 + c3]] (in/lb): the gaps' quasi-
+    static change per unit contact force from the members' residual
+    flexibilities (the upper force pushes member 1 up and the separator
+    down, the lower one the separator up and member 3 down; both act at
+    the separator's one contact point x2)."""
+    c1, c2, c3 = upper.residual, separator.residual, lower.residual
+    return np.array([[c1 + c2, -c2], [-c2, c2 + c3]])
+
+
 def preload_state(separator: Member, lower: Member, force: float,
-                  penetration: float = 0.0):
+                  penetration: float = 0.0, static_correction=False):
     """Initial modal displacements and gap offsets with the lower contact
     pressed up against the separator by ``force`` (lb, >= 0).
 
@@ -117,11 +142,19 @@ def preload_state(separator: Member, lower: Member, force: float,
     closed by ``penetration`` (Hertz: (F/k)^(2/3)); the upper gap's
     offset keeps the release height y_s measured from the separator as
     preloaded (the assembled rig), not from its unloaded position.
+    With ``static_correction`` the contact points' deflections add the
+    residual springs' F c_i: the exact F G(x) L^3/(EI) of a point load,
+    and the offsets make the series law's force exactly F (the Hertz
+    element's own penetration, docs/chatter.md).
     Returns (q_separator, q_lower, g0)."""
     q_sep = force * separator.x / (separator.mass * separator.p**2)
     q_low = -force * lower.x / (lower.mass * lower.p**2)
     lift = force * flexibility(separator)     # = sum X_j q_j, separator
     drop = -force * flexibility(lower)        # = sum X_j q_j, lower
+    if static_correction:
+        # the contact points' whole deflections: modes + residual springs
+        lift = force * (flexibility(separator) + separator.residual)
+        drop = -force * (flexibility(lower) + lower.residual)
     # closed beyond the round-off of h q + g0 (a gap of +1e-19 would leave
     # a rigid contact open for a step and start a rattle at rest)
     slack = 8.0 * np.finfo(float).eps * (abs(lift) + abs(drop))

@@ -70,6 +70,12 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="adaptive",
                            help="adaptive (default) or the fixed-step "
                                 "reference (Moreau-Jean, Hertz splitting)")
+    run_group.add_argument("--static-correction", choices=("on", "off"),
+                           default="on",
+                           help="hertz: the truncated modes' residual "
+                                "flexibility in series with each contact "
+                                "(default on; off: the plain N-mode "
+                                "truncation; docs/chatter.md)")
     run_group.add_argument("--nu", type=finite(), default=DEFAULT_NU,
                            help="Poisson's ratio of the Hertz constant "
                                 f"(default {DEFAULT_NU:g})")
@@ -113,7 +119,8 @@ def run(args: argparse.Namespace) -> int:
                           dt=args.dt, t_end=args.t_end, preload=args.preload,
                           open_threshold=args.open_threshold,
                           min_open=args.min_open, stepper=args.stepper,
-                          nu=args.nu, button_radius=args.button_radius)
+                          nu=args.nu, button_radius=args.button_radius,
+                          static_correction=args.static_correction == "on")
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
@@ -174,7 +181,9 @@ def summary_text(result, listed: int | None = 10) -> str:
              f"{_g(result.t_end_s)} s",
              f"preload {_g(result.preload_lb)} lb, damping "
              f"{result.damping}, open above {_g(result.open_threshold_in)}"
-             f" in, events last >= {_g(result.min_open_s)} s"]
+             f" in, events last >= {_g(result.min_open_s)} s"
+             + (", static correction" if result.static_correction
+                else "")]
     lines.append("design: " + ", ".join(_design_parts(result.design)))
     rows = [("first impact", result.first_impact_s, "s"),
             ("first impulse", result.first_impulse_lb_s, "lb s"),

@@ -155,7 +155,9 @@ def register(commands: argparse._SubParsersAction) -> None:
                                    ("damping", "{none,flores}",
                                     "default none"),
                                    ("dt", "S", "s; default 5e-08; "
-                                    "varied, not sampled")):
+                                    "varied, not sampled"),
+                                   ("static_correction", "{on,off}",
+                                    "default on; fixed, not varied")):
         chatter.add_argument("--" + name.replace("_", "-"),
                              metavar=metavar,
                              help=f"{SETTINGS[name][2]} ({default})")
@@ -371,7 +373,9 @@ def _settings(args: argparse.Namespace) -> dict:
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
-             "dt": (args.dt, "--dt")}
+             "dt": (args.dt, "--dt"),
+             "static_correction": (args.static_correction,
+                                   "--static-correction")}
     return {name: parse_value(name, text, option)
             for name, (text, option) in typed.items() if text is not None}
 

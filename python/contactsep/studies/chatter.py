@@ -41,5 +41,6 @@ def chatter_table(thicknesses=THICKNESSES, modes=MODES,
                  {k: np.array(v) for k, v in rows.items()},
                  ("window 0-0.060 s from release; open = gap > 1e-6 in; "
                   "events = openings >= 1e-5 s; the adaptive steppers at "
-                  "their default dt (newton 5e-8 s, hertz 5e-8 s)",
+                  "their default dt (newton 5e-8 s, hertz 5e-8 s); hertz "
+                  "with the static correction (docs/chatter.md)",
                   "appE: rigid separator, the lower contact never moves"))

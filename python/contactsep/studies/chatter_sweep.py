@@ -131,6 +131,10 @@ def _row(spec: SweepSpec, varied: dict, i: int) -> tuple[dict, dict]:
         target[name] = _plain(values[i])
     if spec.model != "hertz":
         settings.pop("damping")
+        settings.pop("static_correction", None)
+    elif "static_correction" in settings:
+        settings["static_correction"] = \
+            settings["static_correction"] == "on"
     return fields, settings
 
 

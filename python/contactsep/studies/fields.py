@@ -52,6 +52,9 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
                         "(calibrated to e)"),
     "dt": ("s", "s", "the adaptive stepper's time step (a convergence "
                      "check: docs/chatter.md)"),
+    "static_correction": ("", "", "hertz: the truncated modes' residual "
+                                  "flexibility in series with each contact "
+                                  "(on or off)"),
 }
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
 VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt")
@@ -64,7 +67,8 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "end3": beams.END_CONDITIONS,
            "impact_velocity": IMPACT_VELOCITIES,
            "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
-           "release": RELEASES, "damping": DAMPINGS}
+           "release": RELEASES, "damping": DAMPINGS,
+           "static_correction": ("on", "off")}
 #: Fields that may be None, and what None means.
 OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
             "x3": "its tip (L3)", "Lc": "none"}

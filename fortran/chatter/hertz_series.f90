@@ -1,0 +1,110 @@
+!> Hertz contacts in series with the residual flexibility of the
+!> truncated modes (the static correction, docs/chatter.md).
+!>
+!> The gaps of the modal contact points are g = H q + g0; the contact
+!> forces lambda >= 0 add the quasi-static displacements C lambda of the
+!> modes left out (C = [[c1 + c2, -c2], [-c2, c2 + c3]], c_i member i's
+!> residual flexibility at its contact point), and each Hertz element
+!> carries lambda_i = s_i delta_i^{3/2} on its own penetration
+!> delta = -(g + C lambda) (s_i = k, times Flores's factor when damped).
+!> lambda is the unique minimiser over lambda >= 0 of the convex
+!>   Phi = sum_i (3/5) s_i^{-2/3} lambda_i^{5/3} + lambda^T C lambda / 2
+!>         + lambda^T g,
+!> and the elastic energy of the contacts is
+!>   V(g) = -min Phi = sum_i (2/5) k delta_i^{5/2} + lambda^T C lambda / 2
+!> with dV/dg = -lambda: the forces derive from V, so the splitting stays
+!> symplectic.  lambda = 0 exactly when every g_i >= 0 (the gradient of
+!> Phi at 0 is g), so no force acts while every modal gap is open.
+!> Twin: contactsep/chatter/contacts.py (series_forces, series_energy).
+module chatter_hertz_series
+  use contactsep_kinds, only: wp
+  implicit none
+  private
+  public :: series_forces, series_energy, element_depth, max_sweeps
+
+  !> Most sweeps of the coordinate descent (it contracts by about
+  !> c2^2 / ((c1 + c2)(c2 + c3)) a sweep: a few sweeps in practice).
+  integer, parameter :: max_sweeps = 200
+  !> Most Newton iterations of one element (quadratic from the first).
+  integer, parameter :: max_newton = 100
+
+contains
+
+  !> The root delta >= 0 of delta + b delta^{3/2} = a (a > 0, b >= 0):
+  !> Newton's method from the upper bound min(a, (a/b)^{2/3}); the
+  !> function is convex and increasing, so the iterates fall
+  !> monotonically onto the root, and stop when they stop falling.
+  pure function element_depth(a, b) result(depth)
+    real(wp), intent(in) :: a, b
+    real(wp) :: depth, root, next
+    integer :: it
+
+    if (b <= 0.0_wp) then
+      depth = a
+      return
+    end if
+    depth = min(a, (a / b)**(2.0_wp / 3.0_wp))
+    do it = 1, max_newton
+      root = sqrt(depth)
+      next = depth - (depth + b * depth * root - a) &
+          / (1.0_wp + 1.5_wp * b * root)
+      if (.not. next < depth) exit
+      depth = max(next, 0.0_wp)
+    end do
+  end function element_depth
+
+  !> The forces lambda (lb) of k contacts (1 or 2) with Hertz
+  !> stiffnesses stiff (lb/in^1.5; 0: no force), series flexibilities
+  !> cmat (in/lb, symmetric positive semi-definite, diagonal >= 0) and
+  !> modal gaps g (in): exact minimisation of Phi over each lambda_i in
+  !> turn (coordinate descent; each step the root of one element) until
+  !> a sweep changes no force by more than 4 ulps.
+  pure subroutine series_forces(k, stiff, cmat, g, force)
+    integer, intent(in) :: k
+    real(wp), intent(in) :: stiff(k), cmat(k, k), g(k)
+    real(wp), intent(out) :: force(k)
+    real(wp) :: a, depth, old(k)
+    integer :: sweep, i, j
+
+    force = 0.0_wp
+    if (all(g >= 0.0_wp)) return
+    do sweep = 1, max_sweeps
+      old = force
+      do i = 1, k
+        a = -g(i)
+        do j = 1, k
+          if (j /= i) a = a - cmat(i, j) * force(j)
+        end do
+        if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
+          depth = element_depth(a, cmat(i, i) * stiff(i))
+          force(i) = stiff(i) * depth * sqrt(depth)
+        else
+          force(i) = 0.0_wp
+        end if
+      end do
+      if (k == 1) exit
+      if (all(abs(force - old) <= 4.0_wp * epsilon(1.0_wp) * force)) exit
+    end do
+  end subroutine series_forces
+
+  !> V(g): the contacts' elastic energy (in lb), the Hertz elements'
+  !> (2/5) k delta^{5/2} = (2/5) lambda delta and the series springs'
+  !> lambda^T C lambda / 2, with the undamped forces of the gaps g.
+  pure function series_energy(k, stiffness, cmat, g) result(total)
+    integer, intent(in) :: k
+    real(wp), intent(in) :: stiffness, cmat(k, k), g(k)
+    real(wp) :: total, force(k), stiff(k), depth
+    integer :: i
+
+    stiff = stiffness
+    call series_forces(k, stiff, cmat, g, force)
+    total = 0.5_wp * dot_product(force, matmul(cmat, force))
+    do i = 1, k
+      if (force(i) > 0.0_wp) then
+        depth = (force(i) / stiffness)**(2.0_wp / 3.0_wp)
+        total = total + 0.4_wp * force(i) * depth
+      end if
+    end do
+  end function series_energy
+
+end module chatter_hertz_series
