@@ -62,7 +62,14 @@ class Terminated(BaseException):
     """SIGTERM arrived: unwind (removing temporary files) and stop."""
 
 
+#: SIGTERMs seen by raise_terminated: an exception raised where Python
+#: ignores exceptions (an os.fork() at-fork callback) is lost, the count
+#: is not (interruptible() checks it).
+_terminations = [0]
+
+
 def raise_terminated(signum, frame) -> None:
+    _terminations[0] += 1
     raise Terminated
 
 
@@ -392,12 +399,23 @@ def interruptible(long: bool, function, *args):
         return function(*args)
     read_fd, write_fd = os.pipe()
     parent = os.getpid()
-    pid = os.fork()
+    # Ctrl-C and SIGTERM wait while fork runs: raised inside its at-fork
+    # callbacks (logging's), Python would print and ignore the exception
+    # and the command would run on and exit 0 (seen under load)
+    stops = {signal.SIGINT, signal.SIGTERM}
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, stops)
+    seen = _terminations[0]
+    try:
+        pid = os.fork()
+    except BaseException:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        raise
     if pid == 0:                        # the child: never returns
         try:
             os.close(read_fd)
             signal.signal(signal.SIGINT, signal.SIG_DFL)
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
             _die_with(parent)
             data = _answer(function, args)
             with os.fdopen(write_fd, "wb") as pipe:
@@ -407,6 +425,9 @@ def interruptible(long: bool, function, *args):
     os.close(write_fd)
     chunks = []
     try:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        if _terminations[0] != seen:
+            raise Terminated
         with os.fdopen(read_fd, "rb", buffering=0) as pipe:
             while True:
                 _check_stops()
