@@ -11,7 +11,9 @@ below it):
 * :mod:`contactsep.model`: the general model, eq. (23), in batches
   (``Design``, ``thesis_design``, ``evaluate``).
 * :mod:`contactsep.chatter`: repeated impacts and circuit opening.
-* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps.
+* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps;
+  ``preload(design)``, the smallest preload that keeps a design's
+  circuit closed (:mod:`contactsep.studies.design_preload`).
 * :mod:`contactsep.cli`: the ``contactsep`` command.
 
 Shared by all: :mod:`contactsep.beams`, :mod:`contactsep.constants`,
@@ -29,17 +31,21 @@ from contactsep.restored.result import Result
 
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
+#: The studies' names, imported on first use.
+_STUDY_NAMES = {"preload": "contactsep.studies.design_preload"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 
 __all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError",
            "Result", "cards_per_set", "replay", "solve", *_MODEL_NAMES,
-           *_LAYERS]
+           *_STUDY_NAMES, *_LAYERS]
 
 
 def __getattr__(name: str):
     if name in _MODEL_NAMES:
         return getattr(importlib.import_module("contactsep.model"), name)
+    if name in _STUDY_NAMES:
+        return getattr(importlib.import_module(_STUDY_NAMES[name]), name)
     if name in _LAYERS:
         return importlib.import_module(f"contactsep.{name}")
     raise AttributeError(f"module 'contactsep' has no attribute {name!r}")
