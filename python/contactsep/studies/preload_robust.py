@@ -36,7 +36,6 @@ from contactsep.studies.chatter_sweep import simulate_design
 from contactsep.studies.preload import search
 from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep import chunk_inputs, make_spec
-from contactsep.studies.sweep_checks import SweepError
 
 #: Samples of the tolerances unless asked: enough to see a p_open of a
 #: few percent, not to prove one of 1 % (--samples raises it).
@@ -109,7 +108,7 @@ def parse_tolerances(texts, samples, seed) -> tuple:
     try:
         spec = make_spec(sample=list(texts), samples=samples, seed=seed,
                          model="hertz")
-    except SweepError as error:
+    except InputError as error:
         raise InputError(str(error).replace("--sample", "--tolerance")
                          ) from None
     for name, _, _, _ in spec.sample:
