@@ -113,6 +113,30 @@ def test_a_planted_window_one_percent_wide_is_found(where, planted):
     assert all(b < answer.min_preload_lb for _, b in answer.event_windows)
 
 
+def test_the_progress_callback_counts_every_simulation(planted,
+                                                       monkeypatch):
+    planted()
+    monkeypatch.setattr(preload_robust, "simulate_design", _fake_sample)
+    counted = []
+    answer = contactsep.preload(FAMILY["becu_light"].replace(n_modes=8),
+                                workers=1, tolerance=["ys=normal(0.03,"
+                                                      "0.001)"],
+                                samples=7, progress=counted.append)
+    robust_runs = 7 * len(answer.robust.tested)
+    assert sum(counted) == answer.simulations + robust_runs
+    assert answer.simulations == len(answer.tested) + len(
+        answer.verify_tested)
+
+
+def test_windows_are_runs_of_tested_preloads():
+    tested = [(0.5, True), (1.0, True), (1.5, False), (2.0, True),
+              (2.5, False), (3.0, False), (3.5, True), (4.0, False)]
+    assert design_preload.windows(tested) == ((0.5, 1.0), (2.0, 2.0),
+                                              (3.5, 3.5))
+    assert design_preload.windows(tested, below=4.0, event=False) == (
+        (1.5, 1.5), (2.5, 3.0))
+
+
 def _fake_sample(fields, model, settings):
     """A planted tolerance study: an event below 10 lb per inch of the
     separator's thickness."""

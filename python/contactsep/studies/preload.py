@@ -393,20 +393,23 @@ def limit_notes(where: str, result: PreloadSearch) -> list[str]:
 def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                   damping: str = "none", dt=None,
                   workers: int | None = None, thicknesses=THICKNESSES,
-                  heights=HEIGHTS, **overrides) -> Study:
+                  heights=HEIGHTS, settings=None, **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
-    to e), ``dt`` the stepper's step (default: the model's)."""
+    to e), ``dt`` the stepper's step (default: the model's);
+    ``settings`` simulate()'s other keywords, passed to every run."""
     refuse_fixed("preload", overrides, FIXED)
     if damping != "none" and model != "hertz":
         raise InputError("damping: the Hertz contact's (--model hertz)")
     rows = [(d, ys) for d in thicknesses for ys in heights]
     designs = [thesis_design(d=d, ys=ys, n_modes=n_modes, **overrides)
                for d, ys in rows]
+    extra = dict(settings or {})
     settings = {"damping": damping} if model == "hertz" else {}
     if dt is not None:
         settings["dt"] = dt
+    settings.update(extra)
     with Simulations(workers) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
