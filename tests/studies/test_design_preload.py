@@ -17,13 +17,14 @@ import pytest
 from design_family import FAMILY
 
 import contactsep
+from contactsep import output
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies import design_preload, preload, preload_robust
 from contactsep.studies.stats import wilson_interval
-
+from contactsep.studies.sweep import chunk_inputs
 
 # a planted physics: the search sees only whether a run has an event
 
@@ -156,7 +157,6 @@ def test_the_robust_answer_has_p_open_at_most_its_target(p_target, planted,
     r = answer.robust
     # the samples' thresholds, counted here from the drawn thicknesses
     spec = preload_robust.parse_tolerances(["d=uniform(0.2,0.3)"], 50, 3)
-    from contactsep.studies.sweep import chunk_inputs
     h2 = chunk_inputs(spec, 0, 50)["h2"]
     assert np.all((h2 >= 0.2) & (h2 <= 0.3)) and len(set(h2)) == 50
     opened = int(np.sum(10.0 * h2 > r.min_preload_lb))
@@ -304,7 +304,6 @@ def test_the_robust_answer_against_direct_runs_of_its_samples():
                                 p_target=0.1)
     r = answer.robust
     spec = preload_robust.parse_tolerances(tolerance, 12, 1)
-    from contactsep.studies.sweep import chunk_inputs
     drawn = chunk_inputs(spec, 0, 12)
     opened = sum(_events(design.replace(h2=float(h2), ys=float(ys)),
                          r.min_preload_lb, {}) > 0
@@ -329,10 +328,5 @@ def test_no_answer_below_the_largest_preload_the_design_takes():
     assert answer.ceiling_lb / 2 ** 0.25 < top <= answer.ceiling_lb
     assert _events(design, top, settings) > 0
     assert any(note.startswith("no answer") for note in answer.notes)
-    assert _strict(json.dumps(design_preload_json(answer)))[
-        "min_preload_lb"] is None
-
-
-def design_preload_json(answer):
-    from contactsep import output
-    return json.loads(output.json_text(answer.to_json_dict()))
+    data = _strict(output.json_text(answer.to_json_dict()))
+    assert data["min_preload_lb"] is None
