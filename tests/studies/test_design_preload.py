@@ -168,6 +168,31 @@ def test_the_robust_answer_has_p_open_at_most_its_target(p_target, planted,
     assert r.p_open_ci95[0] <= r.p_open <= r.p_open_ci95[1]
 
 
+def test_the_robust_answer_is_above_a_narrow_window_the_nominal_found(
+        planted, monkeypatch):
+    """A window of events 1 % wide at 1.3 times the threshold, in the
+    nominal design and in every sample: the robust search's 19 % steps
+    would step over it; it tries the nominal design's events and ends
+    above it."""
+    design = FAMILY["thesis"].replace(n_modes=8)
+    t = _threshold(design, {})
+    lo = 1.3 * t
+    planted((lo, lo * 1.01))
+
+    def sample(fields, model, settings):
+        load = settings["preload"]
+        event = load < t * fields["h2"] / 0.25 or lo <= load <= lo * 1.01
+        return (0.0,) * 5 + (int(event), 0)
+
+    monkeypatch.setattr(preload_robust, "simulate_design", sample)
+    answer = contactsep.preload(design, workers=1, verify=False,
+                                tolerance=["d=uniform(0.245,0.255)"],
+                                samples=10)
+    assert lo * 1.01 <= answer.min_preload_lb <= lo * 1.01 ** 2
+    r = answer.robust
+    assert lo * 1.01 <= r.min_preload_lb and r.n_open == 0
+
+
 @pytest.mark.parametrize("kwargs, message", [
     ({"p_target": 1.0}, "--p-target: found 1.0"),
     ({"p_target": -0.1}, "--p-target: found -0.1"),

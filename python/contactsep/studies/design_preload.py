@@ -277,7 +277,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             robust = robust_preload(
                 design, model, settings, spec, p_target, sims,
                 start=answer if math.isfinite(answer) else None,
-                ceiling=ceiling)
+                ceiling=ceiling,
+                nominal_events=[p for p, event in found.tested if event])
             notes.append(f"robust answer: {sims.runs - runs} "
                          f"simulations of {spec.samples} samples")
     at_answer = None

@@ -164,7 +164,7 @@ def start_index(preload: float) -> int:
 
 
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
-           ceilings=None, starts=None, band: bool = True
+           ceilings=None, starts=None, band=True
            ) -> list[PreloadSearch]:
     """Run the scan, the bisection and the fine check around the answer
     for ``n_rows`` designs at once (module docstring).
@@ -176,10 +176,12 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     even short of an octave, and an event at the highest grid value
     below it leaves the row without an answer (NaN).  ``starts``: each
     row's guess of its answer (lb; None: scan from 1/16 lb): the scan
-    begins at the octave that ends there.  ``band`` False skips the
-    fine check (each preload tested there is a whole tolerance study
-    for the robust answer): the answer is then closed at the scan's
-    steps to an octave above its last event.
+    begins at the octave that ends there.  ``band`` True: the fine
+    check (:func:`fine_band`); a callable: ``band(row, answer)`` lists
+    the preloads to check instead (the robust answer checks only where
+    the nominal design had events: each preload there is a whole
+    tolerance study); False: none, the answer is then closed at the
+    scan's steps to an octave above its last event.
     """
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
     tops = [top_index(c) for c in limits]
@@ -225,7 +227,9 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 if lo > 0.0 and math.isfinite(hi) and checked[row] != hi]
         if not rows:
             break
-        run([(row, p) for row in rows for p in fine_band(brackets[row][1])
+        checks = band if callable(band) else (
+            lambda row, answer: fine_band(answer))
+        run([(row, p) for row in rows for p in checks(row, brackets[row][1])
              if p not in tested[row] and p <= limits[row]])
         # an event the band found near its top: the scan's grid values
         # to an octave above it are tested too (as the scan did above
