@@ -119,10 +119,11 @@ def test_the_progress_callback_counts_every_simulation(planted,
     planted()
     monkeypatch.setattr(preload_robust, "simulate_design", _fake_sample)
     counted = []
-    answer = contactsep.preload(FAMILY["becu_light"].replace(n_modes=8),
-                                workers=1, tolerance=["ys=normal(0.03,"
-                                                      "0.001)"],
-                                samples=7, progress=counted.append)
+    with pytest.warns(UserWarning, match="moves by -"):
+        answer = contactsep.preload(
+            FAMILY["becu_light"].replace(n_modes=8), workers=1,
+            tolerance=["ys=normal(0.03,0.001)"], samples=7,
+            progress=counted.append)
     robust_runs = 7 * len(answer.robust.tested)
     assert sum(counted) == answer.simulations + robust_runs
     assert answer.simulations == len(answer.tested) + len(
