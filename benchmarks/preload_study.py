@@ -16,6 +16,10 @@ Parts (default: convergence, check, monotone):
   3 % below (an event expected) its preload.
 * ``monotone``: each row of the chart scanned finely, 0.80-1.25 times
   its preload in 1 % steps: where "closed" is not monotone.
+* ``chart-convergence [--modes N]`` (not in the default parts): the
+  whole chart at N (default 32) and at 2N, half the step, with each
+  row's change: the chart's convergence table (an hour or more on two
+  cores at N = 32; run it with the static correction in).
 """
 
 from __future__ import annotations
@@ -146,13 +150,44 @@ def monotone(path=CHART) -> None:
               f"{max(f for f, _ in part):g} |")
 
 
+def chart_convergence(n_modes=32) -> None:
+    """The whole chart at N and again at 2N and half the step (each row
+    its own search, as contactsep preload's min_preload_change): the
+    convergence table of the chart, each row's change flagged above 2 %.
+    With the static correction (issue 25) the chart converged to 2 % a
+    row is the N at which no row is flagged."""
+    from contactsep.chatter import simulate
+    probe = simulate(contactsep.thesis_design(n_modes=n_modes),
+                     model="hertz", samples=1, single_impulse=False)
+    start = time.perf_counter()
+    coarse = preload.preload_chart(n_modes=n_modes)
+    fine = preload.preload_chart(n_modes=2 * n_modes, dt=probe.dt / 2)
+    print(f"The preload chart at N = {n_modes}, dt {probe.dt:g} s and at "
+          f"N = {2 * n_modes}, dt {probe.dt / 2:g} s "
+          f"({time.perf_counter() - start:.0f} s)\n")
+    print(f"| d (in) | y_s (in) | N = {n_modes} (lb) | N = {2 * n_modes}, "
+          f"dt/2 (lb) | change | within 2 % |")
+    print("|---|---|---:|---:|---:|---|")
+    for d, ys, a, b in zip(coarse["d_in"], coarse["ys_in"],
+                           coarse["min_preload_lb"], fine["min_preload_lb"]):
+        change = (b - a) / a if a > 0 else float("nan")
+        print(f"| {d:g} | {ys:g} | {a:.4g} | {b:.4g} | {change:+.1%} | "
+              f"{'yes' if abs(change) <= 0.02 else 'NO'} |")
+
+
 def main(argv) -> None:
     chart = CHART
     if "--chart" in argv:
         at = argv.index("--chart")
         chart = argv[at + 1]
         del argv[at:at + 2]
-    parts = {"convergence": convergence,
+    n_modes = 32
+    if "--modes" in argv:
+        at = argv.index("--modes")
+        n_modes = int(argv[at + 1])
+        del argv[at:at + 2]
+    parts = {"chart-convergence": lambda: chart_convergence(n_modes),
+             "convergence": convergence,
              "convergence-full": lambda: convergence(full=True),
              "check": lambda: check(chart),
              "monotone": lambda: monotone(chart)}

@@ -11,7 +11,9 @@ below it):
 * :mod:`contactsep.model`: the general model, eq. (23), in batches
   (``Design``, ``thesis_design``, ``evaluate``).
 * :mod:`contactsep.chatter`: repeated impacts and circuit opening.
-* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps.
+* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps;
+  ``preload(design)``, the smallest preload that keeps a design's
+  circuit closed (:mod:`contactsep.studies.design_preload`).
 * :mod:`contactsep.cli`: the ``contactsep`` command.
 
 Shared by all: :mod:`contactsep.beams`, :mod:`contactsep.constants`,
@@ -30,7 +32,8 @@ from contactsep.restored.result import Result
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 #: Names of the studies layer, imported on first use.
-_STUDIES_NAMES = {"read": "contactsep.studies.frames"}
+_STUDIES_NAMES = {"read": "contactsep.studies.frames",
+                  "preload": "contactsep.studies.design_preload"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 

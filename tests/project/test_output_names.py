@@ -35,7 +35,8 @@ DIMENSIONLESS = {
     "n_exceed", "model", "damping", "stepper", "backend", "precision",
     "end1", "end2", "end3", "impact_velocity", "lower_response",
     "lc_reading", "release", "data_set", "title", "event", "curve",
-    "first_mode_share", "n_maxima"}
+    "first_mode_share", "n_maxima", "static_correction", "dt_source",
+    "t_end_source", "verify"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
@@ -78,8 +79,9 @@ def checked(keys) -> None:
 
 
 def _is_statistic(key: str) -> bool:
-    # a statistic puts the unit last: y3_max_mean_in, circuit_open_sd_s
-    return bool(SUFFIX.match(key))
+    # a statistic puts the unit last: y3_max_mean_in, circuit_open_sd_s;
+    # a relative change is dimensionless: first_impulse_change
+    return bool(SUFFIX.match(key)) or key.endswith("_change")
 
 
 def run_json(argv) -> dict:

@@ -1,34 +1,40 @@
-"""The preload chart (``contactsep study preload``): the smallest
+"""The preload search (``contactsep preload``, :mod:`design_preload`)
+and the chart built on it (``contactsep study preload``): the smallest
 lower-contact preload with no discontinuity event in the window.
 
 For each design (the chart: the thesis rig for d = 0.125 ... 0.75 in and
 y_s = 0.25, 0.5, 0.75 in) the search
 
 1. **scans** the grid of preloads 2^(k/4) lb (19 % apart) upward from
-   1/16 lb, an octave (four values) at a time, until the four values
-   above the highest preload with an event are all closed (no event),
-   or those of them up to the row's ceiling (the largest preload the
-   simulation takes: it bends the lower contact by its length); if the
-   first octave has no event it scans down instead, to 2^-20 lb, then
-   tries 0;
+   1/16 lb (or from a row's ``start``), an octave (four values) at a
+   time, until the four values above the highest preload with an event
+   are all closed (no event), or those of them up to the row's ceiling
+   (the largest preload the simulation takes: it bends the lower
+   contact by its length); if the first octave has no event it scans
+   down instead, to 2^-20 lb, then tries 0;
 2. **bisects** (geometric midpoints) between that highest event and the
    next grid value until they are within 1 %;
-3. **checks** every 1 % step up to 25 % above the answer: if one has an
+3. **checks finely** every preload of the fine grid FINE_RATIO^j lb
+   (steps of 0.99 %: a window of events 1 % wide holds one of them)
+   from 0.7 to 1.5 times the answer: if one above the answer has an
    event, the highest such is the new lower end, the next tested
-   preload above it the upper end, and 2-3 repeat (steps above the
-   ceiling are not tested).
+   preload above it the upper end, and 2-3 repeat (preloads above the
+   ceiling are not tested; the fine grid is fixed, so a repeat tests
+   only the preloads the last band did not).
 
 "Closed" is not monotone in preload (docs/chatter.md, "The preload
 chart"): below the highest preload with an event a smaller one may be
 closed, and short open windows lie between the scan's values.  The
 answer is therefore the smallest tested preload above which every
-tested preload stays closed: closed at every 1 % step to 25 % above it
+tested preload stays closed: closed at every fine step to 1.5 times it
 and at the scan's steps to an octave above its last event (or to the
-ceiling).  Each step
-keeps that true (a closed midpoint becomes the upper end, an open one
-the lower end), and the answer is itself closed.
+ceiling).  Each step keeps that true (a closed midpoint becomes the
+upper end, an open one the lower end), and the answer is itself
+closed.  A window of events narrower than 1 % may fall between two
+fine steps, and one beyond 1.5 times the answer between two of the
+scan's steps, unseen.
 
-Every scan step, bisection step and check is one batch of simulations
+Every scan step, bisection step and band is one batch of simulations
 over all the rows, run on worker processes.
 """
 
@@ -68,9 +74,14 @@ LOWEST_K = -80
 HIGHEST_K = 40
 #: The bisection stops when the bracket's ends are within this ratio - 1.
 TOLERANCE = 0.01
-#: The check above an answer: every 1 % step up to 25 % above it.
-BAND_STEP = 0.01
-BAND_STEPS = 25
+#: The fine check around an answer: every preload FINE_RATIO^j lb
+#: (j integer; steps of 0.99 %, so that any window 1 % wide holds one)
+#: from BAND_LOW to BAND_HIGH times the answer (to 2: the whole octave
+#: the scan checked closed above it; issue 25 saw a window 1.2 % wide at
+#: 1.86 times an answer).
+FINE_RATIO = 1.0099
+BAND_LOW = 0.7
+BAND_HIGH = 2.0
 #: The fields the chart sets itself.
 FIXED = {"h2": "its rows, d = 0.125-0.75 in",
          "ys": "its curves, y_s = 0.25, 0.5, 0.75 in"}
@@ -143,20 +154,41 @@ def top_index(ceiling: float) -> int:
     return k - 1 if grid(k) > ceiling else k
 
 
+def start_index(preload: float) -> int:
+    """The grid index a scan starting near ``preload`` lb begins at: the
+    octave whose top is the grid value at or just above it."""
+    if not (preload > 0.0 and math.isfinite(preload)):
+        return FIRST_K
+    k = math.ceil(PER_OCTAVE * math.log2(preload) - 1e-9)
+    return min(max(k - PER_OCTAVE + 1, LOWEST_K), HIGHEST_K)
+
+
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
-           ceilings=None) -> list[PreloadSearch]:
-    """Run the scan, the bisection and the check above the answer for
-    ``n_rows`` designs at once (module docstring).
+           ceilings=None, starts=None, band=True
+           ) -> list[PreloadSearch]:
+    """Run the scan, the bisection and the fine check around the answer
+    for ``n_rows`` designs at once (module docstring).
 
     ``has_event(tasks)`` takes a list of (row, preload lb) and returns,
     in order, whether each has a discontinuity event (one batch).
     ``ceilings``: each row's largest preload to test (lb; default the
     grid's top, 1024 lb): the scan above the last event stops there,
     even short of an octave, and an event at the highest grid value
-    below it leaves the row without an answer (NaN).
+    below it leaves the row without an answer (NaN).  ``starts``: each
+    row's guess of its answer (lb; None: scan from 1/16 lb): the scan
+    begins at the octave that ends there.  ``band`` True: the fine
+    check (:func:`fine_band`); a callable: ``band(row, answer)`` lists
+    the preloads to check instead (the robust answer checks only where
+    the nominal design had events: each preload there is a whole
+    tolerance study); False: none, the answer is then closed at the
+    scan's steps to an octave above its last event.
     """
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
     tops = [top_index(c) for c in limits]
+    # a row's first octave lies below its top (at least one preload)
+    firsts = [min(start_index(s) if s is not None else FIRST_K,
+                  top - PER_OCTAVE + 1)
+              for s, top in zip(starts or [None] * n_rows, tops)]
     scans = [{} for _ in range(n_rows)]
     zeros = [None] * n_rows
     tested = [{} for _ in range(n_rows)]
@@ -171,7 +203,8 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 scans[row][k] = bool(event)
 
     run([(row, grid(k)) for row in range(n_rows)
-         for k in range(FIRST_K, FIRST_K + PER_OCTAVE) if k <= tops[row]],
+         for k in range(firsts[row], firsts[row] + PER_OCTAVE)
+         if k <= tops[row]],
         on_grid=True)
     while True:
         tasks = [(row, p) for row in range(n_rows)
@@ -184,32 +217,62 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     checked = [None] * n_rows
     while True:
         _bisect(brackets, tested, has_event, tolerance)
-        # the band above each new answer: an event there moves the
+        if not band:
+            break
+        # the band around each new answer: an event above it moves the
         # bracket up to it (every tested preload above stays closed)
-        rows = [row for row, (_, hi) in enumerate(brackets)
-                if hi > 0.0 and math.isfinite(hi) and checked[row] != hi]
+        # (not below the grid's floor, 2^-20 lb: a preload that small
+        # is none, and a band there would creep down a band at a time)
+        rows = [row for row, (lo, hi) in enumerate(brackets)
+                if lo > 0.0 and math.isfinite(hi) and checked[row] != hi]
         if not rows:
             break
-        run([(row, p) for row in rows for p in _band(brackets[row][1])
+        checks = band if callable(band) else (
+            lambda row, answer: fine_band(answer))
+        run([(row, p) for row in rows for p in checks(row, brackets[row][1])
              if p not in tested[row] and p <= limits[row]])
+        # an event the band found near its top: the scan's grid values
+        # to an octave above it are tested too (as the scan did above
+        # its last event), until they are all closed
+        while True:
+            tasks = [(row, p) for row in rows
+                     for p in _octave_above(tested[row], tops[row])]
+            if not tasks:
+                break
+            run(tasks)
         for row in rows:
-            checked[row] = hi = brackets[row][1]
-            opened = [p for p in _band(hi) if tested[row].get(p)]
-            if opened:
-                top = max(opened)
-                brackets[row] = [top, min(p for p in tested[row]
-                                          if p > top)]
+            checked[row] = brackets[row][1]
+            # the highest event now (above the answer if the band found
+            # one), and the smallest tested preload above it (the band
+            # may have put one between the bisection's ends)
+            top = max(p for p, event in tested[row].items() if event)
+            above = [p for p in tested[row] if p > top]
+            brackets[row] = [top, min(above) if above else math.nan]
     return [PreloadSearch(min_preload_lb=hi,
                           tested=tuple(sorted(tested[row].items())),
                           ceiling_lb=limits[row])
             for row, (_, hi) in enumerate(brackets)]
 
 
-def _band(answer: float) -> list:
-    """The preloads checked above an answer: BAND_STEPS steps of
-    BAND_STEP."""
-    return [answer * (1.0 + BAND_STEP * j)
-            for j in range(1, BAND_STEPS + 1)]
+def _octave_above(tested: dict, top_k: int) -> list:
+    """The scan's grid values above a row's highest event, to an octave
+    above it (and the row's top, ``top_k``), not yet tested."""
+    top = max(p for p, event in tested.items() if event)
+    if top <= 0.0:
+        return []
+    first = math.floor(PER_OCTAVE * math.log2(top) + 1e-9) + 1
+    return [grid(k) for k in range(first, min(first + PER_OCTAVE - 1,
+                                              top_k) + 1)
+            if grid(k) not in tested]
+
+
+def fine_band(answer: float) -> list:
+    """The preloads of the fine grid, FINE_RATIO^j lb, from BAND_LOW to
+    BAND_HIGH times ``answer`` (the fine check, module docstring)."""
+    step = math.log(FINE_RATIO)
+    low = math.ceil(math.log(BAND_LOW * answer) / step - 1e-9)
+    high = math.floor(math.log(BAND_HIGH * answer) / step + 1e-9)
+    return [FINE_RATIO ** j for j in range(low, high + 1)]
 
 
 def _bisect(brackets, tested, has_event, tolerance) -> None:
@@ -240,8 +303,11 @@ class Simulations:
     search; ``workers`` 1 runs them here).  Counts the runs and their
     time for the caller's notes."""
 
-    def __init__(self, workers: int | None = None):
+    def __init__(self, workers: int | None = None, progress=None):
         self.workers = workers or usable_cores()
+        #: Called with the number of simulations each time some finish
+        #: (a progress bar's update), or None.
+        self.progress = progress
         self.runs = 0
         self.seconds = 0.0
         self._pool = None
@@ -268,10 +334,13 @@ class Simulations:
         """function(task) for every task, in order (function and tasks
         picklable: module-level, plain data and Designs)."""
         start = time.perf_counter()
-        if self._pool is None:
-            out = [function(task) for task in tasks]
-        else:
-            out = list(self._pool.map(function, tasks))
+        results = (map(function, tasks) if self._pool is None
+                   else self._pool.map(function, tasks))
+        out = []
+        for result in results:
+            out.append(result)
+            if self.progress is not None:
+                self.progress(1)
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
         return out
@@ -330,11 +399,12 @@ def limit_notes(where: str, result: PreloadSearch) -> list[str]:
 def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                   damping: str = "none", dt=None,
                   workers: int | None = None, thicknesses=THICKNESSES,
-                  heights=HEIGHTS, **overrides) -> Study:
+                  heights=HEIGHTS, settings=None, **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
-    to e), ``dt`` the stepper's step (default: the model's)."""
+    to e), ``dt`` the stepper's step (default: the model's);
+    ``settings`` simulate()'s other keywords, passed to every run."""
     from contactsep.studies import search_checks as checks
     checks.check_search("preload", model, MODELS, n_modes, workers,
                         overrides, True)
@@ -346,9 +416,11 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     rows = [(d, ys) for d in thicknesses for ys in heights]
     designs = [thesis_design(d=d, ys=ys, n_modes=n_modes, **overrides)
                for d, ys in rows]
+    extra = dict(settings or {})
     settings = {"damping": damping} if model == "hertz" else {}
     if dt is not None:
         settings["dt"] = dt
+    settings.update(extra)
     with Simulations(workers) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
@@ -361,8 +433,9 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         "min_preload_lb: the smallest tested preload above which every "
         "tested preload has no event; scan 2^(k/4) lb upward from 1/16 "
         "lb until an octave above the last event is closed, bisection "
-        f"to {TOLERANCE:.0%}, every {BAND_STEP:.0%} step to "
-        f"{BAND_STEP * BAND_STEPS:.0%} above the answer closed",
+        f"to {TOLERANCE:.0%}, then every {FINE_RATIO - 1:.2%} step from "
+        f"{BAND_LOW:g} to {BAND_HIGH:g} times the answer simulated, "
+        f"closed above it",
         f"{sims.runs} simulations",
     ]
     for (d, ys), result in zip(rows, found):

@@ -1,0 +1,207 @@
+"""``contactsep preload``: the smallest preload that keeps this design's
+circuit closed, its own error estimate, and the robust answer under
+tolerances (contactsep.studies.design_preload)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from contactsep import output
+from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.help import examples
+from contactsep.cli.values import finite, integer
+from contactsep.errors import InputError
+
+#: simulate()'s keywords that are options of the command.
+_OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add ``contactsep preload``."""
+    from contactsep.chatter.simulate import DAMPINGS
+    from contactsep.studies.preload import DEFAULT_MODES, MODELS
+    from contactsep.studies.preload_robust import (
+        DEFAULT_P_TARGET,
+        DEFAULT_SAMPLES,
+        MAX_SAMPLES,
+    )
+    from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+
+    parser = commands.add_parser(
+        "preload", help="the smallest preload that keeps the circuit "
+                        "closed",
+        description="The smallest lower-contact preload with no "
+                    "discontinuity event for this design (the thesis rig, "
+                    "any design field changed): the search of the "
+                    "preload chart (every 0.99 % step from 0.7 to 2 times "
+                    "the answer simulated, so that windows of events 1 % "
+                    "wide are found), its change at half the step and "
+                    "twice the modes (min_preload_change), the windows of "
+                    "events and the closed windows below the answer. "
+                    "With --tolerance, also the robust answer: the "
+                    "smallest preload whose p_open over the tolerances "
+                    "is at most --p-target, with its Wilson interval. "
+                    f"N defaults to {DEFAULT_MODES} modes per member "
+                    "(--n-modes). docs/chatter.md, \"The preload "
+                    "command\".",
+        **examples("contactsep preload --n-modes 8 --d 0.75",
+                   "contactsep preload --d 0.5 --json",
+                   "contactsep preload --tolerance 'd=normal(0.25,0.005)' "
+                   "--samples 300 --csv preload.csv"))
+    run_group = parser.add_argument_group("simulation")
+    run_group.add_argument("--model", choices=MODELS, default="hertz",
+                           help="default hertz")
+    run_group.add_argument("--damping", choices=DAMPINGS, default=None,
+                           help="Hertz damping (default none: elastic)")
+    run_group.add_argument("--dt", type=finite("s"), default=None,
+                           metavar="S", help="time step (s; default the "
+                                             "simulation's)")
+    run_group.add_argument("--t-end", type=finite("s"), default=None,
+                           metavar="S", help="window from the release (s;"
+                                             " default the simulation's)")
+    run_group.add_argument("--min-open", type=finite("s"), default=None,
+                           metavar="S",
+                           help="shortest opening that counts as a "
+                                "discontinuity event (s; default 1e-05): "
+                                "the answer depends on it")
+    run_group.add_argument("--open-threshold", type=finite("in"),
+                           default=None, metavar="IN",
+                           help="gap above which a contact is open (in; "
+                                "default 1e-06)")
+    robust = parser.add_argument_group("robust answer")
+    robust.add_argument("--tolerance", action="append", default=[],
+                        metavar="'FIELD=normal(MEAN,SD)'|"
+                                "'FIELD=uniform(LO,HI)'",
+                        help="a design field's distribution (repeatable; "
+                             "the syntax of sweep --sample; quote it)")
+    robust.add_argument("--p-target", default=None, metavar="P",
+                        help=f"the largest acceptable p_open (default "
+                             f"{DEFAULT_P_TARGET:g})")
+    robust.add_argument("--samples", type=integer(1, MAX_SAMPLES),
+                        default=None, metavar="K",
+                        help=f"draws of the tolerances (default "
+                             f"{DEFAULT_SAMPLES}; each preload tried costs "
+                             f"K runs: raise it to resolve a p_open of 1 %%)")
+    robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
+                        help="seed of the draws (default 0; the same "
+                             "designs as sweep --sample with that seed)")
+    out_group = parser.add_argument_group("output")
+    out_group.add_argument("--json", action="store_true",
+                           help="print the answer as JSON")
+    out_group.add_argument("--csv", metavar="FILE",
+                           help="write every preload tried (comments: the "
+                                "answers); replaced only when finished")
+    out_group.add_argument("--workers", type=integer(1, max_workers()),
+                           default=None,
+                           help=f"local processes (default: the usable "
+                                f"cores; at most {WORKERS_PER_CORE} a core)")
+    out_group.add_argument("--progress", choices=("auto", "always",
+                                                  "never"),
+                           default="auto",
+                           help="progress bar on stderr: auto (on a "
+                                "terminal), always (needs tqdm), never")
+    add_design_options(parser)
+    parser.set_defaults(handler=run)
+
+
+def _p_target(text):
+    from contactsep.studies.preload_robust import (
+        DEFAULT_P_TARGET,
+        check_p_target,
+    )
+    if text is None:
+        return DEFAULT_P_TARGET
+    try:
+        value = float(text)
+    except ValueError:
+        value = text
+    return check_p_target(value)
+
+
+def run(args: argparse.Namespace) -> int:
+    from contactsep.model import thesis_design
+    from contactsep.studies.design_preload import preload
+    from contactsep.studies.preload import DEFAULT_MODES
+    from contactsep.studies.preload_robust import parse_tolerances
+    from contactsep.studies.runner import _progress
+
+    p_target = _p_target(args.p_target)
+    overrides = design_overrides(args)
+    overrides.setdefault("n_modes", DEFAULT_MODES)
+    design = thesis_design(**overrides)
+    if args.tolerance:      # refused before any simulation
+        parse_tolerances(args.tolerance, args.samples or 1, args.seed)
+    elif args.samples is not None:
+        raise InputError("--samples: the draws of --tolerance; give a "
+                         "tolerance")
+    output.check_targets({"--csv": args.csv},
+                         {"--design": args.design} if args.design else {})
+    settings = {name: getattr(args, name) for name in _OPTIONS
+                if getattr(args, name) is not None}
+    enabled = {"auto": None, "always": True, "never": False}[args.progress]
+    bar = _progress(None, enabled)
+    if bar is not None:
+        bar.unit = "run"
+    try:
+        answer = preload(design, model=args.model, tolerance=args.tolerance,
+                         p_target=p_target, samples=args.samples,
+                         seed=args.seed, workers=args.workers,
+                         progress=None if bar is None else bar.update,
+                         **settings)
+    except InputError as error:
+        # the simulation names its arguments; the command, its options
+        name, sep, rest = str(error).partition(":")
+        if sep and name in _OPTIONS:
+            raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+    if args.csv:
+        with output.open_output(args.csv) as out:
+            output.write_text(out, answer.csv_text())
+    if args.json:
+        output.write_json(sys.stdout, answer.to_json_dict())
+    else:
+        output.write_text(sys.stdout, summary_text(answer))
+    return 0
+
+
+def _g(value, unit="") -> str:
+    import math
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "none"
+    return f"{value:.5g}{unit}"
+
+
+def _spans(spans) -> str:
+    return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
+                     for lo, hi in spans) or "none"
+
+
+def summary_text(answer) -> str:
+    """The answer, its change, the windows and the robust answer."""
+    change = answer.min_preload_change
+    lines = [f"model {answer.model}, N = {answer.n_modes}, dt = "
+             f"{answer.dt_s:g} s; {answer.simulations} simulations",
+             f"  min preload              {_g(answer.min_preload_lb, ' lb')}",
+             f"  at dt/2 and 2N           "
+             f"{_g(answer.verify_min_preload_lb, ' lb')} (change "
+             f"{'none' if change is None else f'{change:+.2%}'})",
+             f"  longest opening there    "
+             f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
+             f"openings >= min_open)",
+             f"  event windows (lb)       {_spans(answer.event_windows)}",
+             f"  closed below it (lb)     {_spans(answer.closed_windows)}"]
+    r = answer.robust
+    if r is not None:
+        ci = r.p_open_ci95
+        lines.append(f"  robust min preload       "
+                     f"{_g(r.min_preload_lb, ' lb')}: p_open {_g(r.p_open)}"
+                     f" (95 % Wilson "
+                     f"{'-' if ci is None else f'{ci[0]:.3g}-{ci[1]:.3g}'};"
+                     f" {r.n_open} of {r.n} open, {r.n_failed} failed) <= "
+                     f"{r.p_target:g}")
+    lines += [f"note: {note}" for note in answer.notes]
+    return "\n".join(lines) + "\n"
