@@ -152,8 +152,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                                    ("min_open", "S", "s; default 1e-05"),
                                    ("damping", "{none,flores}",
                                     "default none"),
-                                   ("dt", "S", "s; default 5e-08; "
-                                    "varied, not sampled")):
+                                   ("dt", "S", "s; default: each "
+                                    "design's own; varied, not sampled"),
+                                   ("t_end", "S", "s; default: each "
+                                    "design's own")):
         chatter.add_argument("--" + name.replace("_", "-"),
                              metavar=metavar,
                              help=f"{SETTINGS[name][2]} ({default})")
@@ -349,7 +351,8 @@ def _settings(args: argparse.Namespace) -> dict:
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
-             "dt": (args.dt, "--dt")}
+             "dt": (args.dt, "--dt"),
+             "t_end": (args.t_end, "--t-end")}
     return {name: parse_value(name, text, option)
             for name, (text, option) in typed.items() if text is not None}
 

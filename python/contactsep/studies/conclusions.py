@@ -27,6 +27,7 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
+from contactsep.constants import LISTING_TAU_S
 from contactsep.model import thesis_design
 from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
@@ -105,8 +106,9 @@ def conclusion(name: str, model: str = "hertz",
     single = evaluate_all(base.replace(**{own: values}), "compiled")
     settings = {"damping": "flores"} if (
         name == "conclusion3" and model == "hertz") else {}
-    if dt is not None:
-        settings["dt"] = dt
+    # the thesis rig's converged step and the listing's window, given
+    settings["dt"] = DEFAULT_DT[model] if dt is None else dt
+    settings["t_end"] = LISTING_TAU_S
     with Simulations(workers) as sims:
         free = sims.map(_zero_preload, [(d, model, settings)
                                         for d in designs])

@@ -44,6 +44,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.circuit import MIN_OPEN
 from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
@@ -340,8 +341,10 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     designs = [thesis_design(d=d, ys=ys, n_modes=n_modes, **overrides)
                for d, ys in rows]
     settings = {"damping": damping} if model == "hertz" else {}
-    if dt is not None:
-        settings["dt"] = dt
+    # the thesis rig's converged step and the listing's window, given
+    # (not the design's own numerics): the chart is the thesis's
+    settings["dt"] = DEFAULT_DT[model] if dt is None else dt
+    settings["t_end"] = LISTING_TAU_S
     with Simulations(workers) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
