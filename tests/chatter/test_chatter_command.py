@@ -36,23 +36,18 @@ def test_the_documented_defaults():
     # whole number of steps in the window), the model: hertz
     law = HertzLaw.for_materials(float(design.E1), 0.33, 0.125)
     step = numerics.design_step(members(design), law.k).dt
-    # on this design (N = 4, the 0.75 in separator's 123 lb impact) the
-    # step fails the energy check (energy off by 1.5e-6) and the default
-    # run is the one at half of it
-    with pytest.warns(chatter.UnconvergedWarning):
-        first = chatter.simulate(design, model="hertz", dt=step, **common)
-    assert first.status == 9 and abs(first.energy_ratio - 1) > 1e-6
-    steps = round(0.03 / (step / 2))
+    # (the halving when the energy check fails: tests/chatter/
+    # test_numerics.py)
+    steps = round(0.03 / step)
     documented = dict(model="hertz", dt=0.03 / steps, open_threshold=1e-6,
                       min_open=1e-5, nu=0.33, button_radius=0.125)
     plain = chatter.simulate(design, **common)
     given = chatter.simulate(design, **common, **documented)
-    assert plain.numerics["dt_halvings"] == 1 and plain.status == 0
+    assert plain.numerics["dt_halvings"] == 0 and plain.status == 0
 
     def same(result):
         out = result.to_json_dict()
         del out["inputs"]["dt_source"]      # "design" against "given"
-        del out["numerics"]["dt_halvings"]  # 1 against 0
         return out
     assert same(plain) == same(given)
     assert plain.dt_source == "design" and given.dt_source == "given"

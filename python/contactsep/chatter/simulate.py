@@ -139,7 +139,7 @@ def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
     printed and in the impulse form (psi/M3)."""
     from contactsep.model import evaluate
-    ev = evaluate(design)
+    ev = evaluate(design.replace(lower_response="as-printed"))
     impulse = evaluate(design.replace(lower_response="impulse"))
     return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
             "v_impact_in_s": float(ev.v_impact),

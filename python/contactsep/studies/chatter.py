@@ -7,8 +7,7 @@ import numpy as np
 
 from contactsep.chatter.simulate import DEFAULT_DT, simulate
 from contactsep.constants import LISTING_TAU_S
-from contactsep.model import thesis_design
-from contactsep.studies.study import Study
+from contactsep.studies.study import Study, thesis_design
 
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
 MODES = (4, 16, 32)

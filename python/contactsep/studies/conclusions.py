@@ -28,7 +28,6 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
 from contactsep.constants import LISTING_TAU_S
-from contactsep.model import thesis_design
 from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
@@ -36,7 +35,12 @@ from contactsep.studies.preload import (
     limit_notes,
     min_preloads,
 )
-from contactsep.studies.study import Study, evaluate_all, refuse_fixed
+from contactsep.studies.study import (
+    Study,
+    evaluate_all,
+    refuse_fixed,
+    thesis_design,
+)
 
 #: The values each study takes (the thesis rig's first, except e).
 RESTITUTIONS = (0.2, 0.375, 0.6, 0.8, 1.0)

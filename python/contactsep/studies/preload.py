@@ -46,10 +46,9 @@ from contactsep.chatter.circuit import MIN_OPEN
 from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
-from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
 from contactsep.studies.runner import _quiet_worker, usable_cores
-from contactsep.studies.study import Study, refuse_fixed
+from contactsep.studies.study import Study, refuse_fixed, thesis_design
 
 #: The chart's separators and release heights (in).
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
