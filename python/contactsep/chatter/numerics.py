@@ -166,6 +166,53 @@ def energy_converged(ratio: float, damped: bool) -> bool:
     return abs(ratio - 1.0) <= ENERGY_TOLERANCE
 
 
+@dataclass(frozen=True)
+class CheckedRun:
+    """A stepper's run that passed its energy check, or the last one
+    tried: the run, its step (s), its energy ratio, how often the step
+    was halved, whether it converged, and what set the step."""
+
+    run: object
+    dt: float
+    ratio: float
+    halvings: int
+    converged: bool
+    damped: bool
+    dt_source: str
+
+    def message(self) -> str:
+        """The one-line warning of an unconverged run."""
+        rule = ("a damped run must not gain energy" if self.damped
+                else "an elastic run must keep it within 1e-6")
+        return (f"unconverged: energy end/start {self.ratio:.10g} at dt "
+                f"{self.dt:.3g} s ({self.dt_source}"
+                + (f", halved {self.halvings} times" if self.halvings
+                   else "")
+                + f"; {rule}): status 9, the figures are not to be "
+                f"trusted"
+                + (" (give a smaller dt)" if self.dt_source == "given"
+                   else ""))
+
+
+def checked_run(run_at, dt: float, dt_source: str, damped: bool,
+                least: float) -> CheckedRun:
+    """Run ``run_at(dt) -> (step, run)`` and check its energy; a step the
+    design chose (``dt_source`` "design") that fails is halved, at most
+    :data:`MAX_HALVINGS` times and never below ``least`` (the work
+    budget's smallest step); a given one is run once."""
+    halvings = 0
+    while True:
+        step, run = run_at(dt)
+        ratio = float(run.energy[-1] / run.energy[0])
+        converged = energy_converged(ratio, damped)
+        if converged or dt_source != "design" or \
+                halvings == MAX_HALVINGS or dt / 2.0 < least:
+            return CheckedRun(run=run, dt=step, ratio=ratio,
+                              halvings=halvings, converged=converged,
+                              damped=damped, dt_source=dt_source)
+        dt, halvings = dt / 2.0, halvings + 1
+
+
 def relative_change(coarse, fine) -> float:
     """|fine - coarse| / |fine| (0 when both are 0; NaN when either is
     NaN or only fine is 0)."""
