@@ -9,7 +9,11 @@ single-impulse figures, the stepper, the circuit) and is printed with
 its ratio to numpy.sin.  The adaptive steppers are the defaults; the
 fixed-step ones are the references they are tested against.  The last
 column counts the work: flight steps, fixed steps and flow evaluations
-of the searches (adaptive), or steps (fixed).
+of the searches (adaptive), or steps (fixed).  Every run takes the
+thesis's window (0.06 s) and, unless it names one, the thesis's step
+(5e-8 s), given: the settings these figures were first measured with
+("default" in a label means the default stepper; the design's own step
+and window, issue 25: benchmarks/bench_checks.py).
 """
 
 from __future__ import annotations
@@ -39,6 +43,9 @@ def main() -> None:
     rows = []
 
     def case(label, design, repeats=REPEATS, **options):
+        options = {"t_end": 0.06, **options}
+        if options.get("model") != "appE":
+            options.setdefault("dt", 5e-8)
         result = chatter.simulate(design, **options)
         seconds = best(lambda: chatter.simulate(design, **options),
                        repeats)

@@ -102,13 +102,15 @@ def test_moreau_jean_matches_appendix_e_on_the_rigid_stop(n, dt):
 @pytest.mark.parametrize("stepper", ["fixed", "adaptive"])
 def test_newton_three_beams_conserve_energy_for_e_one(stepper):
     r = chatter.simulate(contactsep.thesis_design(n_modes=4, e=1.0),
-                         model="newton", dt=1e-6, stepper=stepper)
+                         model="newton", dt=1e-6, stepper=stepper,
+                         t_end=0.06)
     # the trapezoidal flight (Moreau-Jean) and the exact flow (adaptive)
     # conserve the quadratic energy exactly, and the velocity-level law
     # with e = 1 returns it at each impact
     assert np.max(np.abs(r.energy / r.energy[0] - 1)) < 1e-9
     lossy = chatter.simulate(contactsep.thesis_design(n_modes=4),
-                             model="newton", dt=1e-6, stepper=stepper)
+                             model="newton", dt=1e-6, stepper=stepper,
+                             t_end=0.06)
     assert np.all(np.diff(lossy.energy) <= 1e-12 * lossy.energy[0])
     # interpenetration of the velocity-level law: below dt x impact speed
     assert lossy.gap_upper.min() > -1e-6 * 35.0
@@ -116,9 +118,10 @@ def test_newton_three_beams_conserve_energy_for_e_one(stepper):
 
 def test_elastic_hertz_conserves_energy_and_flores_dissipates():
     design = contactsep.thesis_design(n_modes=4)
-    elastic = chatter.simulate(design, model="hertz", dt=2e-8)
+    elastic = chatter.simulate(design, model="hertz", dt=2e-8, t_end=0.06)
     assert np.max(np.abs(elastic.energy / elastic.energy[0] - 1)) < 1e-6
-    damped = chatter.simulate(design, model="hertz", damping="flores")
+    damped = chatter.simulate(design, model="hertz", damping="flores",
+                              dt=5e-8, t_end=0.06)
     assert np.all(np.diff(damped.energy) <= 1e-12 * damped.energy[0])
     assert damped.energy_ratio < 0.9
 
@@ -214,7 +217,8 @@ def test_a_preload_is_a_static_equilibrium(model):
     (F/k)^(2/3) for Hertz), the contact carrying the preload."""
     design = contactsep.thesis_design(n_modes=8)
     force = 0.05
-    r = chatter.simulate(design, model=model, preload=force, t_end=0.02)
+    r = chatter.simulate(design, model=model, preload=force, t_end=0.02,
+                         dt=5e-8)
     assert r.preload_lb == force
     if model == "hertz":
         law = HertzLaw.for_materials(float(design.E1))
@@ -235,7 +239,7 @@ def test_a_preload_is_a_static_equilibrium(model):
         assert -1e-15 < r.gap_lower[0] <= 0.0
         assert np.ptp(r.gap_lower) < 1e-15
     # the release height is measured from the preloaded separator
-    plain = chatter.simulate(design, model=model, t_end=0.02)
+    plain = chatter.simulate(design, model=model, t_end=0.02, dt=5e-8)
     assert r.gap_upper[0] == pytest.approx(plain.gap_upper[0], rel=1e-12)
     np.testing.assert_allclose(r.gap_upper, plain.gap_upper, rtol=0,
                                atol=1e-12)
@@ -264,7 +268,7 @@ def test_appE_json_lists_every_impact_and_rest(capsys):
     e (the Newton law at the contact point, 1e-12), energy never rising,
     rests inside the window."""
     assert main(["chatter", "--model", "appE", "--n-modes", "4",
-                 "--json"]) == 0
+                 "--t-end", "0.06", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     impacts = out["impacts"]
     assert impacts[0]["t_s"] == out["first_impact_s"]

@@ -12,9 +12,10 @@ import pytest
 
 import contactsep
 from contactsep import chatter
-from contactsep.chatter import circuit
+from contactsep.chatter import circuit, numerics
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.rigid_stop import ZENO_SPEED
+from contactsep.chatter.system import members
 from contactsep.cli import main
 from contactsep.model import Design
 from contactsep.studies import fields
@@ -31,17 +32,39 @@ def test_the_documented_defaults():
     assert ZENO_SPEED == 1e-4
     assert chatter.simulate.__kwdefaults__["open_threshold"] == 1e-6
     design = contactsep.thesis_design(n_modes=4, d=0.75)
-    common = dict(model="hertz", t_end=0.03, samples=10)
-    documented = dict(dt=5e-8, open_threshold=1e-6, min_open=1e-5,
-                      nu=0.33, button_radius=0.125)
+    common = dict(t_end=0.03, samples=10)
+    # the step: the design's own (numerics.design_step, rounded to a
+    # whole number of steps in the window), the model: hertz
+    law = HertzLaw.for_materials(float(design.E1), 0.33, 0.125)
+    step = numerics.design_step(members(design), law.k).dt
+    # (the halving when the energy check fails: tests/chatter/
+    # test_numerics.py)
+    steps = round(0.03 / step)
+    documented = dict(model="hertz", dt=0.03 / steps, open_threshold=1e-6,
+                      min_open=1e-5, nu=0.33, button_radius=0.125)
     plain = chatter.simulate(design, **common)
     given = chatter.simulate(design, **common, **documented)
-    assert plain.to_json_dict() == given.to_json_dict()
-    assert plain.dt == 5e-8 and plain.open_threshold_in == 1e-6
-    assert plain.min_open_s == 1e-5
+    assert plain.numerics["dt_halvings"] == 0 and plain.status == 0
+
+    def same(result):
+        out = result.to_json_dict()
+        del out["inputs"]["dt_source"]      # "design" against "given"
+        return out
+    assert same(plain) == same(given)
+    assert plain.dt_source == "design" and given.dt_source == "given"
+    assert plain.model == "hertz" and plain.dt == 0.03 / steps
+    assert plain.open_threshold_in == 1e-6 and plain.min_open_s == 1e-5
     newton = chatter.simulate(design, model="newton", t_end=0.03,
                               samples=10)
-    assert newton.dt == 5e-8
+    assert newton.dt == 0.03 / round(
+        0.03 / numerics.design_step(members(design)).dt)
+    # the window: the design's own, from its N-mode release flight
+    window = chatter.simulate(design, samples=10)
+    assert window.t_end_source == "design" and plain.t_end_source == "given"
+    slowest = min(float(m.p[0]) for m in members(design))
+    assert window.t_end_s == pytest.approx(
+        window.first_impact_s + numerics.WINDOW_PERIODS * 2 * np.pi
+        / slowest, abs=2 * window.dt)
     changes = dict(dt=1e-7, open_threshold=1e-5, min_open=2e-5, nu=0.3,
                    button_radius=0.25)
     for name, value in changes.items():
@@ -67,7 +90,8 @@ def test_the_json_echoes_the_inputs_and_carries_the_answers(capsys):
     most the contact's closing, the totals equal to their intervals."""
     assert main(["chatter", "--model", "hertz", "--n-modes", "4",
                  "--d", "0.35", "--restitution", "0.5", "--L3", "18",
-                 "--t-end", "0.03", "--min-open", "2e-5", "--json"]) == 0
+                 "--t-end", "0.03", "--min-open", "2e-5", "--dt", "5e-8",
+                 "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     inputs = data["inputs"]
     assert inputs["model"] == "hertz" and inputs["n_modes"] == 4
@@ -83,7 +107,8 @@ def test_the_json_echoes_the_inputs_and_carries_the_answers(capsys):
     assert len(echoed) == len(dataclasses.fields(Design))
     assert Design(**{fields.field_name(k): v
                      for k, v in echoed.items()}) == design
-    r = chatter.simulate(design, model="hertz", t_end=0.03, min_open=2e-5)
+    r = chatter.simulate(design, model="hertz", t_end=0.03, min_open=2e-5,
+                         dt=5e-8)
     for key in ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",
                 "circuit_open_s", "first_circuit_open_s", "longest_open_s",
                 "n_events", "chatters", "energy_ratio"):
@@ -139,10 +164,10 @@ def test_every_design_field_is_an_option(field):
 
 def test_text_output_has_units_short_numbers_and_the_intervals(capsys):
     assert main(["chatter", "--model", "hertz", "--n-modes", "4",
-                 "--t-end", "0.03"]) == 0
+                 "--t-end", "0.03", "--dt", "5e-8"]) == 0
     out = capsys.readouterr().out
     r = chatter.simulate(contactsep.thesis_design(n_modes=4),
-                         model="hertz", t_end=0.03)
+                         model="hertz", t_end=0.03, dt=5e-8)
     assert "model hertz, N = 4, dt = 5e-08 s" in out
     assert "window 0 to 0.03 s" in out and "d 0.25 in" in out
     assert re.search(r"first impact\s+0\.022\d+ s", out)
@@ -207,9 +232,10 @@ def test_png_has_its_dpi_and_a_lower_gap_panel(tmp_path, capsys):
 
 def test_a_far_coarse_dt_warns_in_one_line(capsys):
     assert main(["chatter", "--model", "newton", "--n-modes", "2",
-                 "--dt", "1e-5", "--t-end", "0.03"]) == 0
+                 "--dt", "5e-4", "--t-end", "0.03"]) == 0
     err = capsys.readouterr().err.splitlines()
-    assert len(err) == 1 and err[0].startswith("contactsep: warning: dt:")
+    assert len(err) == 2 and err[0].startswith("contactsep: warning: dt:")
+    assert err[1].startswith("contactsep: note: preload 0")
 
 
 def test_the_repr_is_short():

@@ -121,7 +121,7 @@ def test_simulated_intervals_end_in_the_window():
     interval ends at t_end exactly (not one rounding past it), none is
     empty, and the events are the intervals of at least min_open."""
     r = chatter.simulate(contactsep.thesis_design(n_modes=4), model="hertz",
-                         samples=100)
+                         samples=100, dt=5e-8, t_end=0.06)
     spans = r.circuit_open_intervals
     assert spans[-1, 1] == 0.060 and np.all(spans <= 0.060)
     assert np.all(spans[:, 1] > spans[:, 0])
@@ -130,6 +130,7 @@ def test_simulated_intervals_end_in_the_window():
     assert r.n_events == len(long) and r.chatters
     assert r.longest_open_s == np.max(spans[:, 1] - spans[:, 0])
     every = chatter.simulate(contactsep.thesis_design(n_modes=4),
-                             model="hertz", samples=100, min_open=0.0)
+                             model="hertz", samples=100, min_open=0.0,
+                             dt=5e-8, t_end=0.06)
     assert every.n_events == len(spans)
     assert every.circuit_open_s == r.circuit_open_s

@@ -44,7 +44,7 @@ FINE = 3.125e-9
 
 def run(n, d, dt, stepper="adaptive"):
     return chatter.simulate(contactsep.thesis_design(n_modes=n, d=d),
-                            model="newton", dt=dt, samples=1,
+                            model="newton", dt=dt, samples=1, t_end=0.06,
                             stepper=stepper, single_impulse=False)
 
 
@@ -82,7 +82,8 @@ def band_spec(n, d, dt, samples=256):
     assert contactsep.thesis_design().L2 == 2.5
     return sweep.make_spec(sample=["L2=uniform(2.4875,2.5125)"],
                            samples=samples, base={"n_modes": n, "h2": d},
-                           model="newton", settings={"dt": dt})
+                           model="newton",
+                           settings={"dt": dt, "t_end": 0.06})
 
 
 def _open_time(args):
@@ -90,7 +91,7 @@ def _open_time(args):
     design = dataclasses.replace(contactsep.thesis_design(n_modes=n, d=d),
                                  L2=length)
     return chatter.simulate(design, model="newton", dt=dt, samples=1,
-                            stepper=stepper,
+                            stepper=stepper, t_end=0.06,
                             single_impulse=False).circuit_open_s
 
 

@@ -99,7 +99,7 @@ def test_a_sweep_of_a_hundred_thousand_modes_fits_in_a_gigabyte(tmp_path):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(model="hertz", n_modes=1024, dt=6.1e-11),
+    (dict(model="hertz", n_modes=1024, dt=6.1e-11, t_end=0.06),
      "dt: found 6.1e-11, expected at least 1.84e-08 s at N = 1024 (at most "
      "1e+09 steps and 1e+10 steps x modes a run)"),
     (dict(model="appE", n_modes=1024),
@@ -122,8 +122,24 @@ def test_simulation_work_is_bounded_up_front(kwargs, message):
 
 
 def test_the_default_run_at_the_largest_n_is_within_the_work_bound():
-    """The bound refuses what the default does not need: the converged
-    default step at N = 1024 is inside it."""
+    """The bound refuses what the thesis rig does not need: its converged
+    step at N = 1024 over the listing's window is inside it (the design's
+    own step at N = 1024 is not: test_a_design_step_past_the_budget_...)."""
     steps = simulate_module.LISTING_TAU_S / simulate_module.DEFAULT_DT[
         "hertz"]
     assert steps * 3 * simulate_module.MAX_MODES <= simulate_module.MAX_WORK
+
+
+def test_a_design_step_past_the_budget_is_refused_naming_what_to_change():
+    """At N = 1024 the thesis rig's own step (its highest mode, 5e11
+    rad/s) over its own window is far past MAX_WORK: refused at once, in
+    one line naming the settings that would fit (fewer modes, a shorter
+    window, a larger step); the same run with a given step and window
+    that fit is not refused by the budget."""
+    with pytest.raises(InputError) as info:
+        simulate(thesis_design(n_modes=1024))
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith("n_modes: found 1024 with the design's window")
+    assert "lower n_modes" in message and "shorten t_end" in message
+    assert "give dt >= " in message and "steps x 3072 modes" in message

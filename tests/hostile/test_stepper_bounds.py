@@ -29,7 +29,8 @@ api = importlib.import_module("contactsep.chatter._chatter").chatter_api
 def _coarse(**kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return simulate(thesis_design(), model="hertz", dt=1e-3, **kwargs)
+        return simulate(thesis_design(), model="hertz", dt=1e-3, t_end=0.06,
+                        **kwargs)
 
 
 def test_the_coarse_hertz_step_really_blows_up_in_the_numpy_twin():
@@ -71,10 +72,14 @@ def test_the_adaptive_stepper_ends_at_other_coarse_steps(d, dt):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         start = time.monotonic()
-        result = simulate(thesis_design(d), model="hertz", dt=dt)
+        result = simulate(thesis_design(d), model="hertz", dt=dt,
+                          t_end=0.06)
     assert time.monotonic() - start < 10.0
-    assert result.status in (status.OK, status.ENERGY_BOUND)
-    if result.status == status.OK:
+    # it ends: converged, stopped at the bound, or flagged unconverged
+    # by the energy check (issue 25)
+    assert result.status in (status.OK, status.ENERGY_BOUND,
+                             status.UNCONVERGED)
+    if result.status != status.ENERGY_BOUND:
         assert abs(result.energy_ratio - 1.0) < 1.0
 
 
@@ -209,8 +214,11 @@ def test_the_step_budget_is_refused_before_the_run_with_its_numbers():
         simulate(thesis_design(n_modes=1024), model="hertz", t_end=10.0)
     assert time.monotonic() - start < 5.0
     message = str(caught.value)
+    # the design's own step at N = 1024 (its highest mode: numerics.py)
+    step = float(message.split("the design's step ")[1].split(" s:")[0])
     assert message.startswith("t_end: found 10 s at N = 1024")
-    assert "2e+08 steps x 3072 modes" in message and "1e+10" in message
+    assert f"{10.0 / step:.3g} steps x 3072 modes" in message
+    assert "1e+10" in message
 
 
 def test_the_cli_names_t_end_for_the_budget(capsys):
@@ -284,7 +292,7 @@ def test_a_long_run_stops_at_a_signal_with_other_threads_running():
     import _thread
 
     design = thesis_design(n_modes=1024)
-    simulate(design, model="hertz", t_end=1e-4)    # modes cached
+    simulate(design, model="hertz", t_end=1e-4, dt=5e-8)  # modes cached
     busy = threading.Event()
     other = threading.Thread(target=busy.wait, daemon=True)
     other.start()
@@ -298,7 +306,7 @@ def test_a_long_run_stops_at_a_signal_with_other_threads_running():
     try:
         timer.start()
         with pytest.raises(KeyboardInterrupt):
-            simulate(design, model="hertz", t_end=0.15)
+            simulate(design, model="hertz", t_end=0.15, dt=5e-8)
         ended = time.monotonic()
     finally:
         timer.cancel()

@@ -49,10 +49,12 @@ def test_pack_resolves_defaults_and_broadcasts():
     np.testing.assert_array_equal(col["x3"], [19, 19, 19, 15, 15, 15])
     np.testing.assert_array_equal(col["h2"], [.1, .2, .3, .1, .2, .3])
     np.testing.assert_array_equal(p.ints[0], [1, 2, 3, 4, 6, 8])
-    np.testing.assert_array_equal(p.options, [0, 0, 0, 0])
-    opt = pack(d.replace(impact_velocity="listing", lower_response="impulse",
-                         lc_reading="mass", release="contact")).options
-    np.testing.assert_array_equal(opt, [1, 1, 2, 1])
+    # the defaults' codes: lower_response "impulse" is code 1
+    np.testing.assert_array_equal(p.options, [0, 1, 0, 0])
+    opt = pack(d.replace(impact_velocity="listing",
+                         lower_response="as-printed", lc_reading="mass",
+                         release="contact")).options
+    np.testing.assert_array_equal(opt, [1, 0, 2, 1])
 
 
 def test_batch_shape_of_results():

@@ -25,7 +25,7 @@ from contactsep.model import Design, evaluate
 ROOT = Path(__file__).resolve().parents[2]
 #: The table (docs/studies.md, "Names and units").
 SUFFIX = re.compile(r"^[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
-                    r"cps|lb_s2_in|in_lb|hz)$")
+                    r"cps|lb_s2_in|in_lb|lb_in|hz)$")
 DIMENSIONLESS = {
     "e", "R", "r", "N", "n_modes", "energy_ratio", "relative_difference",
     "p_exceed", "p_open", "status", "n", "n_failed", "n_open", "n_events",
@@ -36,13 +36,15 @@ DIMENSIONLESS = {
     "end1", "end2", "end3", "impact_velocity", "lower_response",
     "lc_reading", "release", "data_set", "title", "event", "curve",
     "first_mode_share", "n_maxima", "static_correction", "dt_source",
-    "t_end_source", "verify"}
+    "t_end_source", "verify", "dt_halvings", "energy_tolerance",
+    "verify_n_modes", "verify_status"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
               "p_open_ci95", "p_exceed_ci95", "inputs", "design",
               "single_impulse", "work", "vary", "sample", "fixed",
-              "settings", "impacts", "n_failed_by_status"}
+              "settings", "impacts", "n_failed_by_status", "numerics",
+              "changes"}
 #: Attribute names that carry a unit: never an output key.
 RAW = {f.name for f in dataclasses.fields(Design)
        if contactsep.studies.fields.unit(f.name)} | {

@@ -134,10 +134,14 @@ def test_nothing_above_a_ceiling_is_tested():
 
 # the chart against simulate(), 3 % either side
 
+#: The chart's step and window (the thesis's, given: preload_chart).
+THESIS = {"dt": 5e-8, "t_end": 0.06}
+
+
 def _check(row_model, d, ys, n_modes, answer):
     design = thesis_design(d=d, ys=ys, n_modes=n_modes)
     below, above = (simulate(design, model=row_model, preload=f * answer,
-                             samples=1, single_impulse=False)
+                             samples=1, single_impulse=False, **THESIS)
                     for f in (0.97, 1.03))
     return below.n_events, above.n_events
 
@@ -152,7 +156,7 @@ def test_the_search_at_n4_holds_3_percent_either_side():
     rows = [(0.5, 0.25), (0.75, 0.5)]
     found = preload.min_preloads(
         [thesis_design(d=d, ys=ys, n_modes=4) for d, ys in rows],
-        workers=2)
+        settings=THESIS, workers=2)
     for (d, ys), result in zip(rows, found):
         below, above = _check("hertz", d, ys, 4, result.min_preload_lb)
         assert below > 0 and above == 0

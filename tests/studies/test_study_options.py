@@ -14,7 +14,9 @@ import pytest
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.model import evaluate, thesis_design
+from contactsep.model import evaluate
+# the thesis studies' design: eq. 23's lower response as printed
+from contactsep.studies.study import thesis_design
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -146,7 +148,7 @@ def test_a_design_file_gives_way_to_the_studys_own_fields(tmp_path,
                                                           capsys):
     saved = tmp_path / "saved.json"
     assert main(["model", "--d", "0.3", "--restitution", "0.25",
-                 "--json"]) == 0
+                 "--lower-response", "as-printed", "--json"]) == 0
     saved.write_text(capsys.readouterr().out)
     csv_path = tmp_path / "f.csv"
     assert main(["study", "fig5", "--design", str(saved), "--csv",

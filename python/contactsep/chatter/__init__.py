@@ -4,11 +4,19 @@ Hertz contact; docs/chatter.md.
 
 >>> import contactsep
 >>> from contactsep import chatter
->>> r = chatter.simulate(contactsep.thesis_design(n_modes=16), model="hertz")
+>>> r = chatter.simulate(contactsep.thesis_design(n_modes=16), preload=0.2)
 >>> r.circuit_open_s, r.first_circuit_open_s, r.max_lower_gap_in
+>>> r.status, r.dt_source, r.t_end_source     # 0 ok, 9 unconverged
 """
 
 from contactsep.chatter.result import ChatterResult
-from contactsep.chatter.simulate import MODELS, ChatterError, simulate
+from contactsep.chatter.numerics import DEFAULT_MODES
+from contactsep.chatter.simulate import (
+    MODELS,
+    ChatterError,
+    UnconvergedWarning,
+    simulate,
+)
 
-__all__ = ["MODELS", "ChatterError", "ChatterResult", "simulate"]
+__all__ = ["DEFAULT_MODES", "MODELS", "ChatterError", "ChatterResult",
+           "UnconvergedWarning", "simulate"]

@@ -102,6 +102,21 @@ class ChatterResult:
     #: the energy bound (no circuit figures); 8 interrupted; 9 finished
     #: but unconverged (its energy check failed).
     status: int = 0
+    #: How dt and t_end_s were chosen: "design" (from the design,
+    #: contactsep.chatter.numerics) or "given" (by the caller).
+    dt_source: str = "given"
+    t_end_source: str = "given"
+    #: What set the design's step: its step (s), the bound on the highest
+    #: frequency with the contacts closed (rad/s), the highest mode
+    #: (rad/s), the contact force (lb) and stiffness (lb/in) it assumed,
+    #: how often the step was halved, the energy check's tolerance.
+    numerics: dict = field(default_factory=dict)
+    #: verify=True: the relative change of each headline quantity at half
+    #: the step and twice the modes (first_impact_change,
+    #: first_impulse_change, max_lower_gap_change, circuit_open_change,
+    #: longest_open_change, n_events_change) and the rerun's dt, N and
+    #: status (verify_dt_s, verify_n_modes, verify_status); empty without.
+    changes: dict = field(default_factory=dict)
 
     def __repr__(self) -> str:
         first = ("never" if math.isnan(self.first_circuit_open_s)
@@ -119,6 +134,8 @@ class ChatterResult:
                 if self.design is not None else None,
                 "model": self.model, "n_modes": self.n_modes,
                 "dt_s": self.dt, "t_end_s": self.t_end_s,
+                "dt_source": self.dt_source,
+                "t_end_source": self.t_end_source,
                 "preload_lb": self.preload_lb, "damping": self.damping,
                 "stepper": self.stepper,
                 "static_correction": self.static_correction,
@@ -133,6 +150,7 @@ class ChatterResult:
             "first_impulse_lb_s": self.first_impulse_lb_s,
             "energy_ratio": self.energy_ratio,
             "status": self.status,
+            **self.changes,
             "max_lower_gap_in": self.max_lower_gap_in,
             "chatters": self.chatters,
             "n_events": self.n_events,
@@ -145,6 +163,7 @@ class ChatterResult:
             "lower_open_s": circuit.total(self.lower_open_intervals),
             "single_impulse": self.single_impulse,
             "work": self.work,
+            "numerics": self.numerics,
             **self._rigid_stop_events(),
         })
 

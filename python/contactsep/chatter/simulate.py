@@ -16,13 +16,14 @@ Models (docs/chatter.md):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
 import numpy as np
 
 from contactsep import output
-from contactsep.chatter import circuit, runners, system
+from contactsep.chatter import circuit, numerics, runners, system
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.result import ChatterResult
@@ -54,10 +55,12 @@ FORKED_WORK = 3e8
 FORKED_APPE_MODES = 48
 DAMPINGS = ("none", "flores")
 STEPPERS = ("adaptive", "fixed")
-#: Default steps of the adaptive steppers (docs/chatter.md,
-#: "Convergence"): Hertz 5e-8 s (the thesis rig's first impulse, max
-#: lower gap and open time within 1e-6 of the dt -> 0 limit); Newton
-#: 5e-8 s (max lower gap within 1 % for d <= 0.75 in, N <= 32).
+#: The thesis rig's converged steps (docs/chatter.md, "Convergence"):
+#: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
+#: time within 1e-6 of the dt -> 0 limit); Newton 5e-8 s (max lower gap
+#: within 1 % for d <= 0.75 in, N <= 32).  The thesis studies pass them
+#: explicitly; a run without ``dt`` takes its design's own step
+#: (:func:`contactsep.chatter.numerics.design_step`).
 DEFAULT_DT = {"appE": None, "newton": 5e-8, "hertz": 5e-8}
 #: Sample intervals per simulation (the gaps are sampled, not every step).
 DEFAULT_SAMPLES = 60_000
@@ -75,7 +78,11 @@ class ChatterError(InputError):
 
 
 class CoarseStepWarning(UserWarning):
-    """A time step far coarser than the converged default."""
+    """A time step far coarser than the design's own."""
+
+
+class UnconvergedWarning(ContactsepWarning):
+    """A run that failed its energy check (status 9, UNCONVERGED)."""
 
 
 def _stack(design):
@@ -139,15 +146,21 @@ def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
     printed and in the impulse form (psi/M3)."""
     from contactsep.model import evaluate
+    from contactsep.model.energy import EnergyBoundWarning
     from contactsep.model.status import explain
-    ev = evaluate(design)
+    with warnings.catch_warnings():
+        # both forms are reported, labelled; the as-printed one may
+        # exceed the release's energy (docs/model.md)
+        warnings.simplefilter("ignore", EnergyBoundWarning)
+        ev = evaluate(design.replace(lower_response="as-printed"))
     impulse = evaluate(design.replace(lower_response="impulse"))
     if ev.status != 0:
         # the figures are null: say why, once (issue 31: tau = 1e300
         # gave them all null and nothing on stderr)
-        warnings.warn(f"single impulse (eq. 23): {explain(int(ev.status), design)}"
-                      f"; its figures are null (the simulation does not "
-                      f"depend on them)", ContactsepWarning, stacklevel=3)
+        warnings.warn(f"single impulse (eq. 23): "
+                      f"{explain(int(ev.status), design)}; its figures are "
+                      f"null (the simulation does not depend on them)",
+                      ContactsepWarning, stacklevel=3)
     return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
             "v_impact_in_s": float(ev.v_impact),
             "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
@@ -195,7 +208,7 @@ def _check(design, model, damping, backend, preload, samples, theta, nu,
     theta = _real("theta", theta, "")
     nu = _real("nu", nu, "")
     button_radius = _real("button_radius", button_radius, "in")
-    t_end = _real("t_end", t_end, "s")
+    t_end = None if t_end is None else _real("t_end", t_end, "s")
     open_threshold = _real("open_threshold", open_threshold, "in")
     min_open = _real("min_open", min_open, "s")
     if not (preload >= 0.0 and math.isfinite(preload)):
@@ -216,12 +229,12 @@ def _check(design, model, damping, backend, preload, samples, theta, nu,
     if not low <= button_radius <= high:
         refuse(f"button_radius: found {button_radius!r}, expected {low:g} "
                f"to {high:g} in")
-    if not (0.0 < t_end <= MAX_T_END):
+    if t_end is not None and not (0.0 < t_end <= MAX_T_END):
         refuse(f"t_end: found {t_end!r}, expected a time > 0 and at most "
                f"{MAX_T_END:g} s")
-    if not 0.0 <= min_open <= t_end:
+    if not 0.0 <= min_open <= (MAX_T_END if t_end is None else t_end):
         refuse(f"min_open: found {min_open!r}, expected 0 to t_end = "
-               f"{t_end:g} s")
+               f"{MAX_T_END if t_end is None else t_end:g} s")
     if design.shape != ():
         refuse("design: chatter simulates one design, not a batch")
     if not float(design.ys) > 0.0:
@@ -258,35 +271,51 @@ def smallest_dt(n_modes: int, t_end: float = LISTING_TAU_S) -> float:
     return t_end / min(MAX_STEPS, MAX_WORK / (3 * n_modes))
 
 
-def simulate(design, model="newton", damping="none", dt=None, *,
-             t_end=LISTING_TAU_S, open_threshold=circuit.OPEN_THRESHOLD,
+def simulate(design, model="hertz", damping="none", dt=None, *,
+             t_end=None, open_threshold=circuit.OPEN_THRESHOLD,
              min_open=circuit.MIN_OPEN, preload=0.0, nu=DEFAULT_NU,
              button_radius=DEFAULT_BUTTON_RADIUS, backend="compiled",
              samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive",
-             single_impulse=True, static_correction=True) -> ChatterResult:
+             single_impulse=True, verify=False,
+             static_correction=True) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
-    ``dt`` defaults per model (DEFAULT_DT; it is rounded so that a whole
-    number of steps ends at ``t_end``); ``preload`` (lb, >= 0) presses
-    the lower contact up against the separator at the start (static
-    equilibrium of the N-mode models, with the static correction the
-    exact point-load deflections, :func:`system.preload_state`; the
-    release height stays y_s above the preloaded separator; appE has no
-    lower contact and takes only 0); ``open_threshold`` (in) is the gap
-    above which a contact is open, ``min_open`` (s) the shortest circuit
-    opening that counts as a discontinuity event; ``nu`` and
-    ``button_radius`` (in) set the Hertz constant; ``samples`` sample
-    intervals of the gaps (1: the ends only; the summary does not depend
-    on it for hertz and newton); ``stepper="fixed"`` runs Hertz with the
-    fixed-step splitting (the reference); ``backend="numpy"`` runs the
-    NumPy twins of the fixed-step steppers (slow: tests only);
-    ``single_impulse=False`` skips the thesis's eq. 23 figures (two model
-    evaluations, ~1 ms: a sweep of chatter runs need not pay them).
+    The design carries N (``n_modes``; ``contactsep chatter`` uses
+    :data:`contactsep.chatter.numerics.DEFAULT_MODES` unless given).
+    ``dt`` (s) defaults to the design's own step and ``t_end`` (s) to
+    the design's window (:mod:`contactsep.chatter.numerics`; the result
+    says which in ``dt_source`` and ``t_end_source``: "design" or
+    "given"); dt is rounded so that a whole number of steps ends at
+    ``t_end``.  Every newton or hertz run checks its energy (elastic
+    within 1e-6 of the start, damped never gaining): a design-chosen
+    step that fails is halved (at most numerics.MAX_HALVINGS times);
+    a run that still fails, or fails at a given ``dt``, has ``status``
+    9 (UNCONVERGED) and warns (:class:`UnconvergedWarning`).
+    ``verify=True`` reruns at half the step and twice the modes and
+    records the relative change of each headline quantity
+    (``result.changes``: ``first_impulse_change``, ...).
+
+    ``preload`` (lb, >= 0) presses the lower contact up against the
+    separator at the start (static equilibrium of the N-mode models,
+    :func:`system.preload_state`; the release height stays y_s above the
+    preloaded separator; appE has no lower contact and takes only 0);
+    ``open_threshold`` (in) is the gap above which a contact is open,
+    ``min_open`` (s) the shortest circuit opening that counts as a
+    discontinuity event; ``nu`` and ``button_radius`` (in) set the Hertz
+    constant; ``samples`` sample intervals of the gaps (1: the ends
+    only; the summary does not depend on it for hertz and newton);
+    ``stepper="fixed"`` runs Hertz with the fixed-step splitting (the
+    reference); ``backend="numpy"`` runs the NumPy twins of the
+    fixed-step steppers (slow: tests only); ``single_impulse=False``
+    skips the thesis's eq. 23 figures (two model evaluations, ~1 ms: a
+    sweep of chatter runs need not pay them).
     ``static_correction`` (Hertz): the truncated modes' residual
     flexibility in series with each contact and in the preload's static
-    state (docs/chatter.md, "The static correction"); False is the plain
-    N-mode truncation.  Newton's rigid law cannot take a series
-    compliance: for it (and appE) the option changes nothing.
+    state (docs/chatter.md, "The static correction"; with it the
+    preload's static state holds the exact point-load deflections);
+    False is the plain N-mode truncation.  Newton's rigid law cannot
+    take a series compliance: for it (and appE) the option changes
+    nothing.
     """
     if not isinstance(static_correction, (bool, np.bool_)):
         raise ChatterError(f"static_correction: found "
@@ -294,11 +323,29 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     static_correction = bool(static_correction) and model == "hertz"
     _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper)
+    if not isinstance(verify, (bool, np.bool_)):
+        raise ChatterError(f"verify: found {verify!r}, expected True or "
+                           f"False")
     single = _single_impulse(design) if single_impulse else {}
+    t_end_source = "given" if t_end is not None else "design"
+    if t_end is None:
+        m, p, h, q0, v0, parts = _stack(design)
+        t_end = numerics.design_window(runners.System(
+            m=m, p=p, h=h, g0=np.zeros(2), q0=q0, v0=v0,
+            n_upper=parts[0].p.size), parts)
+        if t_end > MAX_T_END:
+            raise ChatterError(
+                f"t_end: the design's window is {t_end:.3g} s (its slowest "
+                f"member's first mode), more than {MAX_T_END:g} s: give "
+                f"t_end (--t-end)")
+        if not min_open <= t_end:
+            raise ChatterError(f"min_open: found {min_open!r}, expected 0 "
+                               f"to t_end = {t_end:g} s (the design's "
+                               f"window)")
     settings = dict(t_end_s=float(t_end),
                     open_threshold_in=float(open_threshold),
                     min_open_s=float(min_open), design=design,
-                    single_impulse=single,
+                    single_impulse=single, t_end_source=t_end_source,
                     static_correction=static_correction)
     if model == "appE":
         if dt is not None:
@@ -308,33 +355,6 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         return output.interruptible(
             int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
             backend, settings)
-    default = dt is None
-    dt = DEFAULT_DT[model] if dt is None else _real("dt", dt, "s")
-    if not (dt > 0.0 and dt < t_end):
-        raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
-    modes = 3 * int(design.n_modes)
-    least = smallest_dt(int(design.n_modes), t_end)
-    if dt < least and default:
-        # the budget, with the numbers, before any work (issue 31)
-        raise ChatterError(
-            f"t_end: found {t_end:g} s at N = {int(design.n_modes)} with the "
-            f"default dt {dt:g} s: {t_end / dt:.3g} steps x {modes} modes = "
-            f"{t_end / dt * modes:.3g}, expected at most {MAX_WORK:.0e} "
-            f"steps x modes and {MAX_STEPS:.0e} steps a run (shorten t_end, "
-            f"lower n_modes, or give dt >= {least:.3g} s)")
-    if dt < least:
-        raise ChatterError(f"dt: found {dt!r}, expected at least "
-                           f"{least:.3g} s at N = {int(design.n_modes)} (at "
-                           f"most {MAX_STEPS:.0e} steps and {MAX_WORK:.0e} "
-                           f"steps x modes a run)")
-    if dt > COARSE_DT * DEFAULT_DT[model]:
-        warnings.warn(f"dt: {dt:g} s is {dt / DEFAULT_DT[model]:.3g} times "
-                      f"the converged default {DEFAULT_DT[model]:g} s: the "
-                      f"answers may be far from converged (docs/chatter.md)",
-                      CoarseStepWarning, stacklevel=2)
-    steps = max(1, int(round(t_end / dt)))
-    dt = t_end / steps
-    stride = max(1, steps // samples)
     law = None
     if model == "hertz":
         flores = dict(e=float(design.e), v_ref=(
@@ -343,6 +363,84 @@ def simulate(design, model="newton", damping="none", dt=None, *,
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
                                      **flores)
     stack = _system(design, preload, law, static_correction)
+    choice = numerics.design_step(members(design),
+                                  None if law is None else law.k, preload)
+    dt_source = "given" if dt is not None else "design"
+    dt = choice.dt if dt is None else _real("dt", dt, "s")
+    if not (dt > 0.0 and dt < t_end):
+        raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
+    least = smallest_dt(int(design.n_modes), t_end)
+    if dt < least:
+        if dt_source == "design":
+            # the budget, with the numbers, before any work (issue 31)
+            n, modes = int(design.n_modes), stack.m.size
+            head = f"t_end: found {t_end:g} s at N = {n}" \
+                if t_end_source == "given" else \
+                f"n_modes: found {n} with the design's window {t_end:.3g} s"
+            raise ChatterError(
+                f"{head} and the design's step {dt:.3g} s: "
+                f"{t_end / dt:.3g} steps x {modes} modes = "
+                f"{t_end / dt * modes:.3g}, expected at most "
+                f"{MAX_WORK:.0e} steps x modes and {MAX_STEPS:.0e} steps a "
+                f"run (shorten t_end, lower n_modes, or give dt >= "
+                f"{least:.3g} s)")
+        raise ChatterError(f"dt: found {dt!r}, expected at least "
+                           f"{least:.3g} s at N = {int(design.n_modes)} (at "
+                           f"most {MAX_STEPS:.0e} steps and {MAX_WORK:.0e} "
+                           f"steps x modes a run)")
+    if dt > COARSE_DT * choice.dt:
+        warnings.warn(f"dt: {dt:g} s is {dt / choice.dt:.3g} times the "
+                      f"design's step {choice.dt:.3g} s: the answers may be "
+                      f"far from converged (docs/chatter.md)",
+                      CoarseStepWarning, stacklevel=2)
+    damped = (model == "hertz" and damping == "flores") or (
+        model == "newton" and float(design.e) < 1.0)
+
+    def run_at(step):
+        steps = max(1, int(round(t_end / step)))
+        return t_end / steps, _run(model, stepper, backend, stack, law,
+                                   design, theta, t_end / steps, steps,
+                                   max(1, steps // samples), open_threshold)
+    checked = numerics.checked_run(run_at, dt, dt_source, damped, least)
+    run, ratio, halvings = checked.run, checked.ratio, checked.halvings
+    if run.status != chatter_status.OK:
+        return _blown_up(run, model, design, checked.dt, preload, damping,
+                         stepper if backend == "compiled" else "fixed",
+                         dict(settings, dt_source=dt_source))
+    status = chatter_status.OK if checked.converged \
+        else chatter_status.UNCONVERGED
+    if not checked.converged:
+        warnings.warn(checked.message(), UnconvergedWarning, stacklevel=2)
+    found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
+    result = ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=checked.dt, t=run.t,
+        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
+        energy=run.energy, **found,
+        max_lower_gap_in=run.max_lower_gap_in,
+        first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
+        energy_ratio=ratio, preload_lb=float(preload), damping=damping,
+        stepper=stepper if backend == "compiled" else "fixed",
+        work=run.work, status=status, dt_source=dt_source,
+        numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
+                  choice.omega, "p_max_rad_s": choice.p_max,
+                  "contact_force_bound_lb": choice.force_lb,
+                  "contact_stiffness_lb_in": choice.stiffness_lb_in,
+                  "dt_halvings": halvings,
+                  "energy_tolerance": numerics.ENERGY_TOLERANCE},
+        **settings)
+    if verify:
+        result = _verified(result, design, model, damping, dict(
+            t_end=t_end, open_threshold=open_threshold, min_open=min_open,
+            preload=preload, nu=nu, button_radius=button_radius,
+            backend=backend, samples=samples, theta=theta, stepper=stepper,
+            single_impulse=False, static_correction=static_correction))
+    return result
+
+
+def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
+         stride, open_threshold) -> runners.Run:
+    """One run of the chosen stepper at ``dt`` over ``steps`` steps."""
+    modes = stack.m.size
     if model == "newton" and stepper == "adaptive" and backend == "compiled":
         run, args = runners.newton_adaptive, (float(design.e), dt, steps,
                                               stride, open_threshold)
@@ -356,23 +454,34 @@ def simulate(design, model="newton", damping="none", dt=None, *,
     else:
         run, args = runners.hertz_fixed, (law, dt, steps, stride,
                                           open_threshold, backend)
-    run = output.interruptible(steps * modes >= FORKED_WORK, run, stack,
-                               *args)
-    if run.status != chatter_status.OK:
-        return _blown_up(run, model, design, dt, preload, damping,
-                         stepper if backend == "compiled" else "fixed",
-                         settings)
-    found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
-    return ChatterResult(
-        model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
-        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
-        energy=run.energy, **found,
-        max_lower_gap_in=run.max_lower_gap_in,
-        first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
-        energy_ratio=float(run.energy[-1] / run.energy[0]),
-        preload_lb=float(preload), damping=damping,
-        stepper=stepper if backend == "compiled" else "fixed",
-        work=run.work, **settings)
+    return output.interruptible(steps * modes >= FORKED_WORK, run, stack,
+                                *args)
+
+
+def _verified(result, design, model, damping, settings) -> ChatterResult:
+    """``result`` with ``changes``: the relative change of each headline
+    quantity at half the step and twice the modes (the design's step
+    for 2N where that is smaller: a step stable for N modes need not be
+    for 2N)."""
+    n = 2 * int(design.n_modes)
+    if n > MAX_MODES:
+        raise ChatterError(f"verify: twice N = {int(design.n_modes)} is "
+                           f"more than {MAX_MODES} modes")
+    finer = design.replace(n_modes=n)
+    law = None if model != "hertz" else HertzLaw.for_materials(
+        float(design.E1), settings["nu"], settings["button_radius"])
+    step = min(result.dt / 2.0, numerics.design_step(
+        members(finer), None if law is None else law.k,
+        settings["preload"]).dt)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnconvergedWarning)
+        check = simulate(finer, model=model, damping=damping, dt=step,
+                         **settings)
+    changes = numerics.changes(result, check)
+    changes["verify_dt_s"] = check.dt
+    changes["verify_n_modes"] = n
+    changes["verify_status"] = check.status
+    return dataclasses.replace(result, changes=changes)
 
 
 def _blown_up(run, model, design, dt, preload, damping, stepper,
@@ -418,5 +527,5 @@ def _appendix_e(design, backend, settings) -> ChatterResult:
         else math.nan,
         first_impulse_lb_s=float(r.impulse[0]) if len(r.impulse)
         else math.nan,
-        energy_ratio=r.final_energy / r.initial_energy,
+        energy_ratio=r.final_energy / r.initial_energy, dt_source="none",
         rigid_stop=r, work={"impacts": len(r.impact_t)}, **settings)

@@ -6,16 +6,16 @@ import argparse
 import importlib.util
 import math
 import sys
+import warnings
 
 from contactsep import output
 from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.values import finite, integer
-from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
 
 EPILOG = """examples:
-  contactsep chatter --model hertz --n-modes 16
-  contactsep chatter --model hertz --n-modes 32 --d 0.5 --preload 0.2 --json
+  contactsep chatter --preload 0.2
+  contactsep chatter --n-modes 16 --d 0.5 --preload 0.2 --json --verify
   contactsep chatter --model newton --n-modes 16 --png gaps.png --csv gaps.csv
 """
 
@@ -23,9 +23,9 @@ EPILOG = """examples:
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep chatter``."""
     from contactsep.chatter import circuit
+    from contactsep.chatter.numerics import DEFAULT_MODES
     from contactsep.chatter.simulate import (
         DEFAULT_BUTTON_RADIUS,
-        DEFAULT_DT,
         DEFAULT_NU,
     )
 
@@ -38,21 +38,30 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "impact law (newton) or with Hertz contact (hertz). "
                     "Prints when and for how\nlong the circuit opens: the "
                     "openings, and the discontinuity events\n(openings of "
-                    "at least --min-open).")
+                    "at least --min-open).\nThe step and the window come "
+                    "from the design and every run checks its\nenergy "
+                    f"(docs/chatter.md); N is {DEFAULT_MODES} unless "
+                    "--n-modes gives it.")
     run_group = parser.add_argument_group("simulation")
     run_group.add_argument("--model", choices=("appE", "newton", "hertz"),
-                           default="newton", help="default newton")
+                           default="hertz", help="default hertz")
     run_group.add_argument("--damping", choices=("none", "flores"),
                            default="none",
                            help="Hertz damping (default none: elastic)")
     run_group.add_argument(
         "--dt", type=finite("s"), default=None, metavar="S",
-        help=f"time step (s; default newton {DEFAULT_DT['newton']:g}, "
-             f"hertz {DEFAULT_DT['hertz']:g}: converged, docs/chatter.md)")
-    run_group.add_argument("--t-end", type=finite("s"),
-                           default=LISTING_TAU_S,
+        help="time step (s; default: the design's own, from its stiffest "
+             "contact and highest mode, halved until the energy check "
+             "passes; docs/chatter.md)")
+    run_group.add_argument("--t-end", type=finite("s"), default=None,
                            metavar="S", help="window from the release (s; "
-                                             f"default {LISTING_TAU_S:g})")
+                           "default: the first impact and "
+                           "several periods of the slowest member's first "
+                           "mode)")
+    run_group.add_argument("--verify", action="store_true",
+                           help="rerun at half the step and twice the "
+                                "modes and report the relative change of "
+                                "each headline quantity (*_change)")
     run_group.add_argument("--preload", type=finite("lb"), default=0.0,
                            metavar="LB",
                            help="force pressing the lower contact against "
@@ -111,7 +120,16 @@ def run(args: argparse.Namespace) -> int:
     if args.png and importlib.util.find_spec("matplotlib") is None:
         raise InputError("--png needs matplotlib (pip install "
                          "'contactsep[plot]')")
-    design = thesis_design(**design_overrides(args))
+    from contactsep.chatter.numerics import DEFAULT_MODES
+
+    overrides = design_overrides(args)
+    overrides.setdefault("n_modes", DEFAULT_MODES)
+    design = thesis_design(**overrides)
+    if "e" in overrides and args.model == "hertz" and \
+            args.damping == "none":
+        warnings.warn("--e: elastic Hertz contact does not use the "
+                      "coefficient of restitution (give --damping flores "
+                      "to calibrate its damping to e)", ContactsepWarning)
     output.check_targets({"--csv": args.csv, "--png": args.png},
                          {"--design": args.design} if args.design else {})
     try:
@@ -120,7 +138,8 @@ def run(args: argparse.Namespace) -> int:
                           open_threshold=args.open_threshold,
                           min_open=args.min_open, stepper=args.stepper,
                           nu=args.nu, button_radius=args.button_radius,
-                          static_correction=args.static_correction == "on")
+                          static_correction=args.static_correction == "on",
+                          verify=args.verify)
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
@@ -137,6 +156,12 @@ def run(args: argparse.Namespace) -> int:
     if args.png:
         from contactsep.studies.plots import save_chatter_png
         save_chatter_png(result, args.png, dpi=args.dpi)
+    if args.preload == 0.0 and args.model != "appE":
+        # after the outputs: a failed write's error is the last line
+        print("contactsep: note: preload 0: the lower contact rests on the "
+              "separator with no force; `contactsep preload` finds the "
+              "smallest preload that keeps the circuit closed",
+              file=sys.stderr)
     return 0
 
 
@@ -155,7 +180,7 @@ def refuse_blown_up(result) -> None:
 
 #: simulate()'s arguments that are options of the command.
 _OPTIONS = ("dt", "t_end", "preload", "open_threshold", "min_open", "nu",
-            "button_radius")
+            "button_radius", "verify")
 
 
 def _g(value, digits=6) -> str:
@@ -177,8 +202,9 @@ def summary_text(result, listed: int | None = 10) -> str:
     the circuit's first ``listed`` open intervals (None: all)."""
     inputs = result.inputs()
     lines = [f"model {result.model}, N = {result.n_modes}, "
-             f"dt = {_g(result.dt)} s ({result.stepper}), window 0 to "
-             f"{_g(result.t_end_s)} s",
+             f"dt = {_g(result.dt)} s ({result.stepper}, "
+             f"{result.dt_source}), window 0 to {_g(result.t_end_s)} s "
+             f"({result.t_end_source})",
              f"preload {_g(result.preload_lb)} lb, damping "
              f"{result.damping}, open above {_g(result.open_threshold_in)}"
              f" in, events last >= {_g(result.min_open_s)} s"
@@ -189,6 +215,9 @@ def summary_text(result, listed: int | None = 10) -> str:
             ("first impulse", result.first_impulse_lb_s, "lb s"),
             ("max lower gap", result.max_lower_gap_in, "in"),
             ("energy end / start", result.energy_ratio, ""),
+            ("status", f"{result.status} ("
+             f"{_STATUS_WORDS.get(result.status, 'see contactsep.chatter.status')})"
+             if result.model != "appE" else "0 (ok)", ""),
             ("circuit open, total", result.circuit_open_s, "s"),
             ("first opening", result.first_circuit_open_s, "s"),
             ("longest opening", result.longest_open_s, "s"),
@@ -202,6 +231,14 @@ def summary_text(result, listed: int | None = 10) -> str:
     for label, value, unit in rows:
         shown = _g(value) if isinstance(value, float) else str(value)
         lines.append(f"  {label:<28} {shown:>12} {unit}".rstrip())
+    for key, value in result.changes.items():
+        if key.endswith("_change"):
+            rows_label = f"{key} (verify)"
+            lines.append(f"  {rows_label:<28} {_g(value, 3):>12}")
+    if result.changes:
+        lines.append(f"  (verify: N = {result.changes['verify_n_modes']}, "
+                     f"dt = {_g(result.changes['verify_dt_s'])} s, status "
+                     f"{result.changes['verify_status']})")
     if result.model == "newton":
         lines.append("  (one Newton run's open time is ill-conditioned: "
                      "docs/chatter.md)")
@@ -256,3 +293,8 @@ def write_csv(result, path) -> None:
                                 result.gap_lower])
         for (t, upper, lower), flag in zip(rows, is_open):
             out.write(f"{t:.9g},{upper:.9g},{lower:.9g},{int(flag)}\n")
+
+
+#: The words of the run's status (contactsep.chatter.status).
+_STATUS_WORDS = {0: "ok", 7: "stopped at the energy bound",
+                 8: "interrupted", 9: "UNCONVERGED: energy check failed"}

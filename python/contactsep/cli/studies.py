@@ -154,8 +154,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                                    ("min_open", "S", "s; default 1e-05"),
                                    ("damping", "{none,flores}",
                                     "default none"),
-                                   ("dt", "S", "s; default 5e-08; "
-                                    "varied, not sampled"),
+                                   ("dt", "S", "s; default: each "
+                                    "design's own; varied, not sampled"),
+                                   ("t_end", "S", "s; default: each "
+                                    "design's own"),
                                    ("static_correction", "{on,off}",
                                     "default on; fixed, not varied")):
         chatter.add_argument("--" + name.replace("_", "-"),
@@ -374,6 +376,7 @@ def _settings(args: argparse.Namespace) -> dict:
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
              "dt": (args.dt, "--dt"),
+             "t_end": (args.t_end, "--t-end"),
              "static_correction": (args.static_correction,
                                    "--static-correction")}
     return {name: parse_value(name, text, option)

@@ -22,7 +22,9 @@ from contactsep.errors import InputError
 #: beam theory anyway.
 MAX_MODES = 100_000
 
-#: Option values (the first is the default), in the order of their codes.
+#: Option values, in the order of their codes (the first is the default,
+#: except for lower_response: "impulse", the physically consistent form;
+#: the thesis studies, decks and replay keep "as-printed" explicitly).
 IMPACT_VELOCITIES = ("exact", "listing")
 LOWER_RESPONSES = ("as-printed", "impulse")
 LC_READINGS = ("listing", "frequencies", "mass")
@@ -244,7 +246,10 @@ class Design:
         "exact" |dy1/dt(x1, t1)| (default) or "listing" (Appendix G's ACT,
         without sin).
     lower_response : str
-        "as-printed" eq. 13/23 with v0/L3 (default) or "impulse" psi/M3.
+        "impulse" psi/M3 (default: the momentum psi delivered at x3, whose
+        y3_max the release's energy bounds) or "as-printed" eq. 13/23 with
+        v0/L3 (the thesis's and the listing's, dimensionally inconsistent;
+        the thesis studies use it).
     lc_reading : str
         Reading of Lc: "listing" hybrid (default), "frequencies", "mass".
     release : str
@@ -308,8 +313,9 @@ class Design:
     gap: object = 0.0
     #: "exact": |dy1/dt(x1, t1)|; "listing": Appendix G's ACT (no sin).
     impact_velocity: str = "exact"
-    #: "as-printed": eq. 13/23 with v0/L3; "impulse": psi/M3 (eq. 19).
-    lower_response: str = "as-printed"
+    #: "impulse": psi/M3 (eq. 19; default); "as-printed": eq. 13/23 with
+    #: v0/L3 (the listing's; the thesis studies pass it).
+    lower_response: str = "impulse"
     #: Reading of Lc: "listing" hybrid, "frequencies" only, or "mass" too.
     lc_reading: str = "listing"
     #: "tip": load at the upper contact's tip (cantilever); "contact": at x1.

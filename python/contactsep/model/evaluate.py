@@ -11,6 +11,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
+from contactsep.model import energy
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
@@ -187,6 +188,7 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     for key in _PER_MODE:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
+    energy.warn_if_beyond(design, fields["y3_max"], fields["status"])
     return Evaluation(**fields)
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.chatter.simulate import simulate
-from contactsep.model import thesis_design
-from contactsep.studies.study import Study
+from contactsep.chatter.simulate import DEFAULT_DT, simulate
+from contactsep.constants import LISTING_TAU_S
+from contactsep.studies.study import Study, thesis_design
 
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
 MODES = (4, 16, 32)
@@ -24,8 +24,10 @@ def chatter_table(thicknesses=THICKNESSES, modes=MODES,
     for model in models:
         for d in thicknesses:
             for n in modes:
+                # the thesis's step and window, given explicitly
                 r = simulate(thesis_design(d=d, n_modes=n), model=model,
-                             samples=1)
+                             samples=1, t_end=LISTING_TAU_S,
+                             dt=DEFAULT_DT[model])
                 for key, value in (("model", model), ("d_in", d), ("N", n),
                                    ("first_impulse_lb_s",
                                     r.first_impulse_lb_s),

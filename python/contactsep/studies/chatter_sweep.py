@@ -23,8 +23,8 @@ from contactsep.chatter import simulate
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.circuit import MIN_OPEN, OPEN_THRESHOLD
 from contactsep.chatter.runners import StepperError
-from contactsep.chatter.simulate import DEFAULT_DT, CoarseStepWarning
-from contactsep.constants import LISTING_TAU_S
+from contactsep.chatter import status as chatter_status
+from contactsep.chatter.simulate import CoarseStepWarning, UnconvergedWarning
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies import fields as design_fields
@@ -40,7 +40,7 @@ RESULT_COLUMNS = ("first_impact_s", "first_impulse_lb_s",
 CHUNK_SIZE = 8
 #: The simulation's settings when a sweep neither fixes nor varies them.
 DEFAULT_SETTINGS = {"preload": 0.0, "min_open": MIN_OPEN,
-                    "damping": "none", "dt": None}
+                    "damping": "none", "dt": None, "t_end": None}
 
 #: Per-design status codes of a chatter sweep (0, 2 and 3 mean what
 #: they mean in an eq23 sweep, contactsep.model.status).
@@ -50,6 +50,10 @@ NOT_FINITE = 3
 STEPPER_FAILED = 4
 #: The stepper stopped at its energy bound (contactsep.chatter.status).
 ENERGY_BOUND = chatter_status.ENERGY_BOUND
+#: The run finished but failed its energy check (the chatter layer's own
+#: code, contactsep.chatter.status.UNCONVERGED): its results are in the
+#: row, but it is left out of p_open and the statistics.
+UNCONVERGED = chatter_status.UNCONVERGED
 MESSAGES = {
     OK: "ok",
     INVALID_INPUT: "invalid input: a value out of range, or one the "
@@ -59,6 +63,10 @@ MESSAGES = {
                     "the gaps hover at the open threshold",
     ENERGY_BOUND: "energy bound: the stepper stopped, its energy past "
                   "twice the release's (dt too coarse for the contact)",
+    UNCONVERGED: "unconverged, left out of p_open: the run failed its "
+                 "energy check (elastic: energy ratio more than 1e-6 from "
+                 "1; damped: energy gained) at the design's step halved "
+                 "up to 3 times, or at the given dt",
 }
 
 
@@ -74,22 +82,23 @@ def notes(model: str, dt=None) -> list[str]:
     columns."""
     law = ("Hertz contact" if model == "hertz"
            else "Newton's impact law with e")
-    step = dt if isinstance(dt, str) else (
-        f"{DEFAULT_DT[model] if dt is None else dt:g} s")
+    step = ("each design's own step" if dt is None else
+            f"dt {dt}" if isinstance(dt, str) else f"dt {dt:g} s")
     return [
         f"model {model}: the three beams, {law}; the adaptive stepper at "
-        f"dt {step}; window 0-{LISTING_TAU_S:g} s from "
-        f"the release; a contact is open above {OPEN_THRESHOLD:g} in; the "
-        f"circuit is open while both are",
+        f"{step}; the window from the release each design's own unless "
+        f"t_end_s is fixed (contactsep.chatter.numerics); a contact is "
+        f"open above {OPEN_THRESHOLD:g} in; the circuit is open while both "
+        f"are",
         "settings unless fixed or varied: preload_lb = 0, min_open_s = "
         f"{MIN_OPEN:g}" + (", damping = none" if model == "hertz" else ""),
         "units in each column's name: _in inch, _s second, _lb_s lb s, "
         "_lb lb; n_events = discontinuity events (openings >= min_open_s)"
         "; first_circuit_open_s nan: never open",
         "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed, "
-        "7 energy bound "
-        "(contactsep.studies.chatter_sweep); failed designs have nan "
-        "results and n_events -1",
+        "7 energy bound, 9 unconverged (energy check failed; results "
+        "kept, left out of p_open) (contactsep.studies.chatter_sweep); "
+        "failed designs have nan results and n_events -1",
     ]
 
 
@@ -102,6 +111,7 @@ def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
         design = thesis_design(**fields)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", CoarseStepWarning)
+            warnings.simplefilter("ignore", UnconvergedWarning)
             result = simulate(design, model=model, samples=1,
                               single_impulse=False, **settings)
     except StepperError:
@@ -119,7 +129,9 @@ def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
             result.max_lower_gap_in) and math.isfinite(
             result.circuit_open_s)):
         return _failed(NOT_FINITE)
-    return (*values, result.n_events, OK)
+    return (*values, result.n_events,
+            UNCONVERGED if result.status == chatter_status.UNCONVERGED
+            else OK)
 
 
 def _row(spec: SweepSpec, varied: dict, i: int) -> tuple[dict, dict]:
@@ -222,7 +234,9 @@ class ChatterSummary:
 
     def as_dict(self) -> dict:
         """n (designs with status 0: the statistics are theirs),
-        n_failed and n_failed_by_status, n_open (designs with a
+        n_failed and n_failed_by_status, n_unconverged (designs that
+        failed their energy check, status 9: among n_failed, left out of
+        p_open), n_open (designs with a
         discontinuity event), p_open = n_open / n and its 95 % Wilson
         interval p_open_ci95, and the mean and sample sd of the largest
         lower gap (in) and of the circuit's total open time (s); None
@@ -230,6 +244,7 @@ class ChatterSummary:
         n = self.n
         return {"n": n, "n_failed": self.n_failed,
                 "n_failed_by_status": dict(sorted(self.failed.items())),
+                "n_unconverged": self.failed.get(UNCONVERGED, 0),
                 "n_open": self.opened,
                 "p_open": self.opened / n if n else None,
                 "p_open_ci95": list(wilson_interval(self.opened, n))

@@ -27,7 +27,7 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
-from contactsep.model import thesis_design
+from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import column_name, design_lines
 from contactsep.studies.preload import (
     DEFAULT_MODES,
@@ -36,7 +36,12 @@ from contactsep.studies.preload import (
     limit_notes,
     min_preloads,
 )
-from contactsep.studies.study import Study, evaluate_all, refuse_fixed
+from contactsep.studies.study import (
+    Study,
+    evaluate_all,
+    refuse_fixed,
+    thesis_design,
+)
 
 #: The values each study takes (the thesis rig's first, except e).
 RESTITUTIONS = (0.2, 0.375, 0.6, 0.8, 1.0)
@@ -112,8 +117,9 @@ def conclusion(name: str, model: str = "hertz",
     single = evaluate_all(base.replace(**{own: values}), "compiled")
     settings = {"damping": "flores"} if (
         name == "conclusion3" and model == "hertz") else {}
-    if dt is not None:
-        settings["dt"] = dt
+    # the thesis rig's converged step and the listing's window, given
+    settings["dt"] = DEFAULT_DT[model] if dt is None else dt
+    settings["t_end"] = LISTING_TAU_S
     with Simulations(workers) as sims:
         free = sims.map(_zero_preload, [(d, model, settings)
                                         for d in designs])

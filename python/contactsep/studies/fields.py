@@ -55,6 +55,8 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "static_correction": ("", "", "hertz: the truncated modes' residual "
                                   "flexibility in series with each contact "
                                   "(on or off)"),
+    "t_end": ("s", "s", "window of each simulation from the release "
+                        "(fixed, not varied)"),
 }
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
 VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt")
@@ -166,6 +168,9 @@ def parse_value(field: str, text, label: str):
     return value
 
 
+#: The longest window of a chatter simulation (s; its MAX_T_END).
+MAX_WINDOW_S = 10.0
+
 
 def _setting(field: str, text, label: str) -> float:
     """preload (lb) or min_open (s): a finite number >= 0; dt (s): a
@@ -178,6 +183,9 @@ def _setting(field: str, text, label: str) -> float:
             if units.split(text) is not None else float(text)
     except (TypeError, ValueError, OverflowError):
         value = math.nan
+    if field == "t_end" and not (0.0 < value <= MAX_WINDOW_S):
+        raise InputError(f"{label}: found {text!r}, expected a window > 0 "
+                         f"and at most {MAX_WINDOW_S:g} s")
     if field == "dt" and not (0.0 < value < LISTING_TAU_S):
         raise InputError(f"{label}: found {text!r}, expected a time step "
                          f"> 0 and below the window, {LISTING_TAU_S:g} s")

@@ -10,10 +10,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import thesis_design
 from contactsep.restored import thesis_decks
 from contactsep.studies.fields import design_lines
-from contactsep.studies.study import Study, evaluate_all, refuse_fixed
+from contactsep.studies.study import (
+    Study,
+    evaluate_all,
+    refuse_fixed,
+    thesis_design,
+)
 
 #: Figure 5's grids.
 FIG5_THICKNESSES = np.round(np.arange(0.10, 1.0001, 0.05), 10)

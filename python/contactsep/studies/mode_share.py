@@ -28,9 +28,13 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep import beams
-from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.study import Study, evaluate_all, refuse_fixed
+from contactsep.studies.study import (
+    Study,
+    evaluate_all,
+    refuse_fixed,
+    thesis_design,
+)
 
 #: The contact points x3/L3.
 RATIOS = np.round(np.arange(0.50, 1.0001, 0.01), 10)

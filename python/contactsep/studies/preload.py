@@ -50,11 +50,11 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.circuit import MIN_OPEN
 from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
-from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
 from contactsep.studies.runner import _quiet_worker, usable_cores
-from contactsep.studies.study import Study, refuse_fixed
+from contactsep.studies.study import Study, refuse_fixed, thesis_design
 
 #: The chart's separators and release heights (in).
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
@@ -418,8 +418,10 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                for d, ys in rows]
     extra = dict(settings or {})
     settings = {"damping": damping} if model == "hertz" else {}
-    if dt is not None:
-        settings["dt"] = dt
+    # the thesis rig's converged step and the listing's window, given
+    # (not the design's own numerics): the chart is the thesis's
+    settings["dt"] = DEFAULT_DT[model] if dt is None else dt
+    settings["t_end"] = LISTING_TAU_S
     settings.update(extra)
     with Simulations(workers) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)

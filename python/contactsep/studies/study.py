@@ -145,3 +145,14 @@ def _format(value, digits: int = 12) -> str:
     if isinstance(value, (int, np.integer)):
         return str(int(value))
     return f"{float(value):.{digits}g}"
+
+
+def thesis_design(d=0.25, **overrides):
+    """The thesis experiment as the thesis studies take it
+    (:func:`contactsep.model.thesis_design`), with eq. 13/23's lower
+    response as printed (the listing's v0/L3) unless ``lower_response``
+    is given: the studies reproduce the thesis, so their outputs do not
+    change with the model's physically consistent default ("impulse")."""
+    from contactsep.model import thesis_design as experiment
+    overrides.setdefault("lower_response", "as-printed")
+    return experiment(d, **overrides)

@@ -12,9 +12,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.study import Study, evaluate_all, refuse_fixed
+from contactsep.studies.study import (
+    Study,
+    evaluate_all,
+    refuse_fixed,
+    thesis_design,
+)
 
 #: Table I (cps): theoretical and experimental, upper and lower contact.
 TABLE_I_THEORETICAL = (10.6, 66.5, 187.0, 366.0)
