@@ -241,7 +241,7 @@ class Design:
     gap : in
         Position of the separator surface seen by the upper contact (0).
     impact_velocity : str
-        "exact" |dy1/dt(x1, t1)| (default) or "listing" (Appendix G's ACT,
+        "exact" abs(dy1/dt(x1, t1)) (default) or "listing" (Appendix G's ACT,
         without sin).
     lower_response : str
         "as-printed" eq. 13/23 with v0/L3 (default) or "impulse" psi/M3.
@@ -306,7 +306,7 @@ class Design:
     tau: object = LISTING_TAU_S
     #: Position of the separator surface seen by the upper contact (in).
     gap: object = 0.0
-    #: "exact": |dy1/dt(x1, t1)|; "listing": Appendix G's ACT (no sin).
+    #: "exact": abs(dy1/dt(x1, t1)); "listing": Appendix G's ACT (no sin).
     impact_velocity: str = "exact"
     #: "as-printed": eq. 13/23 with v0/L3; "impulse": psi/M3 (eq. 19).
     lower_response: str = "as-printed"

@@ -51,20 +51,20 @@ class Evaluation:
     y3_max: np.ndarray
     """Largest lower-contact displacement away from the separator over
     0 <= t <= tau (in): the maximum of the N-mode y3, true to 1e-12 of
-    sum |c3_j| (not a grid value)."""
+    sum abs(c3_j) (not a grid value)."""
     t_max: np.ndarray
     """Time of y3_max after the impact (s); of several peaks within
-    1e-12 sum |c3_j| of each other, the earliest."""
+    1e-12 sum abs(c3_j) of each other, the earliest."""
     y3_min: np.ndarray
     """Smallest lower-contact displacement (in; negative: through the
-    separator's original position), true to 1e-12 of sum |c3_j|."""
+    separator's original position), true to 1e-12 of sum abs(c3_j)."""
     t_min: np.ndarray
     """Time of y3_min after the impact (s); the earliest of ties."""
     at_window_end: np.ndarray
     """True where y3_max sits at t = tau: the window cuts the maximum."""
     t_max_tied: np.ndarray
     """True where another point, more than half the shortest period
-    (pi / max p3_j) after t_max, comes within 1e-12 sum |c3_j| of y3_max:
+    (pi / max p3_j) after t_max, comes within 1e-12 sum abs(c3_j) of y3_max:
     t_max is the earliest of peaks the search cannot rank."""
     t_min_tied: np.ndarray
     """The same for y3_min and t_min."""
