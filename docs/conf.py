@@ -51,6 +51,43 @@ _one_editable_finder()
 
 import contactsep  # noqa: E402  (after the path set-up)
 
+#: Layers other work adds to the package: documented here once they are
+#: importable (docs/api/later.rst is written at every build, git-ignored).
+LATER_LAYERS = {
+    "contactsep.preload": "The preload that keeps a design closed",
+    "contactsep.modes": "Beam modes: Bernoulli-Euler, Timoshenko, supports",
+}
+
+
+def _write_later_layers() -> None:
+    import importlib
+    import inspect
+
+    lines = ["Preload and beam modes", "======================", ""]
+    for name, title in LATER_LAYERS.items():
+        module, _, attribute = name.rpartition(".")
+        try:
+            value = getattr(importlib.import_module(module), attribute)
+        except (ImportError, AttributeError):
+            value = None
+        lines += [f"``{name}``: {title}", "-" * (len(name) + len(title) + 6),
+                  ""]
+        if value is None:
+            lines += [f"``{name}`` is not part of this version.", ""]
+        elif inspect.ismodule(value):
+            lines += [f".. automodule:: {name}", "   :members:", ""]
+        elif inspect.isclass(value):
+            lines += [f".. autoclass:: {name}", ""]
+        else:
+            lines += [f".. autofunction:: {name}", ""]
+    text = "\n".join(lines)
+    path = HERE / "api" / "later.rst"
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+_write_later_layers()
+
 project = "contactsep"
 author = "the contactsep authors"
 copyright = "the contactsep authors, MIT licence"
