@@ -245,21 +245,69 @@ def simulate(design, model="newton", damping="none", dt=None, *,
              single_impulse=True) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
-    ``dt`` defaults per model (DEFAULT_DT; it is rounded so that a whole
-    number of steps ends at ``t_end``); ``preload`` (lb, >= 0) presses
-    the lower contact up against the separator at the start (static
-    equilibrium of the N-mode models, :func:`system.preload_state`; the
-    release height stays y_s above the preloaded separator; appE has no
-    lower contact and takes only 0); ``open_threshold`` (in) is the gap
-    above which a contact is open, ``min_open`` (s) the shortest circuit
-    opening that counts as a discontinuity event; ``nu`` and
-    ``button_radius`` (in) set the Hertz constant; ``samples`` sample
-    intervals of the gaps (1: the ends only; the summary does not depend
-    on it for hertz and newton); ``stepper="fixed"`` runs Hertz with the
-    fixed-step splitting (the reference); ``backend="numpy"`` runs the
-    NumPy twins of the fixed-step steppers (slow: tests only);
-    ``single_impulse=False`` skips the thesis's eq. 23 figures (two model
-    evaluations, ~1 ms: a sweep of chatter runs need not pay them).
+    Parameters
+    ----------
+    design : Design
+        A single design (inches, pounds, seconds).
+    model : {"newton", "hertz", "appE"}
+        Newton's impact law, Hertz contact (both: the three beams), or
+        Appendix E's rigid separator (module docstring).
+    damping : {"none", "flores"}
+        Hertz contact damping (Flores, calibrated to the design's e);
+        Hertz ignores ``e`` without it.
+    dt : float, optional
+        Time step (s); defaults per model (``DEFAULT_DT``), rounded so
+        that a whole number of steps ends at ``t_end``.  appE takes none.
+    t_end : float
+        Window from the release (s).
+    open_threshold : float
+        Gap (in) above which a contact is open.
+    min_open : float
+        Shortest circuit opening (s) that counts as a discontinuity
+        event.
+    preload : float
+        Force (lb, >= 0) pressing the lower contact up against the
+        separator at the start (static equilibrium of the N-mode
+        models, :func:`system.preload_state`; the release height stays
+        y_s above the preloaded separator; appE takes only 0).
+    nu, button_radius : float
+        Poisson's ratio and contact button radius (in) of the Hertz
+        constant.
+    backend : {"compiled", "numpy"}
+        ``"numpy"`` runs the NumPy twins of the fixed-step steppers
+        (slow: tests only).
+    samples : int
+        Sample intervals of the gaps (1: the ends only; the summary does
+        not depend on it for hertz and newton).
+    theta : float
+        Moreau-Jean's theta (fixed stepper).
+    stepper : {"adaptive", "fixed"}
+        ``"fixed"`` runs the fixed-step reference (Moreau-Jean, Hertz
+        splitting).
+    single_impulse : bool
+        ``False`` skips the thesis's eq. 23 figures (two model
+        evaluations, ~1 ms: a sweep of chatter runs need not pay them).
+
+    Returns
+    -------
+    ChatterResult
+        The sampled gaps (in) and the summary: ``circuit_open_s``,
+        ``first_circuit_open_s``, ``n_events``, ``chatters``,
+        ``max_lower_gap_in``, ``first_impulse_lb_s``, ...
+
+    Raises
+    ------
+    ChatterError
+        A setting the chatter layer refuses (one line naming it).
+
+    Examples
+    --------
+    >>> import contactsep
+    >>> from contactsep import chatter
+    >>> r = chatter.simulate(contactsep.thesis_design(n_modes=16),
+    ...                      model="hertz")
+    >>> r.chatters, r.n_events > 0
+    (True, True)
     """
     _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper)

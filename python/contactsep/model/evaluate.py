@@ -133,10 +133,38 @@ def _backend(name: str):
 def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     """Evaluate the general model (eq. 23) on a design or a batch.
 
-    ``backend="compiled"`` runs the Fortran kernel (one call for the whole
-    batch, or for pieces of about PIECE_S seconds of a batch that takes
-    longer: a signal is seen between them); ``"numpy"`` the NumPy twin.
-    Per-design failures are statuses.
+    Parameters
+    ----------
+    design : Design
+        One design, or a batch (any field an array; they broadcast).
+        Inches, pounds, seconds; weight densities in lb/in^3, moduli in
+        psi.
+    backend : {"compiled", "numpy"}
+        ``"compiled"`` runs the Fortran kernel (one call for the whole
+        batch, or pieces of about ``PIECE_S`` seconds of a batch that
+        takes longer: a signal is seen between them); ``"numpy"`` the
+        NumPy twin.
+
+    Returns
+    -------
+    Evaluation
+        The single impact and the lower contact's response, shaped like
+        the batch: ``t1`` (s), ``psi`` (lb s), ``v0`` (in/s), ``y3_max``
+        (in), ``t_max`` (s), per-mode frequencies (rad/s), and
+        ``status`` (0: evaluated; per-design failures are statuses, not
+        exceptions).
+
+    Raises
+    ------
+    InputError
+        ``design`` is not a :class:`Design`, or ``backend`` is unknown.
+
+    Examples
+    --------
+    >>> import contactsep
+    >>> r = contactsep.evaluate(contactsep.thesis_design(d=0.25))
+    >>> round(float(r.y3_max), 4)     # in, N = 4
+    0.1107
     """
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
