@@ -6,7 +6,7 @@ A preload presses the lower contact against the separator before the
 release.  :func:`contactsep.studies.preload.min_preloads` searches for the
 smallest preload with no discontinuity event in the window; for the
 tutorial's relay (Hertz, N = 8) that search simulates dozens of preloads
-(a minute and a half on one core), so this example reads its committed
+(a minute or so on one core), so this example reads its committed
 result, ``docs/studies/tutorial_preload.csv`` (the tests hold it equal to
 the code), and simulates only the two preloads it draws.
 """

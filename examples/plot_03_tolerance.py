@@ -5,7 +5,7 @@ Tolerances: the probability that the circuit opens
 The tutorial's relay with a 0.3 lb preload, its separator thickness
 normal (sd 0.02 mm) and its release height uniform within +-10 %: 100
 builds, each simulated (Hertz, N = 8), by ``contactsep sweep --model
-hertz``.  That takes about two minutes on one core, so this example reads
+hertz``.  That takes one to two minutes on one core, so this example reads
 the committed rows, ``docs/studies/tutorial_tolerance.csv`` (the tests
 hold them equal to the code), and computes p_open and its 95 % Wilson
 interval from them, as the sweep's summary does.
