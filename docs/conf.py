@@ -118,7 +118,7 @@ myst_heading_anchors = 3
 
 # -- API reference ----------------------------------------------------------
 autosummary_generate = True
-autodoc_default_options = {"members": False}
+autodoc_member_order = "bysource"
 autodoc_typehints = "none"          # numpydoc's Parameters say the types
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
