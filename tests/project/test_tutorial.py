@@ -36,7 +36,14 @@ def numbers_agree(a: str, b: str) -> bool:
     return x == y or abs(x - y) <= 2e-5 * max(abs(x), abs(y))
 
 
+#: What a failure says: the page is regenerated, not edited by hand.
+REGENERATE = ("docs/tutorial.md differs from what the code prints; if the "
+              "code's change is intended, run python "
+              "docs/_ext/tutorial_outputs.py and read the diff")
+
+
 def assert_same_output(shown: str, printed: str, what: str) -> None:
+    what = f"{what}: {REGENERATE}"
     expected = tutorial.shown(printed).splitlines()
     lines = shown.splitlines()
     assert len(lines) == len(expected), (what, lines[-1:], expected[-1:])
