@@ -280,42 +280,92 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
              static_correction=True) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
-    The design carries N (``n_modes``; ``contactsep chatter`` uses
-    :data:`contactsep.chatter.numerics.DEFAULT_MODES` unless given).
-    ``dt`` (s) defaults to the design's own step and ``t_end`` (s) to
-    the design's window (:mod:`contactsep.chatter.numerics`; the result
-    says which in ``dt_source`` and ``t_end_source``: "design" or
-    "given"); dt is rounded so that a whole number of steps ends at
-    ``t_end``.  Every newton or hertz run checks its energy (elastic
-    within 1e-6 of the start, damped never gaining): a design-chosen
-    step that fails is halved (at most numerics.MAX_HALVINGS times);
-    a run that still fails, or fails at a given ``dt``, has ``status``
-    9 (UNCONVERGED) and warns (:class:`UnconvergedWarning`).
-    ``verify=True`` reruns at half the step and twice the modes and
-    records the relative change of each headline quantity
-    (``result.changes``: ``first_impulse_change``, ...).
+    Parameters
+    ----------
+    design : Design
+        A single design (inches, pounds, seconds).  It carries N
+        (``n_modes``; ``contactsep chatter`` uses
+        :data:`contactsep.chatter.numerics.DEFAULT_MODES` unless given).
+    model : {"hertz", "newton", "appE"}
+        Hertz contact (the default), Newton's impact law (both: the three
+        beams), or Appendix E's rigid separator (module docstring).
+    damping : {"none", "flores"}
+        Hertz contact damping (Flores, calibrated to the design's e);
+        the elastic Hertz law does not use ``e``.
+    dt : float, optional
+        Time step (s); by default the design's own
+        (:func:`contactsep.chatter.numerics.design_step`), rounded so
+        that a whole number of steps ends at ``t_end``.  appE takes none.
+    t_end : float, optional
+        Window from the release (s); by default the design's own (its
+        slowest member's first periods after the first impact).
+    open_threshold : float
+        Gap (in) above which a contact is open.
+    min_open : float
+        Shortest circuit opening (s) that counts as a discontinuity
+        event.
+    preload : float
+        Force (lb, >= 0) pressing the lower contact up against the
+        separator at the start (static equilibrium; with the static
+        correction the exact point-load deflections,
+        :func:`system.preload_state`; the release height stays y_s above
+        the preloaded separator; appE takes only 0).
+    nu, button_radius : float
+        Poisson's ratio and contact button radius (in) of the Hertz
+        constant.
+    backend : {"compiled", "numpy"}
+        ``"numpy"`` runs the NumPy twins of the fixed-step steppers
+        (slow: tests only).
+    samples : int
+        Sample intervals of the gaps (1: the ends only; the summary does
+        not depend on it for hertz and newton).
+    theta : float
+        Moreau-Jean's theta (fixed stepper).
+    stepper : {"adaptive", "fixed"}
+        ``"fixed"`` runs the fixed-step reference (Moreau-Jean, Hertz
+        splitting).
+    single_impulse : bool
+        ``False`` skips the thesis's eq. 23 figures (two model
+        evaluations, ~1 ms: a sweep of chatter runs need not pay them).
+    verify : bool
+        Rerun at half the step and twice the modes and record the
+        relative change of each headline quantity (``result.changes``:
+        ``first_impulse_change``, ...).
+    static_correction : bool
+        Hertz: the truncated modes' residual flexibility in series with
+        each contact and in the preload's static state (docs/chatter.md,
+        "The static correction"); False is the plain N-mode truncation.
+        Newton's rigid law cannot take a series compliance: for it (and
+        appE) the option changes nothing.
 
-    ``preload`` (lb, >= 0) presses the lower contact up against the
-    separator at the start (static equilibrium of the N-mode models,
-    :func:`system.preload_state`; the release height stays y_s above the
-    preloaded separator; appE has no lower contact and takes only 0);
-    ``open_threshold`` (in) is the gap above which a contact is open,
-    ``min_open`` (s) the shortest circuit opening that counts as a
-    discontinuity event; ``nu`` and ``button_radius`` (in) set the Hertz
-    constant; ``samples`` sample intervals of the gaps (1: the ends
-    only; the summary does not depend on it for hertz and newton);
-    ``stepper="fixed"`` runs Hertz with the fixed-step splitting (the
-    reference); ``backend="numpy"`` runs the NumPy twins of the
-    fixed-step steppers (slow: tests only); ``single_impulse=False``
-    skips the thesis's eq. 23 figures (two model evaluations, ~1 ms: a
-    sweep of chatter runs need not pay them).
-    ``static_correction`` (Hertz): the truncated modes' residual
-    flexibility in series with each contact and in the preload's static
-    state (docs/chatter.md, "The static correction"; with it the
-    preload's static state holds the exact point-load deflections);
-    False is the plain N-mode truncation.  Newton's rigid law cannot
-    take a series compliance: for it (and appE) the option changes
-    nothing.
+    Returns
+    -------
+    ChatterResult
+        The sampled gaps (in) and the summary: ``circuit_open_s``,
+        ``first_circuit_open_s``, ``n_events``, ``chatters``,
+        ``max_lower_gap_in``, ``first_impulse_lb_s``, ...; ``status`` 0,
+        7 (stopped at the energy bound: no circuit figures) or 9
+        (unconverged: its energy check failed, with a warning,
+        :class:`UnconvergedWarning`); ``dt_source`` and
+        ``t_end_source`` say whether the step and window were chosen
+        from the design or given.  Every newton or hertz run checks its
+        energy (elastic within 1e-6 of the start, damped never gaining);
+        a design-chosen step that fails is halved (at most
+        numerics.MAX_HALVINGS times).
+
+    Raises
+    ------
+    ChatterError
+        A setting the chatter layer refuses (one line naming it).
+
+    Examples
+    --------
+    >>> import contactsep
+    >>> from contactsep import chatter
+    >>> r = chatter.simulate(contactsep.thesis_design(n_modes=16),
+    ...                      preload=0.2, t_end=0.06)
+    >>> r.status, r.static_correction
+    (0, True)
     """
     if not isinstance(static_correction, (bool, np.bool_)):
         raise ChatterError(f"static_correction: found "

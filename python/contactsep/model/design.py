@@ -243,7 +243,7 @@ class Design:
     gap : in
         Position of the separator surface seen by the upper contact (0).
     impact_velocity : str
-        "exact" |dy1/dt(x1, t1)| (default) or "listing" (Appendix G's ACT,
+        "exact" abs(dy1/dt(x1, t1)) (default) or "listing" (Appendix G's ACT,
         without sin).
     lower_response : str
         "impulse" psi/M3 (default: the momentum psi delivered at x3, whose
@@ -311,7 +311,7 @@ class Design:
     tau: object = LISTING_TAU_S
     #: Position of the separator surface seen by the upper contact (in).
     gap: object = 0.0
-    #: "exact": |dy1/dt(x1, t1)|; "listing": Appendix G's ACT (no sin).
+    #: "exact": abs(dy1/dt(x1, t1)); "listing": Appendix G's ACT (no sin).
     impact_velocity: str = "exact"
     #: "impulse": psi/M3 (eq. 19; default); "as-printed": eq. 13/23 with
     #: v0/L3 (the listing's; the thesis studies pass it).

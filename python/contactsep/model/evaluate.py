@@ -53,20 +53,20 @@ class Evaluation:
     y3_max: np.ndarray
     """Largest lower-contact displacement away from the separator over
     0 <= t <= tau (in): the maximum of the N-mode y3, true to 1e-12 of
-    sum |c3_j| (not a grid value)."""
+    sum abs(c3_j) (not a grid value)."""
     t_max: np.ndarray
     """Time of y3_max after the impact (s); of several peaks within
-    1e-12 sum |c3_j| of each other, the earliest."""
+    1e-12 sum abs(c3_j) of each other, the earliest."""
     y3_min: np.ndarray
     """Smallest lower-contact displacement (in; negative: through the
-    separator's original position), true to 1e-12 of sum |c3_j|."""
+    separator's original position), true to 1e-12 of sum abs(c3_j)."""
     t_min: np.ndarray
     """Time of y3_min after the impact (s); the earliest of ties."""
     at_window_end: np.ndarray
     """True where y3_max sits at t = tau: the window cuts the maximum."""
     t_max_tied: np.ndarray
     """True where another point, more than half the shortest period
-    (pi / max p3_j) after t_max, comes within 1e-12 sum |c3_j| of y3_max:
+    (pi / max p3_j) after t_max, comes within 1e-12 sum abs(c3_j) of y3_max:
     t_max is the earliest of peaks the search cannot rank."""
     t_min_tied: np.ndarray
     """The same for y3_min and t_min."""
@@ -170,10 +170,38 @@ def _backend(name: str):
 def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     """Evaluate the general model (eq. 23) on a design or a batch.
 
-    ``backend="compiled"`` runs the Fortran kernel (one call for the whole
-    batch, or for pieces of about PIECE_S seconds of a batch that takes
-    longer: a signal is seen between them); ``"numpy"`` the NumPy twin.
-    Per-design failures are statuses.
+    Parameters
+    ----------
+    design : Design
+        One design, or a batch (any field an array; they broadcast).
+        Inches, pounds, seconds; weight densities in lb/in^3, moduli in
+        psi.
+    backend : {"compiled", "numpy"}
+        ``"compiled"`` runs the Fortran kernel (one call for the whole
+        batch, or pieces of about ``PIECE_S`` seconds of a batch that
+        takes longer: a signal is seen between them); ``"numpy"`` the
+        NumPy twin.
+
+    Returns
+    -------
+    Evaluation
+        The single impact and the lower contact's response, shaped like
+        the batch: ``t1`` (s), ``psi`` (lb s), ``v0`` (in/s), ``y3_max``
+        (in), ``t_max`` (s), per-mode frequencies (rad/s), and
+        ``status`` (0: evaluated; per-design failures are statuses, not
+        exceptions).
+
+    Raises
+    ------
+    InputError
+        ``design`` is not a :class:`Design`, or ``backend`` is unknown.
+
+    Examples
+    --------
+    >>> import contactsep
+    >>> r = contactsep.evaluate(contactsep.thesis_design(d=0.25))
+    >>> round(float(r.y3_max), 4)     # in, N = 4
+    0.1107
     """
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "

@@ -37,7 +37,7 @@ FIELDS.update({
                       "impact"),
     "gap": ("in", "in", "position of the separator surface seen by the "
                         "upper contact"),
-    "impact_velocity": ("", "", "exact: |dy1/dt| at t1; listing: "
+    "impact_velocity": ("", "", "exact: abs(dy1/dt) at t1; listing: "
                                 "Appendix G's ACT (no sin)"),
     "lower_response": ("", "", "as-printed: eq. 13/23 with v0/L3; "
                                "impulse: psi/M3 (eq. 19)"),

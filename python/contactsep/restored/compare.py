@@ -17,7 +17,7 @@ choices).  Three checks, each with its own tolerance:
     1e-6: where the listing's double arithmetic cannot give 1e-6 (its D1-D8
     amplitudes past mode ~10), the comparison fails rather than pass a
     meaningless check.  Quantities that depend on the impact time get
-    |dq/dt| * 1e-8 s, because the listing's search stops at the last point
+    abs(dq/dt) * 1e-8 s, because the listing's search stops at the last point
     above the separator with a step of at most 1e-8 s while the reference
     finds the crossing itself.  Where the listing's DELT steps over an
     earlier crossing, the two find different impacts and this check fails.

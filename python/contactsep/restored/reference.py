@@ -37,7 +37,7 @@ What is computed (``run``)
 * Lower contact tip, III-(13) (equivalently IV-(21)):
   y3(L3,t) = sum (v0/L3) X_j3(L3)^2/p_j3 sin p_j3 t, on the listing's grid
   t_i = i DELT (i = 0, 1, ... while t_i < 0.060), and its extreme value:
-  the largest |y3| over [t_0, t_last] of that grid, located by bisecting the
+  the largest abs(y3) over [t_0, t_last] of that grid, located by bisecting the
   velocity III-(14) between grid points (not the grid maximum).
 * Closing ratios: GR = h2/L2, BETA = M1/(M2' + M3), MR1 = M2'/M1,
   MR3 = M2'/M3, M2' the separator mass as used at that point.
@@ -67,7 +67,7 @@ D1..D8.  The cancellation is avoided by writing, with beta = 1 - alpha
     X~''(1)  =  e^{-v} + beta sinh v + cos v - alpha sin v,
     X~'''(1) = -e^{-v} + beta cosh v - sin v - alpha cos v,
 
-in which no term is larger than max(1, |beta| cosh v): the absolute error is
+in which no term is larger than max(1, abs(beta) cosh v): the absolute error is
 a few ulps of 1/v, against A_j ~ 6 y_s/v^4, i.e. ~eps v^3 relative
 (measured: <= 4e-13 for modes 1-10, against 0.38 for the D1..D8 form in
 float64 at mode 10).

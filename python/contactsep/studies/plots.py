@@ -2,7 +2,8 @@
 ``contactsep[plot]`` extra installs it).
 
 ``save_png(study, path, dpi=100)`` draws a study as the thesis drew it: a
-figure 6 in wide (4 in tall; the tables, two panels, 5 in), written to a
+figure 6 in wide (4 in tall; the tables, two panels, 5 in; the chatter
+study, a column per model, 9 x 5.4 in), written to a
 temporary file beside ``path`` and renamed into place when finished.
 """
 
@@ -183,32 +184,68 @@ def _table(axes, c, name):
     if log:
         top.set_yscale("log")
     top.set(ylabel=y_label)
-    bottom.plot(x, 100 * c["relative_difference"], "o-")
-    bottom.axhline(0.0, color="0.6", lw=0.8)
+    residual = 100 * np.asarray(c["relative_difference"], dtype=float)
+    bottom.plot(x, residual, "o-")
+    # the zero line only where the residuals reach it: drawn always, it
+    # stretched the axis to 0 and left Table I's 3.2-3.7 % points
+    # between two ticks (0 and 2)
+    low, high = np.nanmin(residual), np.nanmax(residual)
+    if low <= 0.0 <= high:
+        bottom.axhline(0.0, color="0.6", lw=0.8)
+    else:
+        pad = max(0.2 * (high - low), 0.02 * max(abs(low), abs(high)))
+        bottom.set_ylim(low - pad, high + pad)
     which = "formula" if name == "table3" else "model"
     bottom.set(xlabel=x_label, ylabel=f"{which} / printed - 1 (%)")
     if name == "table1":
         bottom.set_xticks(x)
 
 
-def _chatter(axes, c):
-    top, bottom = axes
-    colours = {"appE": "C0", "newton": "C1", "hertz": "C2"}
+#: The chatter study's figure (in): a column per model, 9 x 5.4 in.
+CHATTER_FIGSIZE = (9.0, 5.4)
+#: The chatter study's models, as a reader knows them (docs/chatter.md).
+CHATTER_MODEL_LABELS = {
+    "appE": "Appendix E (rigid separator)",
+    "newton": "three beams, Newton's law (restitution e)",
+    "hertz": "three beams, Hertz contact",
+}
+
+
+def _chatter_figure(plt, c):
+    """One column per model (its nine curves no longer overlap): circuit
+    open time above, the largest lower gap below, N told apart by marker
+    and line style, one legend for the figure."""
+    models = list(dict.fromkeys(c["model"]))
+    fig, axes = plt.subplots(2, len(models), sharex=True, sharey="row",
+                             figsize=CHATTER_FIGSIZE,
+                             squeeze=False)
     styles = ("o-", "s--", "^:")
-    for model in dict.fromkeys(c["model"]):
-        for style, n in zip(styles, np.unique(c["N"])):
+    n_values = np.unique(c["N"])
+    for column, model in enumerate(models):
+        top, bottom = axes[0, column], axes[1, column]
+        for style, n in zip(styles, n_values):
             rows = (c["model"] == model) & (c["N"] == n)
-            label = f"{model}, N = {n}"
             top.plot(c["d_in"][rows], 1e3 * c["circuit_open_s"][rows],
-                     style, color=colours.get(model), ms=3)
-            bottom.plot(c["d_in"][rows], c["max_lower_gap_in"][rows], style,
-                        color=colours.get(model), ms=3, label=label)
-    top.set(ylabel="circuit open (ms)")
-    top.set_ylim(bottom=0.0)
-    bottom.set(xlabel="separator thickness d (in)",
-               ylabel="max lower gap (in)")
-    bottom.set_ylim(bottom=0.0)
-    bottom.legend(fontsize=7, ncol=3, loc="upper right")
+                     style, color="k", ms=3.5, lw=1.0, label=f"N = {n}")
+            bottom.plot(c["d_in"][rows], c["max_lower_gap_in"][rows],
+                        style, color="k", ms=3.5, lw=1.0)
+        top.set_title("\n".join(textwrap.wrap(
+            CHATTER_MODEL_LABELS.get(model, model), 26)), fontsize=9)
+        if model == "appE":
+            top.text(0.5, 0.5, "the lower contact never moves:\n"
+                     "the circuit never opens", transform=top.transAxes,
+                     ha="center", va="center", fontsize=7, color="0.3")
+        bottom.set(xlabel="separator thickness d (in)")
+        for ax in (top, bottom):
+            ax.grid(True, lw=0.3)
+    axes[0, 0].set(ylabel="circuit open (ms)")
+    axes[0, 0].set_ylim(bottom=0.0)
+    axes[1, 0].set(ylabel="max lower gap (in)")
+    axes[1, 0].set_ylim(bottom=0.0)
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels),
+               fontsize=8, frameon=False)
+    return fig, axes
 
 
 #: The conclusion studies' x axis: column and label.
@@ -268,14 +305,18 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig, ax = plt.subplots(figsize=(6.0, 4.0))
         _ONE_PANEL[name](ax, study.columns)
         axes = [ax]
-    elif name in _TABLES or name in ("chatter", "conclusion8") or \
-            name in _CONCLUSION_AXES:
+    elif name == "chatter":
+        fig, grid = _chatter_figure(plt, study.columns)
+        fig.suptitle("\n".join(textwrap.wrap(study.title, 80)), fontsize=9)
+        fig.tight_layout(rect=(0.0, 0.05, 1.0, 1.0))
+        _write(plt, fig, path, dpi)
+        return
+    elif name in _TABLES or name in _CONCLUSION_AXES or \
+            name == "conclusion8":
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0),
                                  height_ratios=(2, 1) if name in _TABLES
                                  else (1, 1))
-        if name == "chatter":
-            _chatter(axes, study.columns)
-        elif name == "conclusion8":
+        if name == "conclusion8":
             # the study's first note: "...'s node ...: x3/L3 = 0.783445"
             _conclusion8(axes, study.columns,
                          float(study.notes[0].rsplit("=", 1)[1]))
@@ -292,6 +333,10 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
             ax.legend(fontsize=8)
         ax.grid(True, lw=0.3)
     fig.tight_layout()
+    _write(plt, fig, path, dpi)
+
+
+def _write(plt, fig, path, dpi: int) -> None:
     try:
         with output.open_output(path, binary=True) as out:
             fig.savefig(out, format="png", dpi=dpi)

@@ -354,11 +354,36 @@ class Simulations:
 def min_preloads(designs, model: str = "hertz", settings=None,
                  workers: int | None = None, simulations=None
                  ) -> list[PreloadSearch]:
-    """:func:`search` for single designs: each simulated by ``model``
-    with ``settings`` (simulate()'s keywords: dt, damping, min_open,
-    ...), the batches on ``workers`` processes (or ``simulations``, an
-    open :class:`Simulations`), each design's preloads up to the largest
-    the simulation takes (:func:`largest_preload`)."""
+    """The smallest preload with no discontinuity event, design by design.
+
+    :func:`search` for single designs: each simulated by ``model`` at
+    the preloads the search asks for, up to the largest the simulation
+    takes (:func:`largest_preload`).
+
+    Parameters
+    ----------
+    designs : iterable of Design
+        Single designs.
+    model : {"hertz", "newton"}
+        The three-beam model (:func:`contactsep.chatter.simulate`).
+    settings : dict, optional
+        Further keywords of ``simulate()`` (dt, damping, min_open, ...).
+    workers : int, optional
+        Processes for the batches of simulations (1: this process).
+    simulations : Simulations, optional
+        An open :class:`Simulations` to use instead of ``workers``.
+
+    Returns
+    -------
+    list of PreloadSearch
+        One a design: ``min_preload_lb`` (lb; NaN where an event remains
+        up to the simulation's limit), every preload ``tested`` with
+        whether it gave an event, and ``ceiling_lb``.
+
+    Examples
+    --------
+    docs/tutorial.md, step 4 (about 90 s: dozens of simulations).
+    """
     if model not in MODELS:
         raise InputError(f"model: found {model!r}, expected one of "
                          f"{', '.join(MODELS)}")
