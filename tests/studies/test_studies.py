@@ -210,7 +210,7 @@ def test_sweep_on_a_dask_local_cluster_equals_local():
     a, b = local.table(), remote.table()
     assert all(np.array_equal(a[k], b[k]) for k in a)
     chunks = [task for task in stream.data
-              if task["key"].startswith("evaluate_chunk")]
+              if task["key"].startswith("chunk_result")]
     assert len(chunks) == 4
     assert {task["worker"] for task in chunks} <= workers
 

@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,7 +46,7 @@ from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.runner import _quiet_worker, usable_cores
+from contactsep.studies.pool import stop_pool, usable_cores, worker_pool
 from contactsep.studies.study import Study, refuse_fixed
 
 #: The chart's separators and release heights (in).
@@ -248,21 +247,16 @@ class Simulations:
 
     def __enter__(self) -> "Simulations":
         if self.workers > 1:
-            self._pool = ProcessPoolExecutor(self.workers,
-                                             initializer=_quiet_worker)
+            self._pool = worker_pool(self.workers)
         return self
 
     def __exit__(self, kind, *exc) -> None:
         if self._pool is None:
             return
-        if kind is not None:
-            # stopped early (Ctrl-C, SIGTERM, a failed run): the runs
-            # still going are dropped, so their workers are killed now
-            # rather than waited for (a run may take a minute at large N)
-            for process in list((getattr(self._pool, "_processes", None)
-                                 or {}).values()):
-                process.kill()
-        self._pool.shutdown(wait=True, cancel_futures=True)
+        # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
+        # going are dropped, so their workers are killed now rather than
+        # waited for (a run may take a minute at large N)
+        stop_pool(self._pool, finished=kind is None)
 
     def map(self, function, tasks: list) -> list:
         """function(task) for every task, in order (function and tasks

@@ -1,0 +1,181 @@
+"""A sweep's chunks on a Dask cluster (``contactsep sweep --scheduler``).
+
+What travels: the SweepSpec (a few hundred bytes: linear axes are three
+numbers) and two integers to a worker; back, a chunk's summary (a few
+numbers, when nothing is written) or its columns as NumPy arrays (Dask
+sends their buffers as they are, no pickled rows).  Each worker samples
+and evaluates its own designs.  As many chunks are in flight as the
+cluster has threads, twice over, so no worker waits for the client.
+
+Faults: an address that accepts connections but never speaks Dask's
+protocol (a silent port, an HTTP server) is refused within
+SCHEDULER_TIMEOUT_S by a probe that reads the scheduler's first message
+before Dask does (Dask would read an HTTP reply as an exabyte-long
+frame); a scheduler lost mid-sweep is one :class:`SchedulerLost` line
+within SCHEDULER_LOST_S, the chunks finished before it kept (written,
+and with ``--resume`` continued by the next run); a worker lost
+mid-sweep costs its chunk, which Dask runs again (the same bits: a
+chunk's designs do not depend on where they run).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import socket
+import struct
+import time
+
+from contactsep.errors import InputError
+
+#: Seconds to wait for a Dask scheduler to answer.
+SCHEDULER_TIMEOUT_S = 10
+#: Seconds a sweep waits for a scheduler whose connection was lost.
+SCHEDULER_LOST_S = 15
+#: The largest first message a Dask scheduler sends (its handshake is a
+#: few hundred bytes): more is another protocol.
+_LARGEST_HANDSHAKE = 1 << 20
+
+
+class SchedulerLost(InputError):
+    """The Dask scheduler went away during the sweep."""
+
+
+def _host_port(address: str) -> tuple[str, int] | None:
+    """(host, port) of a tcp:// address (Dask's default port 8786), or
+    None for another transport (left to Dask)."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme != "tcp":
+        return None
+    rest = rest.split("/", 1)[0]
+    if rest.startswith("["):                 # [::1]:8786
+        host, _, port = rest[1:].partition("]")
+        port = port.lstrip(":")
+    else:
+        host, _, port = rest.rpartition(":") if ":" in rest else \
+            (rest, "", "")
+    if not port:
+        return host, 8786
+    try:
+        return host, int(port)
+    except ValueError:
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786"
+                         ) from None
+
+
+def probe(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
+    """Refuse (InputError) an address where no Dask scheduler speaks:
+    nothing listening, nothing said within ``timeout`` s (a Dask
+    scheduler sends its handshake as soon as it accepts), or a first
+    message that is not a Dask frame."""
+    where = _host_port(address)
+    if where is None:
+        return
+    deadline = time.monotonic() + timeout
+    try:
+        with socket.create_connection(where, timeout=timeout) as sock:
+            data = b""
+            while len(data) < 8:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    raise TimeoutError
+                sock.settimeout(left)
+                more = sock.recv(8 - len(data))
+                if not more:
+                    raise InputError(f"--scheduler {address}: the server "
+                                     f"closed the connection without "
+                                     f"answering; not a Dask scheduler")
+                data += more
+    except (TimeoutError, socket.timeout):
+        raise InputError(f"--scheduler {address}: accepts connections but "
+                         f"said nothing within {timeout:g} s; not a Dask "
+                         f"scheduler (or one that does not answer)"
+                         ) from None
+    except OSError as error:
+        raise InputError(f"--scheduler {address}: no scheduler answered "
+                         f"({error.strerror or error})") from None
+    (length,) = struct.unpack("Q", data)
+    if not 0 < length <= _LARGEST_HANDSHAKE:
+        raise InputError(f"--scheduler {address}: answers another protocol"
+                         f" ({data!r}...), not Dask's")
+
+
+def connect(address: str):
+    """A Client of the scheduler at ``address``; an address Dask cannot
+    read, or a scheduler that does not answer, is one InputError."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError("--scheduler needs dask.distributed: pip install "
+                         "'contactsep[scale]'") from None
+    if not isinstance(address, str) or not address.strip():
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786")
+    probe(address)
+    try:
+        with quiet_dask():
+            return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+    except (ValueError, TypeError) as error:
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786 "
+                         f"({error})") from None
+    except (OSError, TimeoutError) as error:
+        raise InputError(f"--scheduler {address}: no scheduler answered "
+                         f"within {SCHEDULER_TIMEOUT_S} s "
+                         f"({error})") from None
+
+
+@contextlib.contextmanager
+def quiet_dask():
+    """Dask's own log lines (ERROR ... connection lost) off stderr: the
+    sweep says what happened in one line."""
+    logger = logging.getLogger("distributed")
+    level = logger.level
+    logger.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
+
+
+def threads(client) -> int:
+    """Worker threads of the cluster (at least 1)."""
+    try:
+        return max(1, sum(client.nthreads().values()))
+    except Exception:        # noqa: BLE001 - a cluster still starting
+        return 1
+
+
+def wait(client, future, stop, done_designs: int):
+    """A chunk's result, listening for a stop every quarter second and
+    for the scheduler's loss (SchedulerLost after SCHEDULER_LOST_S)."""
+    from concurrent.futures import CancelledError
+    try:
+        where = f" {client.scheduler.address}"
+    except Exception:        # noqa: BLE001 - only a name in a message
+        where = ""
+    lost_since = None
+    while True:
+        stop.check()
+        try:
+            return future.result(timeout=0.25)
+        except TimeoutError:
+            pass
+        except CancelledError:
+            lost_since = lost_since or time.monotonic() - SCHEDULER_LOST_S
+        except OSError:                     # CommClosedError
+            lost_since = lost_since or time.monotonic() - SCHEDULER_LOST_S
+        if client.status not in ("running", "newly-created"):
+            lost_since = lost_since or time.monotonic()
+        else:
+            lost_since = None
+        if lost_since is not None and \
+                time.monotonic() - lost_since >= SCHEDULER_LOST_S:
+            raise SchedulerLost(
+                f"the Dask scheduler{where} was lost "
+                f"(its connection closed); the {done_designs} designs "
+                f"finished before it are kept (rerun with --resume to "
+                f"continue)")
