@@ -420,10 +420,11 @@ def run_sweep(args: argparse.Namespace) -> int:
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
             scheduler=scheduler, progress=progress, store=store)
-    except BaseException:
+    except BaseException as error:
         for writer in writers:
             writer.abort()      # a no-op for a writer run_sweep closed
-        _say_partial(writers, args.resume)
+        if isinstance(error, output.Terminated):
+            _say_partial(writers, args.resume)   # else its error says so
         raise
     finally:
         if scheduler is not None:

@@ -9,7 +9,7 @@ cluster has threads, twice over, so no worker waits for the client.
 
 Faults: an address that accepts connections but never speaks Dask's
 protocol (a silent port, an HTTP server) is refused within
-SCHEDULER_TIMEOUT_S by a probe that reads the scheduler's first message
+PROBE_TIMEOUT_S by a probe that reads the scheduler's first message
 before Dask does (Dask would read an HTTP reply as an exabyte-long
 frame); a scheduler lost mid-sweep is one :class:`SchedulerLost` line
 within SCHEDULER_LOST_S, the chunks finished before it kept (written,
@@ -27,9 +27,14 @@ import struct
 import time
 
 from contactsep.errors import InputError
+from contactsep.output import one_line
 
 #: Seconds to wait for a Dask scheduler to answer.
 SCHEDULER_TIMEOUT_S = 10
+#: Seconds the probe waits for a scheduler's first message (a Dask
+#: scheduler sends it as soon as it accepts): the refusal of a silent
+#: port, start-up included, comes within SCHEDULER_TIMEOUT_S.
+PROBE_TIMEOUT_S = 5
 #: Seconds a sweep waits for a scheduler whose connection was lost.
 SCHEDULER_LOST_S = 15
 #: The largest first message a Dask scheduler sends (its handshake is a
@@ -66,7 +71,7 @@ def _host_port(address: str) -> tuple[str, int] | None:
                          ) from None
 
 
-def probe(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
+def probe(address: str, timeout: float = PROBE_TIMEOUT_S) -> None:
     """Refuse (InputError) an address where no Dask scheduler speaks:
     nothing listening, nothing said within ``timeout`` s (a Dask
     scheduler sends its handshake as soon as it accepts), or a first
@@ -115,9 +120,11 @@ def connect(address: str):
         raise InputError(f"--scheduler: found {address!r}, expected a "
                          f"scheduler address such as tcp://HOST:8786")
     probe(address)
+    # Dask's log lines (ERROR ... failed to reconnect) stay off stderr
+    # for the rest of the command: the sweep says what happened
+    logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
     try:
-        with quiet_dask():
-            return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
     except (ValueError, TypeError) as error:
         raise InputError(f"--scheduler: found {address!r}, expected a "
                          f"scheduler address such as tcp://HOST:8786 "
@@ -164,6 +171,14 @@ def wait(client, future, stop, done_designs: int):
             return future.result(timeout=0.25)
         except TimeoutError:
             pass
+        except (InputError, KeyboardInterrupt):
+            raise
+        except (RuntimeError, ImportError, AttributeError,
+                TypeError) as error:
+            # the cluster's own failure (another environment on the
+            # workers cannot unpickle the task): one line, not its trace
+            raise InputError(f"the Dask cluster{where} could not run a "
+                             f"chunk: {one_line(error)}") from None
         except CancelledError:
             lost_since = lost_since or time.monotonic() - SCHEDULER_LOST_S
         except OSError:                     # CommClosedError

@@ -16,7 +16,7 @@ from __future__ import annotations
 import functools
 import os
 import signal
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor
 
 from contactsep import output
 
@@ -60,16 +60,17 @@ def stop_pool(pool: ProcessPoolExecutor, finished: bool = True,
     failed task): kill its workers first, the tasks still running being
     dropped (a design may take a minute).  The futures another caller
     cancelled (``Executor.map`` cancels the rest when its caller is
-    interrupted) are forgotten first: the pool's manager thread would
-    mark them failed and print an ``InvalidStateError`` traceback
+    interrupted) are given stand-ins first: the pool's manager thread
+    would mark them failed and print an ``InvalidStateError`` traceback
     (CPython 3.11's ``terminate_broken``); for the same reason the
     shutdown cancels nothing itself: the killed pool fails the rest."""
     if not finished:
         pending = getattr(pool, "_pending_work_items", None)
         if isinstance(pending, dict):
-            for work_id, item in list(pending.items()):
+            for item in list(pending.values()):
                 if item.future.cancelled():
-                    pending.pop(work_id, None)
+                    item.future = Future()    # nobody waits for it
+
         # killed, not terminated: a SIGTERM can reach one before its
         # initializer, while it still has the parent's handlers
         for process in list((getattr(pool, "_processes", None)
