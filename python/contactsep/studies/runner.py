@@ -218,6 +218,10 @@ def _submit_all(bounds: Chunks, submit, store, window_size, take):
         yield take(window.popleft())
 
 
+#: Times a sweep's local pool is started again after a worker died.
+MAX_POOL_RESTARTS = 3
+
+
 def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
                    store):
     """(kind, value, designs) of each chunk in order: kind "summary"
@@ -243,22 +247,39 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
         directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
                                      dir=shared)
-    pool = worker_pool(workers)
+    pools = [worker_pool(workers)]      # the last one is in use
     finished = started = False
     task_mode = "summary" if mode == "summary" else "file"
 
     def submit(first, last):
         nonlocal started
-        future = pool.submit(chunk_result, spec, first, last, threshold,
-                             task_mode, directory)
+        future = pools[-1].submit(chunk_result, spec, first, last,
+                                  threshold, task_mode, directory)
+        future.pool = len(pools)
         started = True
         return future
+
+    def result(first, last, work):
+        """A chunk's result; a worker killed meanwhile (its pool broken)
+        costs the chunks in flight, run again on a new pool (the same
+        bits: a chunk does not depend on where it runs)."""
+        while True:
+            try:
+                return _wait(work, stop)
+            except BrokenProcessPool:
+                stop.check()   # a SIGTERM to the group: workers went first
+                if work.pool == len(pools):
+                    if len(pools) > MAX_POOL_RESTARTS:
+                        raise
+                    stop_pool(pools[-1], finished=False)
+                    pools.append(worker_pool(workers))
+                work = submit(first, last)
 
     def take(item):
         first, last, work = item
         if isinstance(work, _Done):
             return "columns", work.value, last - first
-        value, designs, seconds = _wait(work, stop)
+        value, designs, seconds = result(first, last, work)
         bounds.record(designs, seconds)
         if task_mode == "summary":
             return "summary", value, designs
@@ -274,8 +295,9 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         finished = True
     except BrokenProcessPool:
         stop.check()   # a SIGTERM to the whole group: the workers went first
-        raise InputError("a worker process died (killed, or out of "
-                         "memory: try a smaller --chunk-size)") from None
+        raise InputError(f"a worker process died {MAX_POOL_RESTARTS + 1} "
+                         f"times (killed, or out of memory: try a smaller "
+                         f"--chunk-size)") from None
     except OSError as error:
         if started:
             raise
@@ -290,7 +312,7 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         # pool that could not start): the chunks still running are
         # dropped, so their workers are stopped now rather than waited
         # for (a design may take seconds)
-        stop_pool(pool, finished, wait=started)
+        stop_pool(pools[-1], finished, wait=started)
         if store is None:
             shutil.rmtree(directory, ignore_errors=True)
 
