@@ -117,7 +117,8 @@ class ChunkStore:
                 raise ResumeError(
                     f"--resume: the unfinished sweep beside {output_path} "
                     f"({os.path.basename(self.path)}) was made with other "
-                    f"inputs ({', '.join(differ[:4])} differ); rerun "
+                    f"inputs ({', '.join(differ[:4])} "
+                    f"{'differs' if len(differ) == 1 else 'differ'}); rerun "
                     f"without --resume to start afresh")
             if found is not None:
                 self.chunks = self._scan(spec.size)
