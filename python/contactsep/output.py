@@ -352,6 +352,7 @@ def _lock(lock_path: str, path: str) -> tuple[str, int]:
                     not _alive(holder):
                 with contextlib.suppress(OSError):
                     if os.path.samestat(os.fstat(fd), os.stat(lock_path)):
+                        _drop_dead_writers_file(fd, lock_path)
                         os.unlink(lock_path)      # stale: take it over
                 os.close(fd)
                 continue

@@ -71,7 +71,7 @@ def _host_port(address: str) -> tuple[str, int] | None:
                          ) from None
 
 
-def probe(address: str, timeout: float = PROBE_TIMEOUT_S) -> None:
+def probe(address: str, timeout: float | None = None) -> None:
     """Refuse (InputError) an address where no Dask scheduler speaks:
     nothing listening, nothing said within ``timeout`` s (a Dask
     scheduler sends its handshake as soon as it accepts), or a first
@@ -79,6 +79,8 @@ def probe(address: str, timeout: float = PROBE_TIMEOUT_S) -> None:
     where = _host_port(address)
     if where is None:
         return
+    if timeout is None:
+        timeout = PROBE_TIMEOUT_S
     deadline = time.monotonic() + timeout
     try:
         with socket.create_connection(where, timeout=timeout) as sock:
@@ -122,7 +124,7 @@ def connect(address: str):
     probe(address)
     # Dask's log lines (ERROR ... failed to reconnect) stay off stderr
     # for the rest of the command: the sweep says what happened
-    logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
+    silence_dask()
     try:
         return Client(address, timeout=SCHEDULER_TIMEOUT_S)
     except (ValueError, TypeError) as error:
@@ -135,17 +137,35 @@ def connect(address: str):
                          f"({error})") from None
 
 
+def _dask_loggers() -> list:
+    names = [name for name in logging.root.manager.loggerDict
+             if name == "distributed" or name.startswith("distributed.")]
+    return [logging.getLogger(name) for name in names + ["distributed"]]
+
+
+def silence_dask() -> None:
+    """Dask's loggers and their handlers off, for good (the command's
+    process: Dask's own config gives each logger its level, and a
+    handler on "distributed" prints what they pass)."""
+    for logger in _dask_loggers():
+        logger.setLevel(logging.CRITICAL + 1)
+        for handler in logger.handlers:
+            handler.setLevel(logging.CRITICAL + 1)
+
+
 @contextlib.contextmanager
 def quiet_dask():
-    """Dask's own log lines (ERROR ... connection lost) off stderr: the
-    sweep says what happened in one line."""
-    logger = logging.getLogger("distributed")
-    level = logger.level
-    logger.setLevel(logging.CRITICAL + 1)
+    """Dask's own log lines (ERROR ... connection lost) off stderr while
+    the block runs: the sweep says what happened in one line."""
+    loggers = _dask_loggers()
+    levels = [(logger, logger.level) for logger in loggers]
+    for logger in loggers:
+        logger.setLevel(logging.CRITICAL + 1)
     try:
         yield
     finally:
-        logger.setLevel(level)
+        for logger, level in levels:
+            logger.setLevel(level)
 
 
 def threads(client) -> int:

@@ -160,6 +160,9 @@ class ParquetWriter:
         self._pending_rows = rest.num_rows
 
     def close(self, interrupted: str | None = None) -> None:
+        if interrupted and self._writer is None and not self._pending:
+            self._file.discard()    # stopped before any row: keep the old
+            return
         try:
             self._flush(whole_groups=False)
             if self._writer is not None:
