@@ -77,3 +77,21 @@ def stop_pool(pool: ProcessPoolExecutor, finished: bool = True,
                              or {}).values()):
             process.kill()
     pool.shutdown(wait=wait)
+
+
+def map_longest_first(pool, function, tasks: list, cost=None) -> list:
+    """``function(task)`` for every task on ``pool``, the results in the
+    tasks' order; the tasks are handed out one at a time, the costliest
+    first (``cost(task)``, a number; None: in order), so that a batch
+    ends with short tasks on every worker instead of one long task on
+    one worker while the others wait (longest processing time first)."""
+    order = list(range(len(tasks)))
+    if cost is not None:
+        order.sort(key=lambda i: -cost(tasks[i]))
+    futures = {i: pool.submit(function, tasks[i]) for i in order}
+    try:
+        return [futures[i].result() for i in range(len(tasks))]
+    except BaseException:
+        for future in futures.values():
+            future.cancel()
+        raise

@@ -46,7 +46,12 @@ from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies.fields import design_lines
-from contactsep.studies.pool import stop_pool, usable_cores, worker_pool
+from contactsep.studies.pool import (
+    map_longest_first,
+    stop_pool,
+    usable_cores,
+    worker_pool,
+)
 from contactsep.studies.study import Study, refuse_fixed
 
 #: The chart's separators and release heights (in).
@@ -225,6 +230,13 @@ def _bisect(brackets, tested, has_event, tolerance) -> None:
             brackets[row][0 if event else 1] = preload
 
 
+def _preload_of(task) -> float:
+    """A task's preload (lb; 0 for a task without one): the cost order
+    of a batch (pool.map_longest_first)."""
+    value = task[3] if isinstance(task, tuple) and len(task) > 3 else 0.0
+    return float(value) if isinstance(value, (int, float)) else 0.0
+
+
 def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
     simulation; runs in a worker)."""
@@ -265,7 +277,9 @@ class Simulations:
         if self._pool is None:
             out = [function(task) for task in tasks]
         else:
-            out = list(self._pool.map(function, tasks))
+            # the preloaded runs (slower: fixed steps while pressed) first
+            out = map_longest_first(self._pool, function, tasks,
+                                    cost=_preload_of)
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
         return out
