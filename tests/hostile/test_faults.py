@@ -160,7 +160,12 @@ def test_a_lock_left_by_a_killed_sweep_is_free_and_its_file_removed(
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv"]
 
 
+_TEST_PROCESS = os.getpid()
+
+
 def _dies(*args):
+    if os.getpid() == _TEST_PROCESS:     # never the test run itself
+        raise AssertionError("the computation ran in the test's process")
     os.kill(os.getpid(), signal.SIGKILL)
 
 
@@ -170,6 +175,8 @@ def test_a_killed_computation_is_not_an_invalid_design(monkeypatch):
     def killed_simulation(design, **settings):
         return output.interruptible(True, _dies)
     monkeypatch.setattr(chatter_sweep, "simulate", killed_simulation)
+    # forked even when earlier tests left threads running (Dask's loop)
+    monkeypatch.setattr(output.threading, "active_count", lambda: 1)
     spec = sweep.make_spec(vary=["h2=0.2,0.3"], model="hertz")
     with pytest.raises(output.ComputationLost,
                        match=r"^design 0: the computation's process ended "
@@ -202,10 +209,12 @@ def test_a_local_worker_killed_mid_sweep_gives_the_same_rows():
     alone = _Rows()
     runner.run_sweep(spec, writers=[alone], workers=1, chunk_size=2)
     killed = []
+    before = set(_children(os.getpid()))
 
     def kill_a_worker(k):
         if k == 2:
-            victim = _children(os.getpid())[0]
+            # one of the pool's workers (not a child earlier tests left)
+            victim = sorted(set(_children(os.getpid())) - before)[0]
             os.kill(victim, signal.SIGKILL)
             killed.append(victim)
     pooled = _Rows(kill_a_worker)

@@ -340,6 +340,7 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
             before = workers()
             os.kill(int(sorted(before)[0]), signum)
             # new workers take over, and the rows go on growing
+            deadline = time.monotonic() + 60
             while not (workers() - before) and time.monotonic() < deadline:
                 time.sleep(0.1)
             assert workers() - before and process.poll() is None

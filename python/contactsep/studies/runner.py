@@ -7,16 +7,12 @@ import collections
 import math
 import os
 import shutil
-import signal
-import sys
 import tempfile
-import threading
 import time
-import warnings
 from concurrent.futures.process import BrokenProcessPool
 
 from contactsep import output
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
 from contactsep.studies import chatter_sweep, dask_run
 from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
@@ -37,6 +33,11 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     ResumeError,
     load_columns,
     save_columns,
+)
+from contactsep.studies.stops import (  # noqa: F401 - the runner's API
+    _progress,
+    _StopRequests,
+    _wait,
 )
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
@@ -60,79 +61,6 @@ class SweepInterrupted(InputError):
     The command reports it in one line and exits 130, as for Ctrl-C."""
 
     interrupted = True
-
-
-def _progress(total: int, enabled: bool | None):
-    """A tqdm bar on a terminal (stderr), or nothing.  Asked for
-    (``enabled`` True) without tqdm installed: a warning says so."""
-    if enabled is None:
-        enabled = sys.stderr.isatty()
-        required = False
-    else:
-        required = enabled
-    if not enabled:
-        return None
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        if required:
-            warnings.warn("no progress bar: it needs tqdm (pip install "
-                          "'contactsep[progress]')", ContactsepWarning)
-        return None
-    # shown only once the run has taken a second
-    return tqdm(total=total, unit="design", unit_scale=True, delay=1.0,
-                file=sys.stderr)
-
-
-class _StopRequests:
-    """SIGINT and SIGTERM during a sweep only note the request; the sweep
-    acts on it between chunks and while it waits for one.  An exception
-    raised by a handler anywhere else (inside the process pool's own
-    code, holding its locks) could deadlock the pool's shutdown."""
-
-    def __init__(self) -> None:
-        self.signum = None
-        self._previous = {}
-
-    def __enter__(self) -> "_StopRequests":
-        if threading.current_thread() is threading.main_thread():
-            for signum in (signal.SIGINT, signal.SIGTERM):
-                previous = signal.getsignal(signum)
-                if previous not in (signal.SIG_IGN, None):
-                    self._previous[signum] = previous
-                    signal.signal(signum, self._note)
-        return self
-
-    def _note(self, signum, frame) -> None:
-        if self.signum is None:
-            self.signum = signum
-
-    def check(self) -> None:
-        """Act on a noted signal: its own handler runs now, here (Ctrl-C
-        raises KeyboardInterrupt; the command's SIGTERM handler raises
-        its exception; a default SIGTERM ends the process)."""
-        if self.signum is not None:
-            self.__exit__()
-            signal.raise_signal(self.signum)
-
-    def __exit__(self, *exc) -> None:
-        for signum, previous in self._previous.items():
-            signal.signal(signum, previous)
-        self._previous = {}
-
-
-def _wait(future, stop: _StopRequests):
-    """A chunk's columns, listening for a stop every quarter second (a
-    chunk that failed because the same Ctrl-C ended it: the stop)."""
-    while True:
-        stop.check()
-        try:
-            return future.result(timeout=0.25)
-        except TimeoutError:
-            continue
-        except BaseException:
-            stop.check()
-            raise
 
 
 #: The pool workers' set-up (the name studies.preload imports).
@@ -251,10 +179,26 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
     finished = started = False
     task_mode = "summary" if mode == "summary" else "file"
 
+    def restart(broken: int) -> None:
+        """Pool number ``broken`` lost a worker: a new one, unless that
+        happened MAX_POOL_RESTARTS times (a chunk that kills its worker
+        each time, as the OOM killer would)."""
+        if broken == len(pools):
+            if len(pools) > MAX_POOL_RESTARTS:
+                raise BrokenProcessPool("a worker died too often")
+            stop_pool(pools[-1], finished=False)
+            pools.append(worker_pool(workers))
+
     def submit(first, last):
         nonlocal started
-        future = pools[-1].submit(chunk_result, spec, first, last,
-                                  threshold, task_mode, directory)
+        while True:
+            try:
+                future = pools[-1].submit(chunk_result, spec, first, last,
+                                          threshold, task_mode, directory)
+                break
+            except BrokenProcessPool:
+                stop.check()
+                restart(len(pools))
         future.pool = len(pools)
         started = True
         return future
@@ -268,11 +212,7 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
                 return _wait(work, stop)
             except BrokenProcessPool:
                 stop.check()   # a SIGTERM to the group: workers went first
-                if work.pool == len(pools):
-                    if len(pools) > MAX_POOL_RESTARTS:
-                        raise
-                    stop_pool(pools[-1], finished=False)
-                    pools.append(worker_pool(workers))
+                restart(work.pool)
                 work = submit(first, last)
 
     def take(item):
@@ -326,9 +266,14 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     bounds.workers = dask_run.threads(client)
     futures = []
     done = 0
+    # the spec goes to the workers once, not with every task
+    try:
+        shared = client.scatter(spec, broadcast=True, hash=False)
+    except Exception:        # noqa: BLE001 - a client without scatter
+        shared = spec
 
     def submit(first, last):
-        future = client.submit(chunk_result, spec, first, last, threshold,
+        future = client.submit(chunk_result, shared, first, last, threshold,
                                task_mode, pure=False)
         futures.append(future)
         return future
