@@ -176,6 +176,35 @@ def test_resume_needs_an_output(capsys):
     assert status == 2
     assert err == ("contactsep: error: --resume keeps the finished chunks "
                    "beside the output: give --csv or --parquet\n")
+    status, _, err = _run(capsys, [*EQ23, "--resume", "--csv", os.devnull])
+    assert status == 2
+    assert err == ("contactsep: error: --resume keeps the finished chunks "
+                   f"beside the output: {os.devnull} is not a regular "
+                   f"file\n")
+
+
+def test_workers_summaries_merged_equal_the_rows_summary():
+    """Nothing written: each worker sends its chunk's summary and the
+    parent merges them; the same numbers as the summary of the rows
+    (counts exact, means and sds to 1e-12)."""
+    spec = sweep.make_spec(vary=["h2=0.1:0.8:5"],
+                           sample=["ys=uniform(0.45,0.55)"], samples=3000)
+    merged = runner.run_sweep(spec, threshold=0.11, workers=2,
+                              chunk_size=997)
+
+    class Rows:
+        def write(self, columns):
+            pass
+
+        def close(self, interrupted=None):
+            pass
+    rows = runner.run_sweep(spec, writers=[Rows()], threshold=0.11,
+                            workers=1, chunk_size=997)
+    for key in ("n", "n_failed", "n_failed_by_status", "p_exceed",
+                "y3_max_min_in", "y3_max_max_in"):
+        assert merged[key] == rows[key], key
+    for key in ("y3_max_mean_in", "y3_max_sd_in"):
+        assert merged[key] == pytest.approx(rows[key], rel=1e-12), key
 
 
 # --- statistics merged from chunks ---------------------------------------

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import shutil
+import stat
 import sys
 import warnings
 from pathlib import Path
@@ -402,6 +403,11 @@ def run_sweep(args: argparse.Namespace) -> int:
     if args.resume and not kept:
         raise InputError("--resume keeps the finished chunks beside the "
                          "output: give --csv or --parquet")
+    if args.resume:
+        info = output.target_info(kept)
+        if info is not None and not stat.S_ISREG(info.st_mode):
+            raise InputError(f"--resume keeps the finished chunks beside "
+                             f"the output: {kept} is not a regular file")
     # every option checked: only now the scheduler and the files
     scheduler = runner.connect(args.scheduler) if args.scheduler else None
     writers = []

@@ -24,6 +24,7 @@ import contextlib
 import logging
 import socket
 import struct
+import threading
 import time
 
 from contactsep.errors import InputError
@@ -178,39 +179,50 @@ def threads(client) -> int:
 
 def wait(client, future, stop, done_designs: int):
     """A chunk's result, listening for a stop every quarter second and
-    for the scheduler's loss (SchedulerLost after SCHEDULER_LOST_S)."""
-    from concurrent.futures import CancelledError
+    for the scheduler's loss (SchedulerLost: at once when Dask cancels
+    the chunk, or after SCHEDULER_LOST_S without a connection).  The
+    wait is on a done-callback, not ``Future.result(timeout=...)``
+    (which distributed 2026.8 can answer with an UnboundLocalError)."""
     try:
         where = f" {client.scheduler.address}"
     except Exception:        # noqa: BLE001 - only a name in a message
         where = ""
+    lost = SchedulerLost(f"the Dask scheduler{where} was lost (its "
+                         f"connection closed); the {done_designs} designs "
+                         f"finished before it are kept (rerun with --resume "
+                         f"to continue)")
+    ready = threading.Event()
+    future.add_done_callback(lambda _: ready.set())
     lost_since = None
     while True:
         stop.check()
-        try:
-            return future.result(timeout=0.25)
-        except TimeoutError:
-            pass
-        except (InputError, KeyboardInterrupt):
-            raise
-        except (RuntimeError, ImportError, AttributeError,
-                TypeError) as error:
-            # the cluster's own failure (another environment on the
-            # workers cannot unpickle the task): one line, not its trace
-            raise InputError(f"the Dask cluster{where} could not run a "
-                             f"chunk: {one_line(error)}") from None
-        except CancelledError:
-            lost_since = lost_since or time.monotonic() - SCHEDULER_LOST_S
-        except OSError:                     # CommClosedError
-            lost_since = lost_since or time.monotonic() - SCHEDULER_LOST_S
+        if ready.wait(0.25) or future.done():
+            if future.status == "cancelled":     # the scheduler forgot it
+                raise lost
+            try:
+                # a finished chunk's result is fetched: the connection
+                # may be lost then (CommClosedError, an OSError)
+                if future.status in ("finished", "error"):
+                    return future.result()
+            except (RuntimeError, ImportError, AttributeError,
+                    TypeError) as error:
+                if isinstance(error, InputError):
+                    raise
+                # the cluster's own failure (another environment on the
+                # workers cannot unpickle the task): one line, no trace
+                raise InputError(f"the Dask cluster{where} could not run "
+                                 f"a chunk: {one_line(error)}") from None
+            except OSError:                     # CommClosedError
+                if client.status not in ("running", "newly-created"):
+                    raise lost from None
+            # a worker holding the result died ("lost"): Dask runs the
+            # chunk again; wait for that
+            ready.clear()
+            future.add_done_callback(lambda _: ready.set())
+            time.sleep(0.05)
         if client.status not in ("running", "newly-created"):
             lost_since = lost_since or time.monotonic()
+            if time.monotonic() - lost_since >= SCHEDULER_LOST_S:
+                raise lost
         else:
             lost_since = None
-        if lost_since is not None and \
-                time.monotonic() - lost_since >= SCHEDULER_LOST_S:
-            raise SchedulerLost(
-                f"the Dask scheduler{where} was lost "
-                f"(its connection closed); the {done_designs} designs "
-                f"finished before it are kept (rerun with --resume to "
-                f"continue)")
