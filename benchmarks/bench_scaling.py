@@ -2,7 +2,8 @@
 a yardstick measured in the same run.
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/bench_scaling.py \\
-        [--eq23 DESIGNS] [--hertz DESIGNS] [--no-dask] [--preload]
+        [--eq23 DESIGNS] [--hertz DESIGNS] [--repeat R] [--no-dask] \
+        [--preload]
 
 The yardstick: an embarrassingly parallel NumPy kernel (numpy.sin on 1e6
 elements, 60 times) in k processes at once; its speed-up k * t1 / tk is
@@ -16,7 +17,9 @@ seconds, speed-up over one worker, efficiency = speed-up / the
 yardstick's speed-up at k, Dask's throughput / the local pool's at the
 same k, and the parent's CPU share = the parent's CPU seconds / (k x
 wall seconds).  ``--preload``: the time of the preload chart (N = 4) on
-1 and on all usable cores.
+1 and on all usable cores.  ``--repeat R``: each time the best of R
+runs, the configurations taken in turn (on a shared machine the load
+drifts between one configuration and the next).
 """
 
 from __future__ import annotations
@@ -77,6 +80,8 @@ def main() -> None:
                         help="designs of the eq. 23 sweep")
     parser.add_argument("--hertz", type=int, default=200,
                         help="designs of the Hertz N = 16 sweep")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="best of R runs of each configuration")
     parser.add_argument("--no-dask", action="store_true")
     parser.add_argument("--preload", action="store_true")
     args = parser.parse_args()
@@ -103,18 +108,24 @@ def main() -> None:
     print(f"\n{'sweep':>6} {'engine':>6} {'k':>3} {'seconds':>8} "
           f"{'speed-up':>8} {'efficiency':>10} {'dask/local':>10} "
           f"{'parent %':>8}")
+    engines = ("local",) + (() if args.no_dask else ("dask",))
     for name, (spec, threshold) in sweeps.items():
-        local = {}
-        for engine in ("local",) + (() if args.no_dask else ("dask",)):
+        runs = {}
+        for _ in range(args.repeat):
+            for engine in engines:
+                for k in ks:
+                    seconds, cpu = timed_sweep(spec, threshold, k,
+                                               engine == "dask")
+                    if (engine, k) not in runs or \
+                            seconds < runs[engine, k][0]:
+                        runs[engine, k] = (seconds, cpu)
+        for engine in engines:
             for k in ks:
-                seconds, cpu = timed_sweep(spec, threshold, k,
-                                           engine == "dask")
-                if engine == "local":
-                    local[k] = seconds
-                base = local[1]
-                speedup = base / seconds
+                seconds, cpu = runs[engine, k]
+                local = runs["local", k][0]
+                speedup = runs["local", 1][0] / seconds
                 efficiency = speedup / (k * sticks[1] / sticks[k])
-                ratio = f"{local[k] / seconds:10.2f}" \
+                ratio = f"{local / seconds:10.2f}" \
                     if engine == "dask" else f"{'':>10}"
                 # k = 1 on the local pool runs in the parent: no share
                 share = f"{'-':>8}" if engine == "local" and k == 1 else \
