@@ -268,31 +268,51 @@ def test_ctrl_c_of_a_conclusion_study_is_quiet(tmp_path):
 
 # --- Dask schedulers that are not, or go away ------------------------------
 
-def _silent_server():
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(8)
-    held = []
+class _Silent:
+    """A port that accepts connections and never says a word."""
 
-    def accept():
-        while True:
+    def __init__(self):
+        self.socket = socket.socket()
+        self.socket.bind(("127.0.0.1", 0))
+        self.socket.listen(8)
+        self.socket.settimeout(0.1)
+        self.port = self.socket.getsockname()[1]
+        self.held, self.done = [], threading.Event()
+        self.thread = threading.Thread(target=self._accept, daemon=True)
+        self.thread.start()
+
+    def _accept(self):
+        while not self.done.is_set():
             try:
-                held.append(server.accept()[0])
+                self.held.append(self.socket.accept()[0])
             except OSError:
-                return
-    threading.Thread(target=accept, daemon=True).start()
-    return server, server.getsockname()[1]
+                continue
+
+    def close(self):
+        # no thread left behind: later tests fork only without threads
+        self.done.set()
+        self.thread.join()
+        for conn in self.held:
+            conn.close()
+        self.socket.close()
 
 
-def _http_server():
-    server = http.server.HTTPServer(("127.0.0.1", 0),
-                                    http.server.SimpleHTTPRequestHandler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server, server.server_address[1]
+class _Http:
+    def __init__(self):
+        self.server = http.server.HTTPServer(
+            ("127.0.0.1", 0), http.server.SimpleHTTPRequestHandler)
+        self.port = self.server.server_address[1]
+        self.thread = threading.Thread(target=self.server.serve_forever,
+                                       daemon=True)
+        self.thread.start()
+
+    def close(self):
+        self.server.shutdown()
+        self.thread.join()
+        self.server.server_close()
 
 
-@pytest.mark.parametrize("make", [_silent_server, _http_server],
-                         ids=["silent", "http"])
+@pytest.mark.parametrize("make", [_Silent, _Http], ids=["silent", "http"])
 def test_a_scheduler_that_does_not_speak_dask_is_refused(capsys, make,
                                                          monkeypatch):
     """A port that accepts and never answers: no error after 120 s; an
@@ -303,18 +323,15 @@ def test_a_scheduler_that_does_not_speak_dask_is_refused(capsys, make,
     # the promise: refused within 10 s, start-up included
     assert dask_run.PROBE_TIMEOUT_S <= 5
     monkeypatch.setattr(dask_run, "PROBE_TIMEOUT_S", 1)
-    server, port = make()
+    server = make()
+    port = server.port
     try:
         start = time.monotonic()
         status = cli_main(["sweep", "--vary", "h2=0.1:0.5:5",
                            "--scheduler", f"tcp://127.0.0.1:{port}"])
         seconds = time.monotonic() - start
     finally:
-        if isinstance(server, socket.socket):
-            server.close()
-        else:
-            server.shutdown()
-            server.server_close()
+        server.close()
     err = capsys.readouterr().err
     assert refusal(status, err) == (
         f"--scheduler tcp://127.0.0.1:{port}: accepts connections but said "
@@ -331,15 +348,17 @@ def test_a_scheduler_that_answers_another_protocol_is_refused():
     def greet():
         conn, _ = server.accept()
         conn.sendall(b"SSH-2.0-OpenSSH_9.6\r\n")
-        time.sleep(2)
+        time.sleep(0.5)
         conn.close()
-    threading.Thread(target=greet, daemon=True).start()
+    greeter = threading.Thread(target=greet, daemon=True)
+    greeter.start()
     port = server.getsockname()[1]
     from contactsep.studies.dask_run import probe
     try:
         with pytest.raises(InputError, match="answers another protocol"):
             probe(f"tcp://127.0.0.1:{port}")
     finally:
+        greeter.join()
         server.close()
 
 

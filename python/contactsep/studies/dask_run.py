@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import re
 import socket
 import struct
 import threading
@@ -43,6 +44,10 @@ SCHEDULER_LOST_S = 15
 _LARGEST_HANDSHAKE = 1 << 20
 
 
+#: A host name or address (an IPv6 one without its brackets).
+_HOST = re.compile(r"^[A-Za-z0-9._:%-]+$")
+
+
 class SchedulerLost(InputError):
     """The Dask scheduler went away during the sweep."""
 
@@ -62,10 +67,10 @@ def _host_port(address: str) -> tuple[str, int] | None:
     else:
         host, _, port = rest.rpartition(":") if ":" in rest else \
             (rest, "", "")
-    if not port:
-        return host, 8786
     try:
-        return host, int(port)
+        if not _HOST.match(host):
+            raise ValueError(host)
+        return host, int(port) if port else 8786
     except ValueError:
         raise InputError(f"--scheduler: found {address!r}, expected a "
                          f"scheduler address such as tcp://HOST:8786"
