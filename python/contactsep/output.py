@@ -73,6 +73,11 @@ def raise_terminated(signum, frame) -> None:
     raise Terminated
 
 
+class ComputationLost(InputError):
+    """The child process of :func:`interruptible` died without an answer
+    (killed, out of memory): a fault of the machine, not of the input."""
+
+
 class _ClosedBinary:
     def __init__(self, name: str) -> None:
         self.name = name
@@ -199,6 +204,7 @@ class Replacement:
         except OSError as error:
             self._unlock()
             raise _named(error, self.path) from None
+        record_temporary(self._lock, self._temp)
         try:
             if info is not None:
                 mode = stat.S_IMODE(info.st_mode)
@@ -240,6 +246,7 @@ class Replacement:
             lock_path, fd = self._lock
             with contextlib.suppress(OSError):
                 os.unlink(lock_path)
+            _HELD_LOCKS.discard(fd)
             os.close(fd)
             self._lock = None
 
@@ -259,11 +266,84 @@ def target_info(path: str | os.PathLike) -> os.stat_result | None:
     return info
 
 
+#: Lock files this process holds (fds): a forked child closes its copies
+#: (:func:`forget_locks`), so that a worker outliving its parent never
+#: keeps a sweep's output locked.
+_HELD_LOCKS: set = set()
+
+
+def forget_locks() -> None:
+    """In a forked child: close the inherited descriptors of the parent's
+    output locks (flock is shared by every copy of a descriptor: a worker
+    holding one kept the output "in use" after its parent was killed)."""
+    for fd in list(_HELD_LOCKS):
+        with contextlib.suppress(OSError):
+            os.close(fd)
+    _HELD_LOCKS.clear()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:             # another user's process: alive
+        return True
+    return True
+
+
+def _lock_record(fd: int) -> tuple[int | None, str | None]:
+    """The process id and temporary file name a lock file records (None
+    where there is none, or it cannot be read)."""
+    try:
+        words = os.pread(fd, 4096, 0).decode("utf-8", "replace").split()
+    except OSError:
+        return None, None
+    pid = int(words[0]) if words and words[0].isdigit() else None
+    return pid, (words[1] if len(words) > 1 else None)
+
+
+def _holder(fd: int) -> int | None:
+    """The process id a lock file records (None: none, or unreadable)."""
+    return _lock_record(fd)[0]
+
+
+def _drop_dead_writers_file(fd: int, lock_path: str) -> None:
+    """A lock just taken whose last holder died without removing it
+    (SIGKILL, a lost machine): remove the temporary file it recorded, its
+    unfinished output (only a name of this target's own form, beside
+    it)."""
+    pid, temp = _lock_record(fd)
+    if pid is None or temp is None or _alive(pid):
+        return
+    directory, name = os.path.split(lock_path)
+    target = name[1:-len(".lock")]
+    if temp.startswith(f".{target}.") and temp.endswith(".tmp") and \
+            "/" not in temp:
+        with contextlib.suppress(OSError):
+            os.unlink(os.path.join(directory, temp))
+
+
+def record_temporary(lock: tuple[str, int] | None, temp: str) -> None:
+    """Write this process's id and its temporary file into its lock (a
+    later command removes the file if this one dies first)."""
+    if lock is None:
+        return
+    with contextlib.suppress(OSError):
+        os.ftruncate(lock[1], 0)
+        os.pwrite(lock[1], f"{os.getpid()} {os.path.basename(temp)}\n"
+                  .encode("utf-8"), 0)
+
+
 def _lock(lock_path: str, path: str) -> tuple[str, int]:
-    """Hold ``lock_path`` (flock, exclusive, created if need be); a lock
-    held by another process is refused with an InputError naming
-    ``path``.  The inode check: a holder that just finished unlinked the
-    file this process opened, so lock the one now at the path instead."""
+    """Hold ``lock_path`` (flock, exclusive, created if need be, this
+    process's id written in it); a lock held by another running command
+    is refused with an InputError naming ``path``.  A lock whose recorded
+    writer is dead (a descendant it left behind holds the flock) is
+    stale: it is unlinked and a new one taken, the dead writer's
+    temporary file never being renamed.  The inode check: a holder that
+    just finished (or a stale lock taken over) unlinked the file this
+    process opened, so lock the one now at the path instead."""
     import fcntl
     while True:
         try:
@@ -274,9 +354,19 @@ def _lock(lock_path: str, path: str) -> tuple[str, int]:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
+            holder = _holder(fd)
+            if holder is not None and holder != os.getpid() and \
+                    not _alive(holder):
+                with contextlib.suppress(OSError):
+                    if os.path.samestat(os.fstat(fd), os.stat(lock_path)):
+                        _drop_dead_writers_file(fd, lock_path)
+                        os.unlink(lock_path)      # stale: take it over
+                os.close(fd)
+                continue
             os.close(fd)
-            raise InputError(f"{path}: in use: another contactsep command "
-                             f"is writing it (it holds "
+            who = f" (process {holder})" if holder else ""
+            raise InputError(f"{path}: in use: another contactsep command"
+                             f"{who} is writing it (it holds "
                              f"{os.path.basename(lock_path)}); wait for it "
                              f"or write elsewhere") from None
         try:
@@ -284,6 +374,11 @@ def _lock(lock_path: str, path: str) -> tuple[str, int]:
         except FileNotFoundError:
             same = False
         if same:
+            _drop_dead_writers_file(fd, lock_path)
+            with contextlib.suppress(OSError):
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+            _HELD_LOCKS.add(fd)
             return lock_path, fd
         os.close(fd)
 
@@ -416,7 +511,8 @@ def interruptible(long: bool, function, *args):
             signal.signal(signal.SIGINT, signal.SIG_DFL)
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
             signal.pthread_sigmask(signal.SIG_SETMASK, mask)
-            _die_with(parent)
+            die_with_parent(parent)
+            forget_locks()
             data = _answer(function, args)
             with os.fdopen(write_fd, "wb") as pipe:
                 pipe.write(data)
@@ -446,17 +542,18 @@ def interruptible(long: bool, function, *args):
         ok, value = pickle.loads(b"".join(chunks))
     except Exception:                    # noqa: BLE001 - no whole answer
         _check_stops()      # a Ctrl-C that ended the child ends this too
-        raise InputError(f"the computation's process ended without an "
-                         f"answer (status {code}: killed, or out of "
-                         f"memory)") from None
+        raise ComputationLost(f"the computation's process ended without "
+                              f"an answer (status {code}: killed, or out "
+                              f"of memory)") from None
     if not ok:
         raise value
     return value
 
 
-def _die_with(parent: int) -> None:
-    """In a child: be killed when ``parent`` ends (Linux), so that a
-    sweep's worker killed outright leaves no computation behind."""
+def die_with_parent(parent: int) -> None:
+    """In a child: be killed when ``parent`` ends, by any signal (Linux:
+    PR_SET_PDEATHSIG), so that a command killed outright leaves no
+    worker or computation behind; a parent already gone: exit now."""
     try:
         import ctypes
         libc = ctypes.CDLL(None, use_errno=True)

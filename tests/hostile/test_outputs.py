@@ -85,8 +85,9 @@ def test_a_second_sweep_on_the_same_csv_is_refused(tmp_path):
         second = run("sweep", "--vary", "h2=0.1:0.5:5", "--workers", "1",
                      "--csv", str(path))
         assert refusal(second.returncode, second.stderr) == (
-            f"{path}: in use: another contactsep command is writing it (it "
-            f"holds .out.csv.lock); wait for it or write elsewhere")
+            f"{path}: in use: another contactsep command (process "
+            f"{first.pid}) is writing it (it holds .out.csv.lock); wait for "
+            f"it or write elsewhere")
         assert path.read_text() == OLD
     finally:
         first.send_signal(signal.SIGINT)

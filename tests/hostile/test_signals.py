@@ -66,12 +66,12 @@ SIGTERM = (signal.SIGTERM, 143, False)    # to the command, as kill does
 #: between whole chunks and calls (study, sweep).  Each command with the
 #: other signal: under -m slow.
 LONG = [
-    # (the thesis's step and window: the designs' own at N = 1024 are
-    # past the work budget, refused at once)
+    # (the thesis's step, a longer window: the designs' own at N = 1024 are
+    # past the work budget, refused at once; 0.06 s now takes under 2 s)
     (["chatter", "--model", "hertz", "--n-modes", "1024", "--dt", "5e-8",
-      "--t-end", "0.06"], 2.0, SIGTERM),
+      "--t-end", "0.15"], 2.0, SIGTERM),
     (["chatter", "--model", "newton", "--n-modes", "1024", "--dt", "5e-8",
-      "--t-end", "0.06"], 2.0, CTRL_C),
+      "--t-end", "0.15"], 2.0, CTRL_C),
     (["chatter", "--model", "appE", "--n-modes", "128"], 2.0, CTRL_C),
     (["study", "fig5", "--n-modes", "100000"], 2.0, CTRL_C),
     # 1e5 designs: about 8 minutes on 2 cores (1000 took 4.6 s on a
@@ -108,7 +108,11 @@ def test_a_long_command_stops_at_once(tmp_path, args, after, how):
     code, took, err = _stop(args, signum, after, tmp_path, group)
     assert code == status, err
     assert took < PROMPT, took
-    assert err.count("\n") <= 1 and "Traceback" not in err
+    # one line at most beside the warnings given before the work (a
+    # given dt coarser than the design's own)
+    said = [line for line in err.splitlines()
+            if not line.startswith("contactsep: warning: dt: ")]
+    assert len(said) <= 1 and "Traceback" not in err
     if "--csv" in args:              # the chunks done, whole, and a note
         lines = (tmp_path / "s.csv").read_text().splitlines()
         assert lines[-1].startswith("# interrupted after ")

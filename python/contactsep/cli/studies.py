@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import shutil
+import stat
 import sys
 import warnings
 from pathlib import Path
@@ -16,7 +19,7 @@ from contactsep.cli.design_options import (
 from contactsep.cli.guards import NamedWriter, check_creatable, drop_echoes
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import ContactsepWarning, InputError, printable
 from contactsep.studies.chatter_sweep import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
@@ -169,6 +172,12 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "it at the end")
     sweep.add_argument("--parquet", metavar="FILE",
                        help="also write Parquet (needs pyarrow)")
+    sweep.add_argument("--resume", action="store_true",
+                       help="keep each finished chunk beside the --csv "
+                            "(else --parquet) file, in .FILE.resume/, and "
+                            "continue a sweep an earlier run of the same "
+                            "command left there (killed, interrupted): "
+                            "the same outputs as an uninterrupted run")
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
     sweep.add_argument("--chunk-size", type=integer(1, MAX_CHUNK_SIZE),
@@ -383,6 +392,21 @@ def _settings(args: argparse.Namespace) -> dict:
             for name, (text, option) in typed.items() if text is not None}
 
 
+def _say_partial(writers, resume: bool) -> None:
+    """On stderr, each output an interrupted sweep left with its finished
+    rows only (the CSV's last comment and the Parquet metadata say so
+    too)."""
+    for writer in writers:
+        note = getattr(writer, "partial", None)
+        if note:
+            more = ("rerun the command to complete it" if resume else
+                    "add --resume to keep the chunks of the next run")
+            with contextlib.suppress(OSError, ValueError):
+                sys.stderr.write(f"contactsep: {writer.path}: partial, "
+                                 f"{printable(note)}; {more}\n")
+                sys.stderr.flush()
+
+
 def run_sweep(args: argparse.Namespace) -> int:
     from contactsep.studies import runner
     from contactsep.studies.sweep import make_spec, parse_sample, parse_vary
@@ -407,27 +431,46 @@ def run_sweep(args: argparse.Namespace) -> int:
         runner.require_pyarrow()
     check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
     progress = {"auto": None, "always": True, "never": False}[args.progress]
+    kept = args.csv or args.parquet
+    if args.resume and not kept:
+        raise InputError("--resume keeps the finished chunks beside the "
+                         "output: give --csv or --parquet")
+    if args.resume:
+        info = output.target_info(kept)
+        if info is not None and not stat.S_ISREG(info.st_mode):
+            raise InputError(f"--resume keeps the finished chunks beside "
+                             f"the output: {kept} is not a regular file")
     # every option checked: only now the scheduler and the files
     scheduler = runner.connect(args.scheduler) if args.scheduler else None
     writers = []
     try:
         if args.parquet:
-            writers.append(NamedWriter(runner.ParquetWriter(args.parquet, spec),
-                                  "--parquet", args.parquet))
+            writers.append(NamedWriter(
+                runner.ParquetWriter(args.parquet, spec), "--parquet",
+                args.parquet))
         if args.csv:
-            writers.append(NamedWriter(runner.CsvWriter(args.csv, spec), "--csv",
-                                  args.csv))
+            writers.append(NamedWriter(runner.CsvWriter(args.csv, spec),
+                                       "--csv", args.csv))
+        # the writers hold the outputs' locks: the chunks are this run's
+        store = runner.ChunkStore(kept, spec) if args.resume else None
+        if store is None and kept:
+            # a sweep started afresh: an earlier one's chunks are obsolete
+            from contactsep.studies.resume import store_path
+            shutil.rmtree(store_path(kept), ignore_errors=True)
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
-            scheduler=scheduler, progress=progress)
-    except BaseException:
+            scheduler=scheduler, progress=progress, store=store)
+    except BaseException as error:
         for writer in writers:
             writer.abort()      # a no-op for a writer run_sweep closed
+        if isinstance(error, output.Terminated):
+            _say_partial(writers, args.resume)   # else its error says so
         raise
     finally:
         if scheduler is not None:
-            scheduler.close()
+            with contextlib.suppress(Exception):
+                scheduler.close()
     if args.json:
         output.write_json(sys.stdout, summary)
     else:

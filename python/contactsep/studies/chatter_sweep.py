@@ -27,6 +27,7 @@ from contactsep.chatter import status as chatter_status
 from contactsep.chatter.simulate import CoarseStepWarning, UnconvergedWarning
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
+from contactsep.output import ComputationLost
 from contactsep.studies import fields as design_fields
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep import SweepSpec, chunk_inputs, count_failures
@@ -116,6 +117,8 @@ def simulate_design(fields: dict, model: str, settings: dict) -> tuple:
                               single_impulse=False, **settings)
     except StepperError:
         return _failed(STEPPER_FAILED)
+    except ComputationLost:
+        raise           # the machine's fault, not the design's: no row
     except InputError:
         return _failed(INVALID_INPUT)
     except (ArithmeticError, np.linalg.LinAlgError):
@@ -197,7 +200,14 @@ def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
     rows = []
     for i in range(size):
         fields, settings = _row(spec, varied, i)
-        rows.append(simulate_design(fields, spec.model, settings))
+        try:
+            rows.append(simulate_design(fields, spec.model, settings))
+        except ComputationLost as error:
+            # the sweep stops (its finished chunks kept, resumable), never
+            # a row saying "invalid input" for a design that was not
+            raise ComputationLost(f"design {first + i}: {error}; the sweep "
+                                  f"stopped (rerun with --resume to "
+                                  f"continue)") from None
     out = {design_fields.column_name(n): varied[n] for n in spec.fields}
     results = list(zip(*rows)) if rows else [()] * len(RESULT_COLUMNS)
     for name, values in zip(RESULT_COLUMNS, results):
@@ -224,9 +234,17 @@ class ChatterSummary:
         self.gap.add(np.asarray(columns["max_lower_gap_in"])[ok])
         self.open_time.add(np.asarray(columns["circuit_open_s"])[ok])
 
+    def merge(self, other: "ChatterSummary") -> None:
+        """Add another chunk's summary (a worker's)."""
+        self.opened += other.opened
+        self.gap.merge(other.gap)
+        self.open_time.merge(other.open_time)
+        for code, count in other.failed.items():
+            self.failed[code] = self.failed.get(code, 0) + count
+
     @property
     def n(self) -> int:
-        return self.gap.n
+        return self.gap.count
 
     @property
     def n_failed(self) -> int:

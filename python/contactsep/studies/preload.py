@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,7 +53,12 @@ from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
-from contactsep.studies.runner import _quiet_worker, usable_cores
+from contactsep.studies.pool import (
+    map_longest_first,
+    stop_pool,
+    usable_cores,
+    worker_pool,
+)
 from contactsep.studies.study import Study, refuse_fixed, thesis_design
 
 #: The chart's separators and release heights (in).
@@ -289,12 +294,28 @@ def _bisect(brackets, tested, has_event, tolerance) -> None:
             brackets[row][0 if event else 1] = preload
 
 
+def _preload_of(task) -> float:
+    """A task's preload (lb; 0 for a task without one): the cost order
+    of a batch (pool.map_longest_first)."""
+    value = task[3] if isinstance(task, tuple) and len(task) > 3 else 0.0
+    return float(value) if isinstance(value, (int, float)) else 0.0
+
+
 def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
     simulation; runs in a worker)."""
+    from contactsep.chatter.simulate import (
+        CoarseStepWarning,
+        UnconvergedWarning,
+    )
     design, model, settings, preload = task
-    result = simulate(design, model=model, preload=preload, samples=1,
-                      single_impulse=False, **settings)
+    with warnings.catch_warnings():
+        # one line per run from every worker would bury the answer: the
+        # chart says once what step it runs at (preload_chart)
+        warnings.simplefilter("ignore", CoarseStepWarning)
+        warnings.simplefilter("ignore", UnconvergedWarning)
+        result = simulate(design, model=model, preload=preload, samples=1,
+                          single_impulse=False, **settings)
     return result.n_events > 0
 
 
@@ -314,33 +335,31 @@ class Simulations:
 
     def __enter__(self) -> "Simulations":
         if self.workers > 1:
-            self._pool = ProcessPoolExecutor(self.workers,
-                                             initializer=_quiet_worker)
+            self._pool = worker_pool(self.workers)
         return self
 
     def __exit__(self, kind, *exc) -> None:
         if self._pool is None:
             return
-        if kind is not None:
-            # stopped early (Ctrl-C, SIGTERM, a failed run): the runs
-            # still going are dropped, so their workers are killed now
-            # rather than waited for (a run may take a minute at large N)
-            for process in list((getattr(self._pool, "_processes", None)
-                                 or {}).values()):
-                process.kill()
-        self._pool.shutdown(wait=True, cancel_futures=True)
+        # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
+        # going are dropped, so their workers are killed now rather than
+        # waited for (a run may take a minute at large N)
+        stop_pool(self._pool, finished=kind is None)
 
     def map(self, function, tasks: list) -> list:
         """function(task) for every task, in order (function and tasks
         picklable: module-level, plain data and Designs)."""
         start = time.perf_counter()
-        results = (map(function, tasks) if self._pool is None
-                   else self._pool.map(function, tasks))
-        out = []
-        for result in results:
-            out.append(result)
-            if self.progress is not None:
-                self.progress(1)
+        if self._pool is None:
+            out = []
+            for task in tasks:
+                out.append(function(task))
+                if self.progress is not None:
+                    self.progress(1)
+        else:
+            # the preloaded runs (slower: fixed steps while pressed) first
+            out = map_longest_first(self._pool, function, tasks,
+                                    cost=_preload_of, done=self.progress)
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
         return out

@@ -7,21 +7,38 @@ import collections
 import math
 import os
 import shutil
-import signal
-import sys
 import tempfile
-import threading
 import time
-import warnings
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
-import numpy as np
-
 from contactsep import output
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
-from contactsep.studies import chatter_sweep
+from contactsep.studies import chatter_sweep, dask_run
+from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
+    SCHEDULER_TIMEOUT_S,
+    SchedulerLost,
+    connect,
+)
+from contactsep.studies.pool import (  # noqa: F401 - the runner's API
+    WORKERS_PER_CORE,
+    max_workers,
+    quiet_worker,
+    stop_pool,
+    usable_cores,
+    worker_pool,
+)
+from contactsep.studies.resume import (  # noqa: F401 - the runner's API
+    ChunkStore,
+    ResumeError,
+    load_columns,
+    save_columns,
+)
+from contactsep.studies.stops import (  # noqa: F401 - the runner's API
+    _progress,
+    _StopRequests,
+    _wait,
+)
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
@@ -46,86 +63,8 @@ class SweepInterrupted(InputError):
     interrupted = True
 
 
-def _progress(total: int, enabled: bool | None):
-    """A tqdm bar on a terminal (stderr), or nothing.  Asked for
-    (``enabled`` True) without tqdm installed: a warning says so."""
-    if enabled is None:
-        enabled = sys.stderr.isatty()
-        required = False
-    else:
-        required = enabled
-    if not enabled:
-        return None
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        if required:
-            warnings.warn("no progress bar: it needs tqdm (pip install "
-                          "'contactsep[progress]')", ContactsepWarning)
-        return None
-    # shown only once the run has taken a second
-    return tqdm(total=total, unit="design", unit_scale=True, delay=1.0,
-                file=sys.stderr)
-
-
-class _StopRequests:
-    """SIGINT and SIGTERM during a sweep only note the request; the sweep
-    acts on it between chunks and while it waits for one.  An exception
-    raised by a handler anywhere else (inside the process pool's own
-    code, holding its locks) could deadlock the pool's shutdown."""
-
-    def __init__(self) -> None:
-        self.signum = None
-        self._previous = {}
-
-    def __enter__(self) -> "_StopRequests":
-        if threading.current_thread() is threading.main_thread():
-            for signum in (signal.SIGINT, signal.SIGTERM):
-                previous = signal.getsignal(signum)
-                if previous not in (signal.SIG_IGN, None):
-                    self._previous[signum] = previous
-                    signal.signal(signum, self._note)
-        return self
-
-    def _note(self, signum, frame) -> None:
-        if self.signum is None:
-            self.signum = signum
-
-    def check(self) -> None:
-        """Act on a noted signal: its own handler runs now, here (Ctrl-C
-        raises KeyboardInterrupt; the command's SIGTERM handler raises
-        its exception; a default SIGTERM ends the process)."""
-        if self.signum is not None:
-            self.__exit__()
-            signal.raise_signal(self.signum)
-
-    def __exit__(self, *exc) -> None:
-        for signum, previous in self._previous.items():
-            signal.signal(signum, previous)
-        self._previous = {}
-
-
-def _wait(future, stop: _StopRequests):
-    """A chunk's columns, listening for a stop every quarter second (a
-    chunk that failed because the same Ctrl-C ended it: the stop)."""
-    while True:
-        stop.check()
-        try:
-            return future.result(timeout=0.25)
-        except TimeoutError:
-            continue
-        except BaseException:
-            stop.check()
-            raise
-
-
-def _quiet_worker() -> None:
-    """Ctrl-C reaches the whole process group: the workers leave it to
-    the parent (which stops them between chunks) instead of printing a
-    KeyboardInterrupt each.  SIGTERM ends a worker (as the pool ends the
-    rest when one has died), never with the parent's handler."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+#: The pool workers' set-up (the name studies.preload imports).
+_quiet_worker = quiet_worker
 
 
 def default_chunk_size(spec: SweepSpec) -> int:
@@ -158,59 +97,147 @@ def evaluate_chunk_timed(spec, first, last) -> tuple[dict, float]:
     return columns, time.perf_counter() - start
 
 
-def _evaluate_to_file(spec, first, last, directory) -> tuple[str, float]:
-    """A worker's chunk, saved beside the parent: the message back is a
-    short path, written to the pipe at once (a worker killed while it
-    sent megabytes of columns would leave the pool reading the rest of
-    the message forever), and no pickling of the columns."""
+def _new_summary(spec: SweepSpec, threshold):
+    return Summary(threshold=threshold) if spec.model == "eq23" \
+        else chatter_sweep.ChatterSummary()
+
+
+def chunk_result(spec, first, last, threshold, mode, directory=None):
+    """A chunk computed where it runs (a worker), in the form the parent
+    wants, with the seconds it took: ``mode`` "summary" (nothing is
+    written: the chunk's own summary, a few numbers), "file" (its
+    columns saved as ``directory``/FIRST-LAST.npz, the message back a
+    short path: a worker killed while it sent megabytes of columns
+    would leave the pool reading the rest of the message forever), or
+    "columns" (the NumPy columns themselves: Dask)."""
     columns, seconds = evaluate_chunk_timed(spec, first, last)
-    path = os.path.join(directory, f"{first}.npz")
-    np.savez(path, **{k: np.ascontiguousarray(v) for k, v in columns.items()})
-    return path, seconds
+    if mode == "summary":
+        summary = _new_summary(spec, threshold)
+        summary.add(columns)
+        return summary, last - first, seconds
+    if mode == "file":
+        path = os.path.join(directory, f"{first:012d}-{last:012d}.npz")
+        save_columns(path, columns)
+        return path, last - first, seconds
+    return columns, last - first, seconds
 
 
-def _load(path: str) -> dict:
-    with np.load(path) as data:
-        columns = {name: data[name] for name in data.files}
-    os.unlink(path)
-    return columns
+class _Done:
+    """A chunk that needs no work (stored by an earlier run)."""
+
+    def __init__(self, value) -> None:
+        self.value = value
 
 
-def _results_local(spec, bounds: Chunks, workers, stop):
+def _submit_all(bounds: Chunks, submit, store, window_size, take):
+    """Submit each chunk the store lacks (``submit(first, last)``, a
+    future), ``window_size`` at most in flight, and yield
+    ``take(item)`` of each chunk in order."""
+    window = collections.deque()
+    for first, last, stored in bounds.plan():
+        if stored:
+            window.append((first, last, _Done(store.load(first))))
+        else:
+            window.append((first, last, submit(first, last)))
+        while len(window) >= window_size or (
+                window and isinstance(window[0][2], _Done)):
+            yield take(window.popleft())
+    while window:
+        yield take(window.popleft())
+
+
+#: Times a sweep's local pool is started again after a worker died.
+MAX_POOL_RESTARTS = 3
+
+
+def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
+                   store):
+    """(kind, value, designs) of each chunk in order: kind "summary"
+    (value a partial summary) or "columns"."""
     if workers <= 1:
-        for first, last in bounds:
+        for first, last, stored in bounds.plan():
             stop.check()
-            columns, seconds = evaluate_chunk_timed(spec, first, last)
-            bounds.record(last - first, seconds)
-            yield columns
+            if stored:
+                yield "columns", store.load(first), last - first
+                continue
+            value, designs, seconds = chunk_result(
+                spec, first, last, threshold,
+                "summary" if mode == "summary" else "columns")
+            bounds.record(designs, seconds)
+            if store is not None:
+                store.save(first, last, value)
+            yield ("summary" if mode == "summary" else "columns"), value, \
+                designs
         return
-    shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
-    directory = tempfile.mkdtemp(prefix="contactsep-sweep-", dir=shared)
-    pool = ProcessPoolExecutor(max_workers=workers,
-                               initializer=_quiet_worker)
+    if store is not None:
+        directory = store.path          # the workers save into the store
+    else:
+        shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
+        directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
+                                     dir=shared)
+    pools = [worker_pool(workers)]      # the last one is in use
     finished = started = False
+    task_mode = "summary" if mode == "summary" else "file"
 
-    def result(future):
-        path, seconds = _wait(future, stop)
-        columns = _load(path)
-        bounds.record(len(columns["status"]), seconds)
-        return columns
+    def restart(broken: int) -> None:
+        """Pool number ``broken`` lost a worker: a new one, unless that
+        happened MAX_POOL_RESTARTS times (a chunk that kills its worker
+        each time, as the OOM killer would)."""
+        if broken == len(pools):
+            if len(pools) > MAX_POOL_RESTARTS:
+                raise BrokenProcessPool("a worker died too often")
+            stop_pool(pools[-1], finished=False)
+            pools.append(worker_pool(workers))
+
+    def submit(first, last):
+        nonlocal started
+        while True:
+            try:
+                future = pools[-1].submit(chunk_result, spec, first, last,
+                                          threshold, task_mode, directory)
+                break
+            except BrokenProcessPool:
+                stop.check()
+                restart(len(pools))
+        future.pool = len(pools)
+        started = True
+        return future
+
+    def result(first, last, work):
+        """A chunk's result; a worker killed meanwhile (its pool broken)
+        costs the chunks in flight, run again on a new pool (the same
+        bits: a chunk does not depend on where it runs)."""
+        while True:
+            try:
+                return _wait(work, stop)
+            except BrokenProcessPool:
+                stop.check()   # a SIGTERM to the group: workers went first
+                restart(work.pool)
+                work = submit(first, last)
+
+    def take(item):
+        first, last, work = item
+        if isinstance(work, _Done):
+            return "columns", work.value, last - first
+        value, designs, seconds = result(first, last, work)
+        bounds.record(designs, seconds)
+        if task_mode == "summary":
+            return "summary", value, designs
+        columns = load_columns(value)
+        if store is None:
+            os.unlink(value)
+        else:
+            store.chunks[first] = last
+        return "columns", columns, designs
 
     try:
-        window = collections.deque()
-        for first, last in bounds:
-            window.append(pool.submit(_evaluate_to_file, spec, first, last,
-                                      directory))
-            started = True
-            if len(window) >= 2 * workers:
-                yield result(window.popleft())
-        while window:
-            yield result(window.popleft())
+        yield from _submit_all(bounds, submit, store, 2 * workers, take)
         finished = True
     except BrokenProcessPool:
         stop.check()   # a SIGTERM to the whole group: the workers went first
-        raise InputError("a worker process died (killed, or out of "
-                         "memory: try a smaller --chunk-size)") from None
+        raise InputError(f"a worker process died {MAX_POOL_RESTARTS + 1} "
+                         f"times (killed, or out of memory: try a smaller "
+                         f"--chunk-size)") from None
     except OSError as error:
         if started:
             raise
@@ -221,79 +248,61 @@ def _results_local(spec, bounds: Chunks, workers, stop):
                          f"not be started ({error.strerror or error}); try "
                          f"fewer") from None
     finally:
-        if not finished:
-            # stopped early (a signal, a writer's error, a dead worker,
-            # a pool that could not start): the chunks still running are
-            # dropped, so their workers are stopped now rather than
-            # waited for (a design may take seconds).  Killed, not
-            # terminated: a SIGTERM can reach one before its initializer,
-            # while it still has this process's handlers
-            for process in list((getattr(pool, "_processes", None)
-                                 or {}).values()):
-                process.kill()
-        pool.shutdown(wait=started, cancel_futures=not finished)
-        shutil.rmtree(directory, ignore_errors=True)
+        # stopped early (a signal, a writer's error, a dead worker, a
+        # pool that could not start): the chunks still running are
+        # dropped, so their workers are stopped now rather than waited
+        # for (a design may take seconds)
+        stop_pool(pools[-1], finished, wait=started)
+        if store is None:
+            shutil.rmtree(directory, ignore_errors=True)
 
 
-def _results_dask(spec, bounds: Chunks, address, stop):
+def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
+                  store):
+    """As :func:`_results_local`, the chunks on a Dask cluster
+    (contactsep.studies.dask_run)."""
     client = address if hasattr(address, "submit") else connect(address)
+    task_mode = "summary" if mode == "summary" else "columns"
+    bounds.workers = dask_run.threads(client)
+    futures = []
+    done = 0
+    # the spec goes to the workers once, not with every task
     try:
-        window = collections.deque()
-        for first, last in bounds:
-            window.append(client.submit(evaluate_chunk_timed, spec, first,
-                                        last, pure=False))
-            if len(window) >= 8:
-                columns, seconds = _wait(window.popleft(), stop)
-                bounds.record(len(columns["status"]), seconds)
-                yield columns
-        while window:
-            columns, seconds = _wait(window.popleft(), stop)
-            bounds.record(len(columns["status"]), seconds)
-            yield columns
+        shared = client.scatter(spec, broadcast=True, hash=False)
+    except Exception:        # noqa: BLE001 - a client without scatter
+        shared = spec
+
+    def submit(first, last):
+        future = client.submit(chunk_result, shared, first, last, threshold,
+                               task_mode, pure=False)
+        futures.append(future)
+        return future
+
+    def take(item):
+        nonlocal done
+        first, last, work = item
+        if isinstance(work, _Done):
+            done += last - first
+            return "columns", work.value, last - first
+        value, designs, seconds = dask_run.wait(client, work, stop, done)
+        bounds.record(designs, seconds)
+        if store is not None:
+            store.save(first, last, value)
+        done += designs
+        return task_mode, value, designs
+
+    try:
+        with dask_run.quiet_dask():
+            yield from _submit_all(bounds, submit, store,
+                                   2 * bounds.workers + 2, take)
     finally:
-        if client is not address:
-            client.close()
-
-
-#: Seconds to wait for a Dask scheduler to answer.
-SCHEDULER_TIMEOUT_S = 10
-
-
-def connect(address: str):
-    """A Client of the scheduler at ``address``; an address Dask cannot
-    read, or a scheduler that does not answer, is one InputError."""
-    try:
-        from distributed import Client
-    except ImportError:
-        raise InputError("--scheduler needs dask.distributed: pip install "
-                         "'contactsep[scale]'") from None
-    try:
-        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
-    except (ValueError, TypeError) as error:
-        raise InputError(f"--scheduler: found {address!r}, expected a "
-                         f"scheduler address such as tcp://HOST:8786 "
-                         f"({error})") from None
-    except (OSError, TimeoutError) as error:
-        raise InputError(f"--scheduler {address}: no scheduler answered "
-                         f"within {SCHEDULER_TIMEOUT_S} s "
-                         f"({error})") from None
-
-
-def usable_cores() -> int:
-    """Cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:      # not on Linux
-        return os.cpu_count() or 1
-
-
-#: Most local worker processes per usable core: more only costs memory
-#: (each holds the kernel and a chunk).
-WORKERS_PER_CORE = 4
-
-
-def max_workers() -> int:
-    return WORKERS_PER_CORE * usable_cores()
+        with dask_run.quiet_dask():
+            try:
+                client.cancel([f for f in futures if not f.done()])
+            except Exception:    # noqa: BLE001 - a lost scheduler
+                pass
+            if client is not address:
+                client.close()
 
 
 def check_run(*, chunk_size=None, workers=None, threshold=None
@@ -322,9 +331,11 @@ def check_run(*, chunk_size=None, workers=None, threshold=None
 
 def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
               chunk_size: int | None = None, workers: int | None = None,
-              scheduler=None, progress: bool | None = None) -> dict:
+              scheduler=None, progress: bool | None = None,
+              store: ChunkStore | None = None) -> dict:
     """Evaluate every design of ``spec`` chunk by chunk, in order; each
-    chunk goes to every writer as it arrives.  Returns the summary
+    chunk goes to every writer as it arrives (without writers each
+    worker sends back its chunk's summary only).  Returns the summary
     (:meth:`Summary.as_dict`, or :meth:`ChatterSummary.as_dict
     <contactsep.studies.chatter_sweep.ChatterSummary.as_dict>` for a
     chatter model; ``elapsed_s``; and ``inputs``: what made the sweep,
@@ -340,6 +351,9 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     closes the writers with the chunks already written, then raises
     :class:`SweepInterrupted` (SIGTERM: the command's own exception); any
     other error drops the writers' files (:meth:`CsvWriter.abort`).
+    ``store``: a :class:`~contactsep.studies.resume.ChunkStore` that
+    keeps every finished chunk (and gives those an earlier run kept),
+    removed when the writers' files are in place.
     """
     check_run(chunk_size=chunk_size, workers=workers, threshold=threshold)
     check_threshold(spec, threshold)
@@ -350,26 +364,34 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     # a chatter design takes 10-400 ms: the first chunk is one design
     bounds = Chunks(spec.size, chunk_size, spec.max_modes,
                     spec.model != "eq23"
-                    or costly(spec.max_modes, spec.max_tau))
-    if spec.size <= bounds.next:
+                    or costly(spec.max_modes, spec.max_tau),
+                    workers=workers,
+                    stored=store.chunks if store is not None else None)
+    if spec.size - (store.designs if store is not None else 0) \
+            <= bounds.next:
         workers = 1
-    summary = Summary(threshold=threshold) if spec.model == "eq23" \
-        else chatter_sweep.ChatterSummary()
+    summary = _new_summary(spec, threshold)
+    mode = "columns" if writers or store is not None else "summary"
     bar = _progress(spec.size, progress)
     done = 0
     start = time.perf_counter()
     with _StopRequests() as stop, output.stop_checks(stop.check):
-        results = _results_dask(spec, bounds, scheduler, stop) \
-            if scheduler else _results_local(spec, bounds, workers, stop)
+        results = _results_dask(
+            spec, bounds, scheduler, stop, mode, threshold, store) \
+            if scheduler else _results_local(
+                spec, bounds, workers, stop, mode, threshold, store)
         ended = None
         try:
-            for columns in results:
-                for writer in writers:
-                    writer.write(columns)
-                summary.add(columns)
-                done += len(columns["status"])
+            for kind, value, designs in results:
+                if kind == "summary":
+                    summary.merge(value)
+                else:
+                    for writer in writers:
+                        writer.write(value)
+                    summary.add(value)
+                done += designs
                 if bar is not None:
-                    bar.update(len(columns["status"]))
+                    bar.update(designs)
                 stop.check()
         except KeyboardInterrupt:
             ended = "interrupted"
@@ -392,6 +414,8 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
                                    f"designs")
             if bar is not None:
                 bar.close()
+    if store is not None:
+        store.remove()          # the outputs are in place
     result = summary.as_dict()
     result["elapsed_s"] = time.perf_counter() - start
     result["inputs"] = spec.inputs()
@@ -410,6 +434,7 @@ def _close(writers, ended: str | None, note: str) -> None:
                 getattr(writer, "abort", writer.close)()
             elif ended is not None and hasattr(writer, "abort"):
                 writer.close(interrupted=note)
+                writer.partial = note
             else:
                 writer.close()
         except Exception as caught:      # noqa: BLE001 - raised below

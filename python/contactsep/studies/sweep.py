@@ -27,6 +27,14 @@ import numpy as np
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
+from contactsep.studies.chunks import (  # noqa: F401 - the sweep's API
+    CHUNK_MEMORY,
+    CHUNKS_PER_WORKER,
+    FIRST_CHUNK_COST,
+    MIN_CHUNK_S,
+    TARGET_CHUNK_S,
+    Chunks,
+)
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep_checks import (
@@ -46,12 +54,6 @@ SAMPLE_BLOCK = 65536
 #: columns of a million designs are ~0.5 GB in the parent).
 CHUNK_SIZE = 100_000
 MAX_CHUNK_SIZE = 1_000_000
-#: Seconds of work a chunk is sized for (Chunks).
-TARGET_CHUNK_S = 0.5
-#: Modes x designs of the first chunk, before any is timed.
-FIRST_CHUNK_COST = 4096
-#: Bytes a chunk's per-mode arrays may take.
-CHUNK_MEMORY = 64 << 20
 #: Most designs a sweep may have: 1e12 takes weeks on a hundred cores
 #: and writes a 100 TB CSV; the designs are counted in Python integers
 #: (a grid of 2^32 x 2^32 points wrapped to 0 in int64 and ran nothing).
@@ -346,46 +348,6 @@ def evaluate_chunk(spec: SweepSpec, first: int, last: int) -> dict:
     return out
 
 
-class Chunks:
-    """(first, last) of each chunk, sized by cost rather than count, so
-    that a chunk takes about TARGET_CHUNK_S whatever N is (a signal is
-    acted on between chunks, and a stopped pool finishes its running
-    ones) and its per-mode arrays stay within CHUNK_MEMORY: at most
-    ``chunk_size`` designs, the first few a guess from N, the others
-    from the time per design measured so far (:meth:`record`).  The
-    results do not depend on the chunking."""
-
-    def __init__(self, size: int, chunk_size: int, modes: int,
-                 costly: bool = False) -> None:
-        self.size = size
-        # the kernel's per-mode arrays: p1, p2, p3, c3 (8 bytes each)
-        per_design = 8 * (4 * modes + 64)
-        self.limit = max(1, min(chunk_size, CHUNK_MEMORY // per_design))
-        # a design that may take seconds (model.evaluate.costly): one
-        self.next = 1 if costly else \
-            max(1, min(self.limit, FIRST_CHUNK_COST // modes))
-        self._seconds_per_design = None
-
-    def record(self, designs: int, seconds: float) -> None:
-        """A chunk of ``designs`` took ``seconds``: size the next ones."""
-        rate = seconds / max(designs, 1)
-        if self._seconds_per_design is None or \
-                rate > self._seconds_per_design:
-            self._seconds_per_design = rate
-        else:   # forget a slow start slowly (imports, page faults)
-            self._seconds_per_design = 0.5 * (self._seconds_per_design
-                                              + rate)
-        wanted = TARGET_CHUNK_S / max(self._seconds_per_design, 1e-9)
-        self.next = int(max(1, min(self.limit, 8 * self.next, wanted)))
-
-    def __iter__(self):
-        first = 0
-        while first < self.size:
-            last = min(first + self.next, self.size)
-            yield first, last
-            first = last
-
-
 @dataclass
 class Summary:
     """Running statistics of max y3 over the designs evaluated with
@@ -405,9 +367,16 @@ class Summary:
         if self.threshold is not None:
             self.exceed += int(np.sum(y > self.threshold))
 
+    def merge(self, other: "Summary") -> None:
+        """Add another chunk's summary (a worker's)."""
+        self.exceed += other.exceed
+        self.y3.merge(other.y3)
+        for code, count in other.failed.items():
+            self.failed[code] = self.failed.get(code, 0) + count
+
     @property
     def n(self) -> int:
-        return self.y3.n
+        return self.y3.count
 
     @property
     def n_failed(self) -> int:
@@ -425,8 +394,8 @@ class Summary:
                "n_failed_by_status": dict(sorted(self.failed.items())),
                "y3_max_mean_in": self.y3.mean,
                "y3_max_sd_in": self.y3.sd,
-               "y3_max_min_in": self.y3.low if n else None,
-               "y3_max_max_in": self.y3.high if n else None}
+               "y3_max_min_in": self.y3.minimum if n else None,
+               "y3_max_max_in": self.y3.maximum if n else None}
         if self.threshold is not None:
             out["threshold_in"] = self.threshold
             out["p_exceed"] = self.exceed / n if n else None

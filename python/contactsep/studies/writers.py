@@ -104,36 +104,71 @@ class CsvWriter:
         self._file.discard()
 
 
+#: Rows of a Parquet row group: fixed, so that the file does not depend
+#: on how the sweep was chunked (a resumed sweep's is byte-identical).
+ROW_GROUP = 65536
+
+
 class ParquetWriter:
-    """Streams chunks to a Parquet file (needs pyarrow); the file's
-    metadata key ``contactsep`` holds what the CSV's comments say, as
-    JSON (``title``, ``inputs``, ``notes``).  Written, locked and put in
-    place as :class:`CsvWriter`'s file (no comment at an interrupt: the
-    command's message says it)."""
+    """Streams chunks to a Parquet file (needs pyarrow), in row groups of
+    ROW_GROUP rows; the file's metadata key ``contactsep`` holds what the
+    CSV's comments say, as JSON (``title``, ``inputs``, ``notes``).
+    Written, locked and put in place as :class:`CsvWriter`'s file; an
+    interrupted sweep's file keeps its finished rows and says so in the
+    file's metadata: ``partial`` = ``true`` and ``interrupted`` = what
+    was done (the CSV's last comment)."""
 
     def __init__(self, path: str, spec: SweepSpec | None = None):
         require_pyarrow()
         self.path = path
-        self._metadata = {"contactsep": json_text({
-            "title": title(spec), "notes": column_notes(spec),
-            "inputs": spec.inputs() if spec is not None else None},
-            indent=None)}
+        self._about = {"title": title(spec), "notes": column_notes(spec),
+                       "inputs": spec.inputs() if spec is not None
+                       else None}
+        self._metadata = {"contactsep": json_text(self._about, indent=None)}
         self._file = output.Replacement(path, binary=True, lock=True)
         self._writer = None
+        self._pending = []
+        self._pending_rows = 0
 
     def write(self, columns: dict) -> None:
         import pyarrow as pa
-        import pyarrow.parquet as pq
         table = pa.table({k: np.ascontiguousarray(v)
                           for k, v in columns.items()})
-        table = table.replace_schema_metadata(self._metadata)
+        self._pending.append(table)
+        self._pending_rows += table.num_rows
+        if self._pending_rows >= ROW_GROUP:
+            self._flush(whole_groups=True)
+
+    def _flush(self, whole_groups: bool) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        if not self._pending:
+            return
+        table = pa.concat_tables(self._pending)
+        rows = table.num_rows
+        end = rows - rows % ROW_GROUP if whole_groups else rows
         if self._writer is None:
-            self._writer = pq.ParquetWriter(self._file.stream, table.schema)
-        self._writer.write_table(table)
+            schema = table.schema.with_metadata(self._metadata)
+            self._writer = pq.ParquetWriter(self._file.stream, schema)
+        for start in range(0, end, ROW_GROUP):
+            group = table.slice(start, min(ROW_GROUP, end - start))
+            self._writer.write_table(
+                group.combine_chunks().replace_schema_metadata(
+                    self._metadata), row_group_size=ROW_GROUP)
+        rest = table.slice(end)
+        self._pending = [rest] if rest.num_rows else []
+        self._pending_rows = rest.num_rows
 
     def close(self, interrupted: str | None = None) -> None:
+        if interrupted and self._writer is None and not self._pending:
+            self._file.discard()    # stopped before any row: keep the old
+            return
         try:
+            self._flush(whole_groups=False)
             if self._writer is not None:
+                if interrupted:
+                    self._writer.add_key_value_metadata({
+                        "partial": "true", "interrupted": interrupted})
                 self._writer.close()
         except BaseException:
             self._file.discard()

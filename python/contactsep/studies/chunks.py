@@ -1,0 +1,84 @@
+"""How a sweep is cut into chunks: by the measured cost of a design, so
+that a chunk takes a fraction of a second whatever the model and N, and
+every worker gets many of them."""
+
+from __future__ import annotations
+
+#: Seconds of work a chunk is sized for (Chunks).
+TARGET_CHUNK_S = 0.5
+#: Chunks each worker gets of the work left, at least, while a chunk
+#: stays above MIN_CHUNK_S (Chunks).
+CHUNKS_PER_WORKER = 20
+MIN_CHUNK_S = 0.2
+#: Modes x designs of the first chunk, before any is timed.
+FIRST_CHUNK_COST = 4096
+#: Bytes a chunk's per-mode arrays may take.
+CHUNK_MEMORY = 64 << 20
+
+
+class Chunks:
+    """(first, last) of each chunk, sized by cost rather than count, so
+    that a chunk takes about TARGET_CHUNK_S whatever N is (a signal is
+    acted on between chunks, and a stopped pool finishes its running
+    ones), each of ``workers`` gets at least CHUNKS_PER_WORKER of what
+    is left (down to MIN_CHUNK_S a chunk: the last chunks keep every
+    worker busy) and its per-mode arrays stay within CHUNK_MEMORY: at
+    most ``chunk_size`` designs, the first few a guess from N, the
+    others from the time per design measured so far (:meth:`record`).
+    ``stored`` (first -> last) are chunks already computed (a resumed
+    sweep): they are given as they are, and the new chunks fill the
+    gaps.  The results do not depend on the chunking."""
+
+    def __init__(self, size: int, chunk_size: int, modes: int,
+                 costly: bool = False, workers: int = 1,
+                 stored: dict | None = None) -> None:
+        self.size = size
+        self.workers = max(1, workers)
+        self.stored = dict(stored or {})
+        # the kernel's per-mode arrays: p1, p2, p3, c3 (8 bytes each)
+        per_design = 8 * (4 * modes + 64)
+        self.limit = max(1, min(chunk_size, CHUNK_MEMORY // per_design))
+        # a design that may take seconds (model.evaluate.costly): one
+        self.next = 1 if costly else \
+            max(1, min(self.limit, FIRST_CHUNK_COST // modes))
+        self._seconds_per_design = None
+        self._position = 0
+
+    def record(self, designs: int, seconds: float) -> None:
+        """A chunk of ``designs`` took ``seconds``: size the next ones."""
+        rate = seconds / max(designs, 1)
+        if self._seconds_per_design is None or \
+                rate > self._seconds_per_design:
+            self._seconds_per_design = rate
+        else:   # forget a slow start slowly (imports, page faults)
+            self._seconds_per_design = 0.5 * (self._seconds_per_design
+                                              + rate)
+        rate = max(self._seconds_per_design, 1e-9)
+        left = (self.size - self._position) * rate
+        target = min(TARGET_CHUNK_S, max(
+            MIN_CHUNK_S, left / (CHUNKS_PER_WORKER * self.workers)))
+        self.next = int(max(1, min(self.limit, 8 * self.next,
+                                   target / rate)))
+
+    def __iter__(self):
+        """(first, last) of each chunk, in order."""
+        for first, last, _ in self.plan():
+            yield first, last
+
+    def plan(self):
+        """(first, last, stored) of each chunk, in order."""
+        starts = sorted(self.stored)
+        first = 0
+        while first < self.size:
+            if first in self.stored:
+                last = self.stored[first]
+                self._position = last
+                yield first, last, True
+                first = last
+                continue
+            later = [s for s in starts if s > first]
+            last = min(first + self.next, self.size,
+                       later[0] if later else self.size)
+            self._position = last
+            yield first, last, False
+            first = last

@@ -1,0 +1,233 @@
+"""A sweep's chunks on a Dask cluster (``contactsep sweep --scheduler``).
+
+What travels: the SweepSpec (a few hundred bytes: linear axes are three
+numbers) and two integers to a worker; back, a chunk's summary (a few
+numbers, when nothing is written) or its columns as NumPy arrays (Dask
+sends their buffers as they are, no pickled rows).  Each worker samples
+and evaluates its own designs.  As many chunks are in flight as the
+cluster has threads, twice over, so no worker waits for the client.
+
+Faults: an address that accepts connections but never speaks Dask's
+protocol (a silent port, an HTTP server) is refused within
+PROBE_TIMEOUT_S by a probe that reads the scheduler's first message
+before Dask does (Dask would read an HTTP reply as an exabyte-long
+frame); a scheduler lost mid-sweep is one :class:`SchedulerLost` line
+within SCHEDULER_LOST_S, the chunks finished before it kept (written,
+and with ``--resume`` continued by the next run); a worker lost
+mid-sweep costs its chunk, which Dask runs again (the same bits: a
+chunk's designs do not depend on where they run).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import re
+import socket
+import struct
+import threading
+import time
+
+from contactsep.errors import InputError
+from contactsep.output import one_line
+
+#: Seconds to wait for a Dask scheduler to answer.
+SCHEDULER_TIMEOUT_S = 10
+#: Seconds the probe waits for a scheduler's first message (a Dask
+#: scheduler sends it as soon as it accepts): the refusal of a silent
+#: port, start-up included, comes within SCHEDULER_TIMEOUT_S.
+PROBE_TIMEOUT_S = 5
+#: Seconds a sweep waits for a scheduler whose connection was lost.
+SCHEDULER_LOST_S = 15
+#: The largest first message a Dask scheduler sends (its handshake is a
+#: few hundred bytes): more is another protocol.
+_LARGEST_HANDSHAKE = 1 << 20
+
+
+#: A host name or address (an IPv6 one without its brackets).
+_HOST = re.compile(r"^[A-Za-z0-9._:%-]+$")
+
+
+class SchedulerLost(InputError):
+    """The Dask scheduler went away during the sweep."""
+
+
+def _host_port(address: str) -> tuple[str, int] | None:
+    """(host, port) of a tcp:// address (Dask's default port 8786), or
+    None for another transport (left to Dask)."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme != "tcp":
+        return None
+    rest = rest.split("/", 1)[0]
+    if rest.startswith("["):                 # [::1]:8786
+        host, _, port = rest[1:].partition("]")
+        port = port.lstrip(":")
+    else:
+        host, _, port = rest.rpartition(":") if ":" in rest else \
+            (rest, "", "")
+    try:
+        if not _HOST.match(host):
+            raise ValueError(host)
+        return host, int(port) if port else 8786
+    except ValueError:
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786"
+                         ) from None
+
+
+def probe(address: str, timeout: float | None = None) -> None:
+    """Refuse (InputError) an address where no Dask scheduler speaks:
+    nothing listening, nothing said within ``timeout`` s (a Dask
+    scheduler sends its handshake as soon as it accepts), or a first
+    message that is not a Dask frame."""
+    where = _host_port(address)
+    if where is None:
+        return
+    if timeout is None:
+        timeout = PROBE_TIMEOUT_S
+    deadline = time.monotonic() + timeout
+    try:
+        with socket.create_connection(where, timeout=timeout) as sock:
+            data = b""
+            while len(data) < 8:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    raise TimeoutError
+                sock.settimeout(left)
+                more = sock.recv(8 - len(data))
+                if not more:
+                    raise InputError(f"--scheduler {address}: the server "
+                                     f"closed the connection without "
+                                     f"answering; not a Dask scheduler")
+                data += more
+    except (TimeoutError, socket.timeout):
+        raise InputError(f"--scheduler {address}: accepts connections but "
+                         f"said nothing within {timeout:g} s; not a Dask "
+                         f"scheduler (or one that does not answer)"
+                         ) from None
+    except OSError as error:
+        raise InputError(f"--scheduler {address}: no scheduler answered "
+                         f"({error.strerror or error})") from None
+    (length,) = struct.unpack("Q", data)
+    if not 0 < length <= _LARGEST_HANDSHAKE:
+        raise InputError(f"--scheduler {address}: answers another protocol"
+                         f" ({data!r}...), not Dask's")
+
+
+def connect(address: str):
+    """A Client of the scheduler at ``address``; an address Dask cannot
+    read, or a scheduler that does not answer, is one InputError."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError("--scheduler needs dask.distributed: pip install "
+                         "'contactsep[scale]'") from None
+    if not isinstance(address, str) or not address.strip():
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786")
+    probe(address)
+    # Dask's log lines (ERROR ... failed to reconnect) stay off stderr
+    # for the rest of the command: the sweep says what happened
+    silence_dask()
+    try:
+        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+    except (ValueError, TypeError) as error:
+        raise InputError(f"--scheduler: found {address!r}, expected a "
+                         f"scheduler address such as tcp://HOST:8786 "
+                         f"({error})") from None
+    except (OSError, TimeoutError) as error:
+        raise InputError(f"--scheduler {address}: no scheduler answered "
+                         f"within {SCHEDULER_TIMEOUT_S} s "
+                         f"({error})") from None
+
+
+def _dask_loggers() -> list:
+    names = [name for name in logging.root.manager.loggerDict
+             if name == "distributed" or name.startswith("distributed.")]
+    return [logging.getLogger(name) for name in names + ["distributed"]]
+
+
+def silence_dask() -> None:
+    """Dask's loggers and their handlers off, for good (the command's
+    process: Dask's own config gives each logger its level, and a
+    handler on "distributed" prints what they pass)."""
+    for logger in _dask_loggers():
+        logger.setLevel(logging.CRITICAL + 1)
+        for handler in logger.handlers:
+            handler.setLevel(logging.CRITICAL + 1)
+
+
+@contextlib.contextmanager
+def quiet_dask():
+    """Dask's own log lines (ERROR ... connection lost) off stderr while
+    the block runs: the sweep says what happened in one line."""
+    loggers = _dask_loggers()
+    levels = [(logger, logger.level) for logger in loggers]
+    for logger in loggers:
+        logger.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for logger, level in levels:
+            logger.setLevel(level)
+
+
+def threads(client) -> int:
+    """Worker threads of the cluster (at least 1)."""
+    try:
+        return max(1, sum(client.nthreads().values()))
+    except Exception:        # noqa: BLE001 - a cluster still starting
+        return 1
+
+
+def wait(client, future, stop, done_designs: int):
+    """A chunk's result, listening for a stop every quarter second and
+    for the scheduler's loss (SchedulerLost: at once when Dask cancels
+    the chunk, or after SCHEDULER_LOST_S without a connection).  The
+    wait is on a done-callback, not ``Future.result(timeout=...)``
+    (which distributed 2026.8 can answer with an UnboundLocalError)."""
+    try:
+        where = f" {client.scheduler.address}"
+    except Exception:        # noqa: BLE001 - only a name in a message
+        where = ""
+    lost = SchedulerLost(f"the Dask scheduler{where} was lost (its "
+                         f"connection closed); the {done_designs} designs "
+                         f"finished before it are kept (rerun with --resume "
+                         f"to continue)")
+    ready = threading.Event()
+    future.add_done_callback(lambda _: ready.set())
+    lost_since = None
+    while True:
+        stop.check()
+        if ready.wait(0.25) or future.done():
+            if future.status == "cancelled":     # the scheduler forgot it
+                raise lost
+            try:
+                # a finished chunk's result is fetched: the connection
+                # may be lost then (CommClosedError, an OSError)
+                if future.status in ("finished", "error"):
+                    return future.result()
+            except (RuntimeError, ImportError, AttributeError,
+                    TypeError) as error:
+                if isinstance(error, InputError):
+                    raise
+                # the cluster's own failure (another environment on the
+                # workers cannot unpickle the task): one line, no trace
+                raise InputError(f"the Dask cluster{where} could not run "
+                                 f"a chunk: {one_line(error)}") from None
+            except OSError:                     # CommClosedError
+                if client.status not in ("running", "newly-created"):
+                    raise lost from None
+            # a worker holding the result died ("lost"): Dask runs the
+            # chunk again; wait for that
+            ready.clear()
+            future.add_done_callback(lambda _: ready.set())
+            time.sleep(0.05)
+        if client.status not in ("running", "newly-created"):
+            lost_since = lost_since or time.monotonic()
+            if time.monotonic() - lost_since >= SCHEDULER_LOST_S:
+                raise lost
+        else:
+            lost_since = None
