@@ -37,10 +37,15 @@ def _gone(pid: int) -> bool:
 
 
 def _children(pid: int) -> list[int]:
+    """The children of ``pid``'s threads (a thread that ends while they
+    are read is skipped: its task directory is gone)."""
     found = []
     for task in os.listdir(f"/proc/{pid}/task"):
-        with open(f"/proc/{pid}/task/{task}/children") as handle:
-            found += [int(c) for c in handle.read().split()]
+        try:
+            with open(f"/proc/{pid}/task/{task}/children") as handle:
+                found += [int(c) for c in handle.read().split()]
+        except FileNotFoundError:
+            continue
     return found
 
 

@@ -101,6 +101,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                             f"processes for the simulations (default: the "
                             f"usable cores; at most {WORKERS_PER_CORE} a "
                             f"core)")
+    study.add_argument("--progress", choices=("auto", "always", "never"),
+                       default="auto",
+                       help="chatter, preload and conclusionN: a progress "
+                            "bar of the simulations on stderr: auto (on a "
+                            "terminal, after a second), always, never")
     add_design_options(study)
     study.set_defaults(handler=run_study)
 
@@ -240,8 +245,13 @@ def _compute(name: str, args, overrides: dict):
                              "runs the thesis rig for its five separators "
                              "and N = 4, 16, 32 (contactsep chatter runs "
                              "any design)")
-        from contactsep.studies.chatter import chatter_table
-        return chatter_table()
+        from contactsep.studies.chatter import (
+            MODES,
+            THICKNESSES,
+            chatter_table,
+        )
+        with _bar(args, 3 * len(THICKNESSES) * len(MODES)) as bar:
+            return chatter_table(progress=bar)
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
 
 
@@ -259,10 +269,12 @@ def _search_study(name: str, args, overrides: dict):
                "workers": args.workers}
     from contactsep.studies.search_checks import SearchError
     try:
-        if name == "preload":
-            return preload_chart(**options, damping=args.damping or "none",
-                                 **overrides)
-        return conclusion(name, **options, **overrides)
+        with _bar(args, None) as bar:
+            if name == "preload":
+                return preload_chart(**options,
+                                     damping=args.damping or "none",
+                                     progress=bar, **overrides)
+            return conclusion(name, **options, progress=bar, **overrides)
     except SearchError as error:
         # the study names its arguments; the command, its options
         names, sep, rest = str(error).partition(":")
@@ -271,6 +283,23 @@ def _search_study(name: str, args, overrides: dict):
         options = ", ".join("--" + n.strip().replace("_", "-")
                             for n in names.split(","))
         raise InputError(f"{options}:{rest}") from None
+
+
+@contextlib.contextmanager
+def _bar(args, total):
+    """A progress bar's update (or None) for a study of simulations:
+    --progress auto (on a terminal), always, never; closed after."""
+    from contactsep.studies.runner import _progress
+    enabled = {"auto": None, "always": True,
+               "never": False}[getattr(args, "progress", "auto")]
+    bar = _progress(total, enabled)
+    if bar is not None:
+        bar.unit, bar.unit_scale = " simulations", False
+    try:
+        yield None if bar is None else bar.update
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def _save(study, out: Path, dpi: int) -> None:

@@ -14,9 +14,10 @@ MODES = (4, 16, 32)
 
 
 def chatter_table(thicknesses=THICKNESSES, modes=MODES,
-                  models=("appE", "newton", "hertz")) -> Study:
+                  models=("appE", "newton", "hertz"), progress=None) -> Study:
     """One row per (model, d, N): first impulse, max lower gap, circuit
-    open time, first opening, discontinuity events, energy ratio."""
+    open time, first opening, discontinuity events, energy ratio;
+    ``progress(1)`` is called after each simulation (a bar)."""
     rows = {k: [] for k in ("model", "d_in", "N", "first_impulse_lb_s",
                             "max_lower_gap_in", "circuit_open_s",
                             "first_circuit_open_s", "n_events",
@@ -28,6 +29,8 @@ def chatter_table(thicknesses=THICKNESSES, modes=MODES,
                 r = simulate(thesis_design(d=d, n_modes=n), model=model,
                              samples=1, t_end=LISTING_TAU_S,
                              dt=DEFAULT_DT[model])
+                if progress is not None:
+                    progress(1)
                 for key, value in (("model", model), ("d_in", d), ("N", n),
                                    ("first_impulse_lb_s",
                                     r.first_impulse_lb_s),

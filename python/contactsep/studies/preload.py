@@ -443,12 +443,14 @@ def limit_notes(where: str, result: PreloadSearch) -> list[str]:
 def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                   damping: str = "none", dt=None,
                   workers: int | None = None, thicknesses=THICKNESSES,
-                  heights=HEIGHTS, settings=None, **overrides) -> Study:
+                  heights=HEIGHTS, settings=None, progress=None,
+                  **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
     to e), ``dt`` the stepper's step (default: the model's);
-    ``settings`` simulate()'s other keywords, passed to every run."""
+    ``settings`` simulate()'s other keywords, passed to every run;
+    ``progress(k)`` is called as k more simulations finish (a bar)."""
     from contactsep.studies import search_checks as checks
     checks.check_search("preload", model, MODELS, n_modes, workers,
                         overrides, True)
@@ -467,7 +469,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     settings["dt"] = DEFAULT_DT[model] if dt is None else dt
     settings["t_end"] = LISTING_TAU_S
     settings.update(extra)
-    with Simulations(workers) as sims:
+    with Simulations(workers, progress=progress) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
     law = f", damping {damping}" if model == "hertz" else ""
