@@ -241,14 +241,14 @@ def _sign(beam: Beam, nodes, b):
 
 
 def _scan_points(beam: Beam, top: float, refine: int):
-    """b values finer than the spectrum's spacing: Delta kappa = pi/20 in
+    """b values finer than the spectrum's spacing: Delta kappa = pi/8 in
     kappa = b^(1/2) (Bernoulli-Euler roots are pi apart), and the second
-    branch's pi/(2 kappa max(r, s)) above the cut-off."""
+    branch's pi/(2 kappa max(r, s)) above the cut-off, over 8."""
     width = max(np.sqrt(beam.r2), np.sqrt(beam.s2))
     kappa = [0.0]
     while kappa[-1] < top:
         spacing = np.pi / (1.0 + 2.0 * kappa[-1] * width)
-        kappa.append(kappa[-1] + spacing / (20.0 * 2**refine))
+        kappa.append(kappa[-1] + spacing / (8.0 * 2**refine))
     return np.array(kappa)**2
 
 
@@ -303,6 +303,13 @@ def _states(beam: Beam, nodes, b, node_states, xi):
     return z * (scale[:, None, None] ** np.arange(4))
 
 
+def _null_vectors(matrix):
+    """The null vector of each matrix at a root (its last right singular
+    vector: K is not symmetric, and inverse iteration may start on a
+    vector its left null vector is orthogonal to)."""
+    return np.linalg.svd(matrix)[2][:, -1, :]
+
+
 def modes(beam: Beam, n: int, xi=()):
     """b_j (n,), with X_j(xi) and Psi_j(xi) (n, len(xi)) normalised as
     the module docstring says."""
@@ -312,8 +319,7 @@ def modes(beam: Beam, n: int, xi=()):
     b = eigenvalues(beam, n)
     nodes = _mesh(beam, float(b[-1]))
     matrix = _assemble(beam, nodes, b)
-    _, _, vt = np.linalg.svd(matrix)
-    node_states = vt[:, -1, :].reshape(n, len(nodes), 4)
+    node_states = _null_vectors(matrix).reshape(n, len(nodes), 4)
     # quadrature: Gauss panels short enough for the fastest wave
     wave = np.sqrt(b[-1] + b[-1]**2 * (beam.r2 + beam.s2))
     panels = []

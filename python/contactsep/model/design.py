@@ -14,8 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep import beams
+from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT, LISTING_TAU_S
 from contactsep.errors import InputError
+from contactsep.model import physics
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
@@ -250,6 +252,14 @@ class Design:
     release : str
         "tip" (default): the cantilever's tip is deflected by ys;
         "contact": the contact point x1 is.
+    beam1..3, nu1..3, kappa1..3, kr1..3, kt1..3, mass1..3, x_mass1..3
+        Each member's beam physics (:mod:`contactsep.model.physics`):
+        theory "bernoulli-euler" (default) or "timoshenko"; Poisson's
+        ratio (0.33); shear coefficient (None: Cowper's); springs of the
+        supported ends, kr (lb in/rad, clamped ends) and kt (lb/in), None
+        rigid; a point mass (lb, weight; 0) at x_mass (in; None: the
+        contact point).  One value per Design, shared by a batch; eq. 23
+        (``evaluate``) refuses any but the thesis's physics.
     """
 
     #: Upper contact length (in).
@@ -314,6 +324,28 @@ class Design:
     lc_reading: str = "listing"
     #: "tip": load at the upper contact's tip (cantilever); "contact": at x1.
     release: str = "tip"
+    #: Each member's beam physics (contactsep.model.physics).
+    beam1: str = "bernoulli-euler"
+    beam2: str = "bernoulli-euler"
+    beam3: str = "bernoulli-euler"
+    nu1: float = DEFAULT_NU
+    nu2: float = DEFAULT_NU
+    nu3: float = DEFAULT_NU
+    kappa1: object = None
+    kappa2: object = None
+    kappa3: object = None
+    kr1: object = None
+    kr2: object = None
+    kr3: object = None
+    kt1: object = None
+    kt2: object = None
+    kt3: object = None
+    mass1: float = 0.0
+    mass2: float = 0.0
+    mass3: float = 0.0
+    x_mass1: object = None
+    x_mass2: object = None
+    x_mass3: object = None
 
     def __post_init__(self) -> None:
         for name, allowed in _OPTIONS.items():
@@ -330,6 +362,9 @@ class Design:
                     f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
             _check_number(name, getattr(self, name))
+        physics_problem = physics.problem(self)
+        if physics_problem:
+            raise DesignError(physics_problem)
         n = self._n_array()
         try:
             self.shape

@@ -11,10 +11,12 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
+from contactsep.model import physics
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
+    DesignError,
     Packed,
     outside_domain,
     pack,
@@ -141,6 +143,13 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
+    changed = physics.physics_changes(design)
+    if changed:
+        raise DesignError(
+            f"{changed[0]}: eq. 23 (evaluate, sweep) takes only the "
+            f"thesis's beams (Bernoulli-Euler, rigid ends, no added mass), "
+            f"its kernel computes their modes itself; use contactsep "
+            f"chatter or contactsep modes for this design")
     packed = pack(design)
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))
