@@ -57,13 +57,15 @@ def element(length, r2, s2):
 
 
 def assemble(end, elements, r2=0.0, s2=0.0, kr=None, kt=None,
-             masses=(), points=()):
+             masses=(), points=(), level=0):
     """K, M and the free DOFs of a mesh with nodes at the masses and
-    ``points``; returns (K, M, free, nodes)."""
+    ``points``, about ``elements`` elements, each halved ``level``
+    times (so that Romberg's meshes are exact halvings); returns (K, M,
+    free, nodes)."""
     cuts = sorted({0.0, 1.0, *(xi for xi, _ in masses), *points})
     nodes = [0.0]
     for lo, hi in zip(cuts[:-1], cuts[1:]):
-        count = max(1, int(round(elements * (hi - lo))))
+        count = max(1, int(round(elements * (hi - lo)))) * 2**level
         nodes.extend(lo + (hi - lo) * np.arange(1, count + 1) / count)
     nodes = np.array(nodes)
     dofs = 2 * len(nodes)
@@ -94,12 +96,12 @@ def assemble(end, elements, r2=0.0, s2=0.0, kr=None, kt=None,
     return k, m, free, nodes
 
 
-def eigenvalues(end, elements, count, **options):
+def eigenvalues(end, elements, count, level=0, **options):
     """b_j (count,) of the FE model.  Solved as M u = (1/b^2) K u for the
     largest 1/b^2: a backward-stable solver then gives the lowest b^2
     to their own relative precision (K u = b^2 M u would give them only
     to eps times the mesh's highest b^2)."""
-    k, m, free, _ = assemble(end, elements, **options)
+    k, m, free, _ = assemble(end, elements, level=level, **options)
     size = len(free)
     values = scipy.linalg.eigh(m[np.ix_(free, free)], k[np.ix_(free, free)],
                                eigvals_only=True,
@@ -112,7 +114,7 @@ def converged(end, count, elements=16, **options):
     the eigenvalue error is c2 h^2 + c4 h^4 + ..., h^2 from the
     element's constant shear strain, h^4 from its cubic deflection), and
     the finest mesh's values."""
-    values = [eigenvalues(end, elements * 2**k, count, **options)
+    values = [eigenvalues(end, elements, count, level=k, **options)
               for k in range(3)]
     first = [(4.0 * fine - coarse) / 3.0
              for coarse, fine in zip(values[:-1], values[1:])]

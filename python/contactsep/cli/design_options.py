@@ -42,7 +42,8 @@ _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
               "n_modes": ("--n-modes",),
               "impact_velocity": ("--impact-velocity",),
               "lower_response": ("--lower-response",),
-              "lc_reading": ("--lc-reading",), "release": ("--release",)}
+              "lc_reading": ("--lc-reading",), "release": ("--release",),
+              **{f"x_mass{m}": (f"--x-mass{m}",) for m in "123"}}
 
 class _Given(argparse.Action):
     """Keeps the text and the option as typed; design_overrides reads
@@ -73,7 +74,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
     """One option per Design field, and --set and --design (module
     docstring); design_overrides(args) reads them."""
     parser.set_defaults(**{_GIVEN: None})
-    for title, names in F.GROUPS:
+    for title, names in F.GROUPS + F.PHYSICS_GROUPS:
         group = parser.add_argument_group(f"design: {title}")
         for field in names:
             options = _SPELLINGS.get(field, (f"--{field}",))

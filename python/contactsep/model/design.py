@@ -252,14 +252,24 @@ class Design:
     release : str
         "tip" (default): the cantilever's tip is deflected by ys;
         "contact": the contact point x1 is.
-    beam1..3, nu1..3, kappa1..3, kr1..3, kt1..3, mass1..3, x_mass1..3
-        Each member's beam physics (:mod:`contactsep.model.physics`):
-        theory "bernoulli-euler" (default) or "timoshenko"; Poisson's
-        ratio (0.33); shear coefficient (None: Cowper's); springs of the
-        supported ends, kr (lb in/rad, clamped ends) and kt (lb/in), None
-        rigid; a point mass (lb, weight; 0) at x_mass (in; None: the
-        contact point).  One value per Design, shared by a batch; eq. 23
-        (``evaluate``) refuses any but the thesis's physics.
+    beam1, beam2, beam3 : str
+        Beam theory: "bernoulli-euler" (default) or "timoshenko".
+    nu1, nu2, nu3 : dimensionless
+        Poisson's ratio (0.33), for G = E/(2(1 + nu)).
+    kappa1, kappa2, kappa3 : dimensionless or None
+        Shear coefficient (None: Cowper's 10(1 + nu)/(12 + 11 nu)).
+    kr1, kr2, kr3 : lb in/rad or None
+        Rotational spring at every clamped end (None: rigid).
+    kt1, kt2, kt3 : lb/in or None
+        Translational spring at every supported end (None: rigid).
+    mass1, mass2, mass3 : lb
+        Added point mass, a weight (0: none): a button, a sensor.
+    x_mass1, x_mass2, x_mass3 : in or None
+        Where it sits (None: the contact point).
+
+    The beam physics fields (contactsep.model.physics) hold one value
+    per Design, shared by a batch; eq. 23 (``evaluate``) refuses any but
+    the thesis's (Bernoulli-Euler, rigid ends, no mass).
     """
 
     #: Upper contact length (in).
