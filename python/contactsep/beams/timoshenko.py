@@ -271,14 +271,39 @@ def eigenvalues(beam: Beam, n: int) -> np.ndarray:
         raise RuntimeError(f"found {change.size} of {n} eigenvalues of "
                            f"{beam} (coincident roots?)")
     lo, hi = points[change[:n]], points[change[:n] + 1]
-    lo_sign = sign[change[:n]]
-    while True:
-        mid = 0.5 * (lo + hi)
-        if np.all((mid == lo) | (mid == hi)):
+    return _refine(beam, nodes, lo, hi)
+
+
+def _refine(beam: Beam, nodes, lo, hi):
+    """Roots bracketed by [lo, hi], to adjacent doubles: regula falsi
+    with the Illinois modification (superlinear) on det K, kept as (sign,
+    log |det|) so that no determinant overflows; bisection where a step
+    would not move."""
+    s_lo, l_lo = _sign(beam, nodes, lo)
+    s_hi, l_hi = _sign(beam, nodes, hi)
+    last = np.zeros(lo.shape)              # -1: lo kept last, +1: hi
+    for _ in range(400):
+        done = (hi - lo) <= 2.0 * np.spacing(hi)
+        if np.all(done):
             break
-        same = _sign(beam, nodes, mid)[0] == lo_sign
-        lo = np.where(same, mid, lo)
-        hi = np.where(same, hi, mid)
+        # |f_lo| / (|f_lo| + |f_hi|), from the logs
+        t = 1.0 / (1.0 + np.exp(np.clip(l_hi - l_lo, -700.0, 700.0)))
+        x = lo + t * (hi - lo)
+        stuck = ~((x > lo) & (x < hi))
+        x = np.where(stuck, 0.5 * (lo + hi), x)
+        x = np.where(done, lo, x)
+        s_x, l_x = _sign(beam, nodes, x)
+        same = (s_x == s_lo) & ~done
+        other = ~same & ~done
+        # Illinois: an end kept twice in a row has its |f| halved
+        l_hi = np.where(same & (last == 1.0), l_hi - np.log(2.0), l_hi)
+        l_lo = np.where(other & (last == -1.0), l_lo - np.log(2.0), l_lo)
+        lo = np.where(same, x, lo)
+        l_lo = np.where(same, l_x, l_lo)
+        hi = np.where(other, x, hi)
+        l_hi = np.where(other, l_x, l_hi)
+        s_hi = np.where(other, s_x, s_hi)
+        last = np.where(same, 1.0, np.where(other, -1.0, last))
     at_lo = _sign(beam, nodes, lo)[1]
     at_hi = _sign(beam, nodes, hi)[1]
     return np.where(at_lo <= at_hi, lo, hi)
