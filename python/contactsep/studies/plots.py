@@ -254,6 +254,10 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig, ax = plt.subplots(figsize=(6.0, 4.0))
         _ONE_PANEL[name](ax, study.columns)
         axes = [ax]
+    elif name == "separator-fit":
+        from contactsep.studies.separator_fit import draw
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 7.0))
+        draw(axes, study)
     elif name in _TABLES or name == "chatter" or name in _CONCLUSION_AXES:
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0),
                                  height_ratios=(2, 1) if name in _TABLES
