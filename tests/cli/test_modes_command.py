@@ -105,5 +105,5 @@ def test_bad_input_is_one_line(capsys, argv, message):
 
 def test_evaluate_refuses_non_thesis_beams():
     design = contactsep.thesis_design(kr2=1000.0)
-    with pytest.raises(contactsep.InputError, match="kr2 = 1000.0: eq. 23"):
+    with pytest.raises(contactsep.InputError, match="kr2: found 1000.0, but eq. 23"):
         contactsep.evaluate(design)

@@ -145,11 +145,12 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
                          f"{type(design).__name__}")
     changed = physics.physics_changes(design)
     if changed:
+        field, value = changed[0]
         raise DesignError(
-            f"{changed[0]}: eq. 23 (evaluate, sweep) takes only the "
-            f"thesis's beams (Bernoulli-Euler, rigid ends, no added mass), "
-            f"its kernel computes their modes itself; use contactsep "
-            f"chatter or contactsep modes for this design")
+            f"{field}: found {value!r}, but eq. 23 (evaluate, sweep) takes "
+            f"only the thesis's beams (Bernoulli-Euler, rigid ends, no "
+            f"added mass): its kernel computes their modes itself; "
+            f"contactsep chatter and contactsep modes take this design")
     packed = pack(design)
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))

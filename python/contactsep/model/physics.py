@@ -62,18 +62,18 @@ def problem(design) -> str | None:
     return None
 
 
-def physics_changes(design) -> list[str]:
+def physics_changes(design) -> list[tuple[str, object]]:
     """The beam physics fields that differ from the thesis's
-    (Bernoulli-Euler, rigid ends, no mass), as 'beam2 = timoshenko'."""
+    (Bernoulli-Euler, rigid ends, no mass), as (field, value)."""
     changed = []
     for m in "123":
         if getattr(design, f"beam{m}") != THEORIES[0]:
-            changed.append(f"beam{m} = {getattr(design, f'beam{m}')}")
+            changed.append((f"beam{m}", getattr(design, f"beam{m}")))
         for kind in ("kr", "kt"):
             if getattr(design, f"{kind}{m}") is not None:
-                changed.append(f"{kind}{m} = {getattr(design, kind + m)}")
+                changed.append((f"{kind}{m}", getattr(design, kind + m)))
         if getattr(design, f"mass{m}"):
-            changed.append(f"mass{m} = {getattr(design, f'mass{m}')}")
+            changed.append((f"mass{m}", getattr(design, f"mass{m}")))
     return changed
 
 
