@@ -53,6 +53,9 @@ from contactsep.beams import bernoulli_euler as be
 #: and the segmented system grows with the mode number.
 MAX_GENERAL_MODES = 200
 
+#: Frequencies a scan evaluates at once (one batch of determinants).
+SCAN_CHUNK = 64
+
 #: Where each end condition's ends are clamped, pinned or free.
 ENDS = {"clamped-free": ("clamped", "free"),
         "clamped-clamped": ("clamped", "clamped"),
@@ -263,8 +266,15 @@ def eigenvalues(beam: Beam, n: int) -> np.ndarray:
     nodes = _mesh(beam, top**2)
     for refine in range(4):
         points = _scan_points(beam, top, refine)
-        sign, _ = _sign(beam, nodes, points)
-        change = np.flatnonzero(sign[:-1] * sign[1:] < 0.0)
+        # in chunks from b = 0, until n sign changes are seen: the bound
+        # is far above the n-th root of a stubby Timoshenko beam
+        sign = np.empty(0)
+        for start in range(0, len(points), SCAN_CHUNK):
+            fresh = _sign(beam, nodes, points[start:start + SCAN_CHUNK])[0]
+            sign = np.concatenate([sign, fresh])
+            change = np.flatnonzero(sign[:-1] * sign[1:] < 0.0)
+            if change.size >= n:
+                break
         if change.size >= n:
             break
     else:
