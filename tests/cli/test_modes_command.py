@@ -107,3 +107,16 @@ def test_evaluate_refuses_non_thesis_beams():
     design = contactsep.thesis_design(kr2=1000.0)
     with pytest.raises(contactsep.InputError, match="kr2: found 1000.0, but eq. 23"):
         contactsep.evaluate(design)
+
+
+def test_separator_physical_is_the_fitted_supports(capsys):
+    physical = run_json(capsys, "--member", "2", "--separator", "physical",
+                        "--count", "2")
+    spelled = run_json(capsys, "--member", "2", "--beam2", "timoshenko",
+                       "--kr2", "21900", "--count", "2")
+    assert physical["theory"] == "timoshenko"
+    assert physical["f_hz"] == spelled["f_hz"]
+    # a typed field wins over the shortcut's
+    own = run_json(capsys, "--member", "2", "--separator", "physical",
+                   "--kr2", "5000", "--count", "2")
+    assert own["f_hz"][0] < physical["f_hz"][0]

@@ -92,6 +92,9 @@ def test_study_reproduces_the_issues_findings(tmp_path, capsys):
     assert float(row["rms_pct"]) < 2.4
     grams = float(row["parameters"].split("(")[1].split(" g")[0])
     assert 6.5 < grams < 7.5
+    # --separator physical is this fit's clamp stiffness
+    kr2 = float(row["parameters"].split("kr2=")[1].split(" ")[0])
+    assert kr2 == pytest.approx(sf.PHYSICAL_SEPARATOR["kr2"], rel=0.01)
     # the printed 11,100 forbids the mass: the fit drops it
     assert "mass2 at its bound (none)" in \
         by[("timoshenko-kr2-mass2", "printed")]["parameters"]

@@ -93,6 +93,14 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                        default=argparse.SUPPRESS, metavar="FIELD=VALUE",
                        help="any design field by name (repeatable): "
                             "--set h2=0.3 --set end2=pinned-pinned")
+    group.add_argument("--separator", choices=("thesis", "physical"),
+                       default="thesis",
+                       help="thesis: the clamped Bernoulli-Euler separator "
+                            "(default); physical: the supports fitted to "
+                            "Table II (study separator-fit: Timoshenko, "
+                            "kr2 = 2.19e4 lb in/rad), unless --beam2/--kr2 "
+                            "say otherwise (chatter models only: eq. 23 "
+                            "refuses it)")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "
@@ -125,6 +133,12 @@ def design_overrides(args: argparse.Namespace) -> dict:
         typed[field] = option
         values[field] = F.parse_value(field, text, option)
         labels[field] = option
+    if getattr(args, "separator", "thesis") == "physical":
+        from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+        for field, value in PHYSICAL_SEPARATOR.items():
+            if field not in values:
+                values[field] = value
+                labels[field] = "--separator physical"
     _check(values, labels)
     setattr(args, _FROM_FILE, set(values) - set(typed))
     return values
