@@ -120,3 +120,15 @@ def test_separator_physical_is_the_fitted_supports(capsys):
     own = run_json(capsys, "--member", "2", "--separator", "physical",
                    "--kr2", "5000", "--count", "2")
     assert own["f_hz"][0] < physical["f_hz"][0]
+
+
+@pytest.mark.parametrize("argv", [
+    ["model", "--beam2", "timoshenko"],
+    ["study", "table2", "--separator", "physical"],
+    ["sweep", "--mass3", "0.01", "--vary", "d=0.2:0.3:2"],
+])
+def test_eq_23_commands_refuse_other_beams_in_one_line(capsys, argv):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("contactsep: error:") and "eq. 23" in err
+    assert len(err.strip().splitlines()) == 1
