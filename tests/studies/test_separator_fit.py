@@ -98,3 +98,19 @@ def test_study_reproduces_the_issues_findings(tmp_path, capsys):
     # the printed 11,100 forbids the mass: the fit drops it
     assert "mass2 at its bound (none)" in \
         by[("timoshenko-kr2-mass2", "printed")]["parameters"]
+
+
+def test_conclusions_mass_ratio_from_the_members_is_eq_24s():
+    """With beam physics eq. 23 does not take, the conclusion studies
+    compute eq. 24's R from the chatter members' modes: with a separator
+    spring stiff enough to be rigid it is eq. 23's R (the kernel's)."""
+    from contactsep.model import thesis_design
+    from contactsep.studies import conclusions
+    base = thesis_design(n_modes=8)
+    values = conclusions._values("conclusion6", base)
+    stiff = base.replace(kt2=1e15)
+    designs = [stiff.replace(gamma2=float(v)) for v in values]
+    got = conclusions._single_impulse(stiff, "gamma2", values, designs)
+    kernel = conclusions._single_impulse(base, "gamma2", values, [])
+    assert np.all(np.isnan(got.y3_max))
+    np.testing.assert_allclose(got.R, kernel.R, rtol=1e-9)
