@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep.beams import bernoulli_euler as be
+from contactsep.errors import InputError
 
 #: Most modes of a general beam: far past L/h neither beam theory holds,
 #: and the segmented system grows with the mode number.
@@ -239,6 +240,8 @@ def _upper_bound(beam: Beam, n: int) -> float:
 
 
 def _sign(beam: Beam, nodes, b):
+    """(sign, log |det K(b)|) for each b: the frequency function, kept
+    in two parts so that no determinant overflows."""
     sign, logabs = np.linalg.slogdet(_assemble(beam, nodes, b))
     return sign, logabs
 
@@ -278,8 +281,11 @@ def eigenvalues(beam: Beam, n: int) -> np.ndarray:
         if change.size >= n:
             break
     else:
-        raise RuntimeError(f"found {change.size} of {n} eigenvalues of "
-                           f"{beam} (coincident roots?)")
+        # an InputError (one line from the CLI), not a traceback: the
+        # scan could not separate two roots of this beam
+        raise InputError(f"found {change.size} of {n} eigenvalues of "
+                         f"{beam} (two roots closer than the scan "
+                         f"resolves; ask for fewer modes)")
     lo, hi = points[change[:n]], points[change[:n] + 1]
     return _refine(beam, nodes, lo, hi)
 
