@@ -9,7 +9,9 @@ below it):
   returns one :class:`Result` per data set; ``solve(data_set)`` runs one
   data set given directly.
 * :mod:`contactsep.model`: the general model, eq. (23), in batches
-  (``Design``, ``thesis_design``, ``evaluate``).
+  (``Design``, ``thesis_design``, ``evaluate``), and any member's
+  modes (``modes(design, member, count)``: Timoshenko beams, elastic
+  supports, point masses).
 * :mod:`contactsep.chatter`: repeated impacts and circuit opening.
 * :mod:`contactsep.studies`: the thesis's figures and tables, sweeps;
   ``preload(design)``, the smallest preload that keeps a design's
@@ -38,8 +40,8 @@ _STUDIES_NAMES = {"read": "contactsep.studies.frames",
 _LAYERS = ("restored", "model", "chatter", "studies")
 
 __all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError",
-           "Result", "cards_per_set", "replay", "solve", *_MODEL_NAMES,
-           *_STUDIES_NAMES, *_LAYERS]
+           "Result", "cards_per_set", "modes", "replay", "solve",
+           *_MODEL_NAMES, *_STUDIES_NAMES, *_LAYERS]
 
 
 def __getattr__(name: str):
@@ -47,6 +49,8 @@ def __getattr__(name: str):
         return getattr(importlib.import_module("contactsep.model"), name)
     if name in _STUDIES_NAMES:
         return getattr(importlib.import_module(_STUDIES_NAMES[name]), name)
+    if name == "modes":
+        return importlib.import_module("contactsep.model.member_modes").modes
     if name in _LAYERS:
         return importlib.import_module(f"contactsep.{name}")
     raise AttributeError(f"module 'contactsep' has no attribute {name!r}")

@@ -148,11 +148,13 @@ def test_every_design_field_is_an_option(field):
              "lc_reading": "frequencies", "release": "contact",
              "e": "0.5", "x1": "18", "x2": "1.0", "x3": "18", "Lc": "2.0",
              "gap": "0.0", "L1": "18", "E1": "3e7", "E2": "3e7",
-             "E3": "3e7"}.get(field, "0.3")
+             "E3": "3e7", "beam1": "timoshenko", "beam2": "timoshenko",
+             "beam3": "timoshenko"}.get(field, "0.3")
     option = {"h2": "--d", "n_modes": "--n-modes",
               "impact_velocity": "--impact-velocity",
               "lower_response": "--lower-response",
-              "lc_reading": "--lc-reading"}.get(field, f"--{field}")
+              "lc_reading": "--lc-reading"}.get(
+                  field, f"--{field.replace('x_mass', 'x-mass')}")
     args = build_parser().parse_args(["chatter", option, value])
     overrides = design_overrides(args)
     assert list(overrides) == [field]

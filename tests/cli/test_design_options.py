@@ -22,7 +22,7 @@ from contactsep.studies import fields
 DESIGN_FIELDS = [f.name for f in dataclasses.fields(Design)]
 #: The unit suffixes of docs/studies.md, "Names and units".
 UNIT_KEY = re.compile(r"[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
-                      r"cps|lb_s2_in)")
+                      r"cps|lb_s2_in|lb_in_rad|lb_per_in)")
 
 
 def subparser(name: str):

@@ -22,8 +22,8 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/")
 #: Commands run only in the slow set (a minute or a large file).
 SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
-        "tolerance.csv",
-        "study conclusion", "--preload 20", "contactsep preload")
+        "tolerance.csv", "study conclusion", "--preload 20",
+        "contactsep preload", "study separator-fit")
 #: Pages whose commands belong to a layer that changes them often (the
 #: chatter layer's own page): run in the slow set.
 SLOW_PAGES = {"chatter.md"}

@@ -25,7 +25,7 @@ from contactsep.model import Design, evaluate
 ROOT = Path(__file__).resolve().parents[2]
 #: The table (docs/studies.md, "Names and units").
 SUFFIX = re.compile(r"^[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
-                    r"cps|lb_s2_in|in_lb|lb_in|hz)$")
+                    r"cps|lb_s2_in|in_lb|lb_per_in|lb_in_rad|hz)$")
 DIMENSIONLESS = {
     "e", "R", "r", "N", "n_modes", "energy_ratio", "relative_difference",
     "p_exceed", "p_open", "status", "n", "n_failed", "n_open", "n_events",

@@ -144,10 +144,21 @@ def _system(design, preload, law, static_correction=False
 
 def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
-    printed and in the impulse form (psi/M3)."""
+    printed and in the impulse form (psi/M3).  Eq. 23 takes only the
+    thesis's beams: for any other beam physics (issue 27) the figures
+    are NaN but the impact speed, taken from the upper contact's own
+    modes (the flores damping's reference speed)."""
     from contactsep.model import evaluate
     from contactsep.model.energy import EnergyBoundWarning
+    from contactsep.model.physics import physics_changes
     from contactsep.model.status import explain
+    if physics_changes(design):
+        # eq. 23 takes only the thesis's beams: the impact speed from the
+        # upper contact's own modes, the rest not defined
+        return {"t1_s": math.nan,
+                "v_impact_in_s": _modal_impact_speed(design),
+                "psi_lb_s": math.nan, "v0_in_s": math.nan,
+                "y3_max_in": math.nan, "y3_max_impulse_form_in": math.nan}
     with warnings.catch_warnings():
         # both forms are reported, labelled; the as-printed one may
         # exceed the release's energy (docs/model.md)
@@ -166,6 +177,30 @@ def _single_impulse(design) -> dict:
             "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
             "y3_max_in": float(ev.y3_max),
             "y3_max_impulse_form_in": float(impulse.y3_max)}
+
+
+def _modal_impact_speed(design) -> float:
+    """|dy1/dt| when the released upper contact's modal model (its beam
+    physics) first reaches the gap: y1 = sum X_j q_j cos p_j t sampled
+    at 1/64 of its shortest period, the crossing bisected."""
+    upper = system.members(design)[0]
+    amplitude = upper.x * upper.q0
+    gap = float(design.gap)
+
+    def height(t):
+        return float(np.sum(amplitude * np.cos(upper.p * t))) - gap
+
+    step = 2.0 * math.pi / float(np.max(upper.p)) / 64.0
+    t, limit = 0.0, 8.0 * math.pi / float(np.min(upper.p))
+    while height(t + step) > 0.0:
+        t += step
+        if t > limit:
+            return math.nan
+    lo, hi = t, t + step
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if height(mid) > 0.0 else (lo, mid)
+    return float(abs(np.sum(amplitude * upper.p * np.sin(upper.p * hi))))
 
 
 def _real(name: str, value, unit: str) -> float:
@@ -474,7 +509,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
                   choice.omega, "p_max_rad_s": choice.p_max,
                   "contact_force_bound_lb": choice.force_lb,
-                  "contact_stiffness_lb_in": choice.stiffness_lb_in,
+                  "contact_stiffness_lb_per_in": choice.stiffness_lb_in,
                   "dt_halvings": halvings,
                   "energy_tolerance": numerics.ENERGY_TOLERANCE},
         **settings)

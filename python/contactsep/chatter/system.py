@@ -2,7 +2,10 @@
 
 Model side of the Siconos split.  Member i has modal coordinates q_j with
 generalised mass M_i (modes normalised to int X^2 dx = L, so the
-generalised mass is the member's mass) and frequencies p_j:
+generalised mass is the member's mass; with rotary inertia and a point
+mass, normalised in the whole mass to the same M_i: contactsep.beams.
+member) and frequencies p_j, of the member's beam theory, supports and
+masses (contactsep.model.physics):
 
     M_i (q_j'' + p_j^2 q_j) = X_j(x_i) F_i,      y_i(x_i) = sum X_j(x_i) q_j,
 
@@ -22,7 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep import beams
-from contactsep.model import Design
+from contactsep.beams import member as member_beams
+from contactsep.model import Design, physics
 from contactsep.model.twin import member_constants
 
 
@@ -69,7 +73,34 @@ def _residual(end: str, n: int, xi: float) -> float:
     return float(beams.residual_flexibility(end, n, xi)[0])
 
 
+def _general(design: Design, i: str):
+    """The member's dimensionless beam when its physics is not the
+    thesis's (Timoshenko, elastic supports, a point mass), else None."""
+    beam = physics.member_beam(design, i).dimensionless()
+    classical = beam.classical
+    return None if classical else beam
+
+
 def _member(design: Design, i: str, n: int, q0=None) -> Member:
+    general = _general(design, i)
+    if general is not None:
+        x = getattr(design, "x" + i)
+        spec = physics.member_beam(design, i)
+        if x is None:
+            x = spec.length / 2.0 if i == "2" else spec.length
+        model = member_beams.modal_model(spec, n, [float(x)])
+        q = np.zeros(n) if q0 is None else q0
+        values = model.values[:, 0].copy()
+        # the static correction's series spring: the exact flexibility
+        # (shear, supports, masses: G is static, a mass adds none) less
+        # the N-mode sum
+        flexibility = float(member_beams.static_flexibility(
+            general, float(x) / spec.length)) * spec.length**3 / (
+            float(getattr(design, "E" + i)) * spec.inertia)
+        residual = max(flexibility - float(np.sum(
+            values**2 / (model.mass * model.p**2))), 0.0)
+        return Member(p=model.p, x=values, mass=model.mass, q0=q,
+                      v0=np.zeros(n), residual=residual)
     length = float(getattr(design, "L" + i))
     width = float(getattr(design, "b" + i))
     thick = float(getattr(design, "h" + i))
@@ -97,6 +128,11 @@ def release_state(design: Design, n: int) -> np.ndarray:
     x1 = length if design.x1 is None else float(design.x1)
     xi = 1.0 if (design.release == "tip" and end == "clamped-free") \
         else x1 / length
+    general = _general(design, "1")
+    if general is not None:
+        b, load = member_beams.dimensionless_modes(general, n, [xi])
+        return float(design.ys) * load[:, 0] / (
+            b**2 * member_beams.static_flexibility(general, xi))
     kl, load = _modes(str(end), n, xi)
     return float(design.ys) * load / (kl**4
                                       * beams.static_flexibility(end, xi))

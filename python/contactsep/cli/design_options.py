@@ -45,7 +45,8 @@ _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
               "n_modes": ("--n-modes",),
               "impact_velocity": ("--impact-velocity",),
               "lower_response": ("--lower-response",),
-              "lc_reading": ("--lc-reading",), "release": ("--release",)}
+              "lc_reading": ("--lc-reading",), "release": ("--release",),
+              **{f"x_mass{m}": (f"--x-mass{m}",) for m in "123"}}
 
 class _Given(argparse.Action):
     """Keeps the text and the option as typed; design_overrides reads
@@ -76,7 +77,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
     """One option per Design field, and --set and --design (module
     docstring); design_overrides(args) reads them."""
     parser.set_defaults(**{_GIVEN: None})
-    for title, names in F.GROUPS:
+    for title, names in F.GROUPS + F.PHYSICS_GROUPS:
         group = parser.add_argument_group(f"design: {title}")
         for field in names:
             options = _SPELLINGS.get(field, (f"--{field}",))
@@ -95,6 +96,14 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                        default=argparse.SUPPRESS, metavar="FIELD=VALUE",
                        help="any design field by name (repeatable): "
                             "--set h2=0.3 --set end2=pinned-pinned")
+    group.add_argument("--separator", choices=("thesis", "physical"),
+                       default="thesis",
+                       help="thesis: the clamped Bernoulli-Euler separator "
+                            "(default); physical: the supports fitted to "
+                            "Table II (study separator-fit: Timoshenko, "
+                            "kr2 = 2.19e4 lb in/rad), unless --beam2/--kr2 "
+                            "say otherwise (chatter models only: eq. 23 "
+                            "refuses it)")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "
@@ -137,6 +146,12 @@ def design_overrides(args: argparse.Namespace) -> dict:
         typed[field] = option
         values[field] = value
         labels[field] = option
+    if getattr(args, "separator", "thesis") == "physical":
+        from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+        for field, value in PHYSICAL_SEPARATOR.items():
+            if field not in values:
+                values[field] = value
+                labels[field] = "--separator physical"
     _check(values, labels)
     for message in unit_system_doubts(values, labels):
         warnings.warn(message, ContactsepWarning)

@@ -41,6 +41,9 @@ def register(commands: argparse._SubParsersAction) -> None:
                              "result, each key with its unit) instead of "
                              "a table")
     parser.set_defaults(handler=run)
+    # the model layer's other command: one member's modes (issue 27)
+    from contactsep.cli import modes
+    modes.register(commands)
 
 
 def results_dict(design, result) -> dict:

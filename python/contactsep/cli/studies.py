@@ -70,7 +70,9 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "conclusions (restitution, separator thickness, "
                     "separator mass, contact point) for circuit opening "
                     f"(each: default --model hertz, --n-modes "
-                    f"{PRELOAD_MODES}).",
+                    f"{PRELOAD_MODES}). separator-fit (a minute) fits "
+                    "Timoshenko separators with elastic clamps and a "
+                    "sensor mass to Table II (no design options).",
         **examples("contactsep study fig6 --n-modes 16 --restitution 0.5 "
                    "--csv fig6.csv",
                    "contactsep study all --out figs   # CSV and PNG of "
@@ -239,6 +241,12 @@ def _compute(name: str, args, overrides: dict):
                          f"study {name}'s (conclusion3 uses flores)")
     if name in searches:
         return _search_study(name, args, overrides)
+    if name == "separator-fit":
+        if args.backend:
+            raise InputError("study separator-fit computes the beams' "
+                             "modes itself (no --backend)")
+        from contactsep.studies.separator_fit import separator_fit
+        return separator_fit(**overrides)
     if name == "chatter":
         if overrides or args.backend:
             raise InputError("study chatter takes no design options: it "
@@ -338,9 +346,10 @@ def run_study(args: argparse.Namespace) -> int:
 
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS)
-    if args.name not in (*STUDIES, "chatter", *searches, "all"):
+    if args.name not in (*STUDIES, "chatter", "separator-fit", *searches,
+                         "all"):
         raise InputError(f"study {args.name!r}: expected one of "
-                         f"{', '.join(STUDIES)}, chatter, "
+                         f"{', '.join(STUDIES)}, chatter, separator-fit, "
                          f"{', '.join(searches)} or all")
     if args.name == "all" and (not args.out or args.csv or args.png):
         raise InputError("study all writes with --out DIR (not --csv "

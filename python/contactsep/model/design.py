@@ -14,8 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep import beams
+from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT, LISTING_TAU_S
 from contactsep.errors import InputError
+from contactsep.model import physics
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
@@ -255,6 +257,24 @@ class Design:
     release : str
         "tip" (default): the cantilever's tip is deflected by ys;
         "contact": the contact point x1 is.
+    beam1, beam2, beam3 : str
+        Beam theory: "bernoulli-euler" (default) or "timoshenko".
+    nu1, nu2, nu3 : dimensionless
+        Poisson's ratio (0.33), for G = E/(2(1 + nu)).
+    kappa1, kappa2, kappa3 : dimensionless or None
+        Shear coefficient (None: Cowper's 10(1 + nu)/(12 + 11 nu)).
+    kr1, kr2, kr3 : lb in/rad or None
+        Rotational spring at every clamped end (None: rigid).
+    kt1, kt2, kt3 : lb/in or None
+        Translational spring at every supported end (None: rigid).
+    mass1, mass2, mass3 : lb
+        Added point mass, a weight (0: none): a button, a sensor.
+    x_mass1, x_mass2, x_mass3 : in or None
+        Where it sits (None: the contact point).
+
+    The beam physics fields (contactsep.model.physics) hold one value
+    per Design, shared by a batch; eq. 23 (``evaluate``) refuses any but
+    the thesis's (Bernoulli-Euler, rigid ends, no mass).
     """
 
     #: Upper contact length (in).
@@ -320,6 +340,28 @@ class Design:
     lc_reading: str = "listing"
     #: "tip": load at the upper contact's tip (cantilever); "contact": at x1.
     release: str = "tip"
+    #: Each member's beam physics (contactsep.model.physics).
+    beam1: str = "bernoulli-euler"
+    beam2: str = "bernoulli-euler"
+    beam3: str = "bernoulli-euler"
+    nu1: float = DEFAULT_NU
+    nu2: float = DEFAULT_NU
+    nu3: float = DEFAULT_NU
+    kappa1: object = None
+    kappa2: object = None
+    kappa3: object = None
+    kr1: object = None
+    kr2: object = None
+    kr3: object = None
+    kt1: object = None
+    kt2: object = None
+    kt3: object = None
+    mass1: float = 0.0
+    mass2: float = 0.0
+    mass3: float = 0.0
+    x_mass1: object = None
+    x_mass2: object = None
+    x_mass3: object = None
 
     def __post_init__(self) -> None:
         for name, allowed in _OPTIONS.items():
@@ -336,6 +378,9 @@ class Design:
                     f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
             _check_number(name, getattr(self, name))
+        physics_problem = physics.problem(self)
+        if physics_problem:
+            raise DesignError(physics_problem)
         n = self._n_array()
         try:
             self.shape

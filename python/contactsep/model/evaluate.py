@@ -11,11 +11,12 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
-from contactsep.model import energy
+from contactsep.model import energy, physics
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
+    DesignError,
     Packed,
     outside_domain,
     pack,
@@ -206,6 +207,14 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
+    changed = physics.physics_changes(design)
+    if changed:
+        field, value = changed[0]
+        raise DesignError(
+            f"{field}: found {value!r}, but eq. 23 (evaluate, sweep) takes "
+            f"only the thesis's beams (Bernoulli-Euler, rigid ends, no "
+            f"added mass): its kernel computes their modes itself; "
+            f"contactsep chatter and contactsep modes take this design")
     packed = pack(design)
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 #: field -> (unit suffix of its column, unit as printed, meaning).
 FIELDS: dict[str, tuple[str, str, str]] = {}
-_MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
-for _m, _member in _MEMBERS.items():
+MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
+for _m, _member in MEMBERS.items():
     FIELDS.update({
         f"L{_m}": ("in", "in", f"{_member} length"),
         f"b{_m}": ("in", "in", f"{_member} width"),
@@ -46,6 +46,20 @@ FIELDS.update({
     "release": ("", "", "tip: the cantilever's tip is deflected; "
                         "contact: the contact point x1"),
 })
+
+for _m, _member in MEMBERS.items():
+    FIELDS.update({
+        f"beam{_m}": ("", "", f"{_member} beam theory"),
+        f"nu{_m}": ("", "", f"{_member} Poisson's ratio"),
+        f"kappa{_m}": ("", "", f"{_member} shear coefficient"),
+        f"kr{_m}": ("lb_in_rad", "lb in/rad", f"{_member} rotational "
+                    f"spring at each clamped end"),
+        f"kt{_m}": ("lb_per_in", "lb/in", f"{_member} translational spring "
+                    f"at each supported end"),
+        f"mass{_m}": ("lb", "lb", f"{_member} added point mass (weight)"),
+        f"x_mass{_m}": ("in", "in", f"where the {_member}'s point mass "
+                        f"sits, from x = 0"),
+    })
 
 #: The name a field has in outputs, where it is not the field's own.
 OUTPUT_NAMES = {"h2": "d"}

@@ -23,6 +23,8 @@ to 0.5).
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from contactsep.chatter import simulate
@@ -84,6 +86,24 @@ def _values(name: str, base) -> np.ndarray:
     return np.array(CONTACT_RATIOS) * float(base.L3)
 
 
+def _single_impulse(base, own: str, values, designs):
+    """Eq. 23 for the study's designs (y3_max, R); for beam physics eq.
+    23 does not take (issue 27: ``--separator physical``), y3_max is NaN
+    and R = (M2 / sum X2j^2)/(M3 / sum X3j^2) (eq. 24) from the members'
+    own modes."""
+    from contactsep.chatter.system import members
+    from contactsep.model.physics import physics_changes
+    if not physics_changes(base):
+        return evaluate_all(base.replace(**{own: values}), "compiled")
+    ratios = []
+    for design in designs:
+        _, separator, lower = members(design)
+        ratios.append((separator.mass / np.sum(separator.x**2))
+                      / (lower.mass / np.sum(lower.x**2)))
+    return SimpleNamespace(y3_max=np.full(len(designs), np.nan),
+                           R=np.array(ratios))
+
+
 def _columns(name: str, values, single, base) -> dict:
     """The parameter's columns, under output names."""
     if name == "conclusion3":
@@ -115,7 +135,7 @@ def conclusion(name: str, model: str = "hertz",
     base = thesis_design(n_modes=n_modes, **overrides)
     values = _values(name, base)
     designs = [base.replace(**{own: float(v)}) for v in values]
-    single = evaluate_all(base.replace(**{own: values}), "compiled")
+    single = _single_impulse(base, own, values, designs)
     settings = {"damping": "flores"} if (
         name == "conclusion3" and model == "hertz") else {}
     # the thesis rig's converged step and the listing's window, given

@@ -4,7 +4,8 @@ output column names, and values read from text.
 One convention for every output (docs/studies.md, "Names and units"):
 a key or column is the quantity's snake_case name followed by its unit,
 ``_in``, ``_s``, ``_lb``, ``_lb_s``, ``_in_s``, ``_psi``, ``_lb_in3``,
-``_rad_s``, ``_cps``, ``_lb_s2_in`` (mass); dimensionless names are bare
+``_rad_s``, ``_cps``, ``_lb_s2_in`` (mass), ``_lb_in_rad`` and
+``_lb_per_in`` (spring stiffnesses); dimensionless names are bare
 (``e``, ``R``, ``n_modes``, ``status``).  The separator's thickness is
 ``d`` in every output (``d_in``), as in the thesis; ``--d`` and
 ``--h2`` (the Design's field) are both accepted on input.
@@ -29,6 +30,7 @@ import math
 import numpy as np
 
 from contactsep import beams, units
+from contactsep.beams.member import THEORIES
 from contactsep.chatter.simulate import DAMPINGS
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError, shown
@@ -39,7 +41,8 @@ from contactsep.model.design import (
     REAL_COLUMNS,
     RELEASES,
 )
-from contactsep.model.names import FIELDS, OUTPUT_NAMES
+from contactsep.model.names import FIELDS, MEMBERS, OUTPUT_NAMES
+
 
 #: The chatter simulation's settings a chatter sweep may fix, vary or
 #: sample (as FIELDS: unit suffix, unit as printed, meaning).
@@ -70,10 +73,15 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "impact_velocity": IMPACT_VELOCITIES,
            "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
            "release": RELEASES, "damping": DAMPINGS,
-           "static_correction": ("on", "off")}
+           "static_correction": ("on", "off"),
+           **{f"beam{m}": THEORIES for m in MEMBERS}}
 #: Fields that may be None, and what None means.
 OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
-            "x3": "its tip (L3)", "Lc": "none"}
+            "x3": "its tip (L3)", "Lc": "none",
+            **{f"kappa{m}": "Cowper's 10(1+nu)/(12+11nu)" for m in MEMBERS},
+            **{f"kr{m}": "rigid" for m in MEMBERS},
+            **{f"kt{m}": "rigid" for m in MEMBERS},
+            **{f"x_mass{m}": "the contact point" for m in MEMBERS}}
 #: Fields a sweep may vary (--vary) and sample (--sample).
 VARIABLE = REAL_COLUMNS + ("end1", "end2", "end3", "n_modes")
 SAMPLED = REAL_COLUMNS
@@ -243,6 +251,14 @@ GROUPS = (("upper contact (member 1)", ("L1", "b1", "h1", "gamma1", "E1",
                                 "lc_reading", "release")))
 
 
+#: Each member's beam physics (contactsep.model.physics): options, and a
+#: line of design_lines where one differs from the thesis's.
+PHYSICS_GROUPS = tuple(
+    (f"{title} beam physics", tuple(f"{kind}{m}" for kind in (
+        "beam", "nu", "kappa", "kr", "kt", "mass", "x_mass")))
+    for (title, _), m in zip(GROUPS[:3], "123"))
+
+
 def _value_text(design, field: str, per_row) -> str:
     value = getattr(design, field)
     if field in per_row:
@@ -266,7 +282,10 @@ def design_lines(design, per_row=()) -> list[str]:
     across the batch, or is named in ``per_row``, reads 'per row' (the
     study's columns and notes give it)."""
     lines = []
-    for title, names in GROUPS:
+    physics = [(title, names) for title, names in PHYSICS_GROUPS
+               if any(getattr(design, name, None) not in (
+                   None, 0.0, "bernoulli-euler", 0.33) for name in names)]
+    for title, names in GROUPS + tuple(physics):
         parts = [f"{OUTPUT_NAMES.get(name, name)} = "
                  f"{_value_text(design, name, per_row)}" for name in names]
         lines.append(f"{title}: " + ", ".join(parts))

@@ -1,0 +1,23 @@
+"""Beam physics shared by every layer: normal modes, frequencies and the
+static flexibility of one uniform member.
+
+One module per concern:
+
+* :mod:`~contactsep.beams.bernoulli_euler`: the thesis's beams (rigid
+  classical ends, no shear, no rotary inertia, no added mass), closed-form
+  mode functions accurate to a few ulps for any mode number.  Its names
+  (``eigenvalues``, ``alphas``, ``mode_shapes``, ``tip_values``,
+  ``midspan_values``, ``static_flexibility``, ...) are re-exported here,
+  unchanged.
+* :mod:`~contactsep.beams.timoshenko`: the general beam (Timoshenko or
+  Bernoulli-Euler, elastic supports, point masses) in dimensionless form,
+  solved exactly by transfer matrices on [w, psi, M, Q].
+* :mod:`~contactsep.beams.member`: a member in the design's units (in,
+  lb, psi): its theory, supports and masses made dimensionless, and its
+  modal model (frequencies in rad/s, mode values at given points).
+"""
+
+from contactsep.beams.bernoulli_euler import (  # noqa: F401
+    ALIASES, END_CONDITIONS, SUPPORTS, _alpha_parts, _canonical, _check,
+    _sigma_parts, alphas, eigenvalues, end_code, midspan_values,
+    mode_shapes, sigmas, static_flexibility, tip_values)

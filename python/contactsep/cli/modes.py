@@ -1,0 +1,73 @@
+"""``contactsep modes``: one member's frequencies and mode values at its
+contact point, for any beam theory, supports and added mass."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from contactsep import output
+from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.help import examples
+
+EXAMPLES = examples(
+    "contactsep modes --member 2 --beam2 timoshenko --d 0.75 --json",
+    "contactsep modes --member 2 --kr2 2000 --mass2 0.015 --count 3",
+    "contactsep modes --member 1 --beam1 timoshenko --csv")
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add ``contactsep modes``."""
+    parser = commands.add_parser(
+        "modes", help="one member's frequencies and mode values at its "
+                      "contact point (any beam theory, supports, masses)",
+        description="The first K normal modes of member 1 (upper "
+                    "contact), 2 (separator) or 3 (lower contact): p_j "
+                    "(rad/s), f_j (cps) and X_j at the contact point, "
+                    "with the design's beam theory (--beam2 timoshenko), "
+                    "elastic supports (--kr2, --kt2) and point mass "
+                    "(--mass2, --x-mass2).",
+        **EXAMPLES)
+    parser.add_argument("--member", type=int, choices=(1, 2, 3),
+                        required=True, help="1, 2 or 3")
+    parser.add_argument("--count", type=int, default=None, metavar="K",
+                        help="modes (default: the design's n_modes)")
+    form = parser.add_mutually_exclusive_group()
+    form.add_argument("--json", action="store_true",
+                      help="a JSON object (keys p_rad_s, f_hz, X_contact)")
+    form.add_argument("--csv", action="store_true",
+                      help="CSV: j, p_rad_s, f_hz, X at the contact point")
+    add_design_options(parser)
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from contactsep.model import thesis_design
+    from contactsep.model.member_modes import modes
+    from contactsep.studies.fields import describe
+
+    overrides = design_overrides(args)
+    design = thesis_design(**overrides)
+    result = modes(design, args.member, args.count)
+    if args.json:
+        data = {"design": describe(overrides), **result.to_json_dict()}
+        output.write_json(sys.stdout, data)
+        return 0
+    point = ",".join(f"{x:.6g}" for x in result.x_in)
+    if args.csv:
+        lines = [f"# contactsep modes: member {result.member} "
+                 f"({result.theory}), contact point x = {point} in",
+                 "j,p_rad_s,f_hz,X_contact"]
+        lines += [f"{j + 1},{p!r},{f!r},{x!r}" for j, (p, f, x) in
+                  enumerate(zip(result.p_rad_s.tolist(),
+                                result.f_hz.tolist(),
+                                result.values[:, 0].tolist()))]
+        output.write_text(sys.stdout, "\n".join(lines) + "\n")
+        return 0
+    print(f"member {result.member} ({result.theory}), contact point "
+          f"x = {point} in")
+    print(f"{'j':>3} {'p_rad_s':>14} {'f_hz':>12} {'X_contact':>12}")
+    for j, (p, f, x) in enumerate(zip(result.p_rad_s, result.f_hz,
+                                      result.values[:, 0])):
+        print(f"{j + 1:>3} {p:>14.7g} {f:>12.7g} {x:>12.6g}")
+    return 0

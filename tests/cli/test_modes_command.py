@@ -1,0 +1,134 @@
+"""``contactsep modes`` and ``contactsep.modes`` against a finite-element
+beam of the tests' own (tests/shared/fe_beam.py), the frequencies made
+physical here from the section's own formulas (not the package's)."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import contactsep
+from contactsep.cli import main
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "shared"))
+import fe_beam as fe  # noqa: E402
+
+G = 386.4                       # in/s^2
+E, GAMMA, NU = 10.0e6, 0.100, 0.33
+L2, B2 = 2.5, 0.5
+
+
+def fe_separator_hz(d, count, timoshenko=True, kr=None, kt=None,
+                    mass=0.0, x_mass=None):
+    """The aluminium separator's frequencies (cps) by finite elements."""
+    area, inertia = B2 * d, B2 * d**3 / 12.0
+    rho_a = GAMMA * area / G
+    ei = E * inertia
+    options = {}
+    if timoshenko:
+        kappa = 10.0 * (1.0 + NU) / (12.0 + 11.0 * NU)
+        shear = E / (2.0 * (1.0 + NU))
+        options = {"r2": inertia / (area * L2**2),
+                   "s2": ei / (kappa * shear * area * L2**2)}
+    if kr is not None:
+        options["kr"] = kr * L2 / ei
+    if kt is not None:
+        options["kt"] = kt * L2**3 / ei
+    if mass:
+        where = (L2 / 2.0 if x_mass is None else x_mass) / L2
+        options["masses"] = ((where, mass / (GAMMA * area * L2)),)
+    b, _ = fe.converged("clamped-clamped", count, **options)
+    return b * np.sqrt(ei / rho_a) / L2**2 / (2.0 * np.pi)
+
+
+def run_json(capsys, *argv):
+    assert main(["modes", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_done_when_timoshenko_separator_matches_finite_elements(capsys):
+    data = run_json(capsys, "--member", "2", "--beam2", "timoshenko",
+                    "--d", "0.75")
+    expected = fe_separator_hz(0.75, 4)
+    np.testing.assert_allclose(data["f_hz"], expected, rtol=1e-6)
+    np.testing.assert_allclose(np.array(data["p_rad_s"]) / (2 * np.pi),
+                               data["f_hz"], rtol=1e-15)
+
+
+def test_elastic_supports_and_mass_match_finite_elements(capsys):
+    data = run_json(capsys, "--member", "2", "--beam2", "timoshenko",
+                    "--d", "0.25", "--kr2", "2000", "--kt2", "5e5",
+                    "--mass2", "0.015", "--x-mass2", "0.9", "--count", "3")
+    expected = fe_separator_hz(0.25, 3, kr=2000.0, kt=5e5, mass=0.015,
+                               x_mass=0.9)
+    np.testing.assert_allclose(data["f_hz"], expected, rtol=1e-6)
+
+
+def test_bernoulli_euler_default_is_the_closed_form(capsys):
+    data = run_json(capsys, "--member", "1", "--count", "3")
+    kl = np.array([1.87510407, 4.69409113, 7.85475744])    # published
+    a = np.sqrt(E * 0.125**2 / 12.0 * G / GAMMA)
+    np.testing.assert_allclose(data["f_hz"],
+                               kl**2 * a / 19.0**2 / (2 * np.pi), rtol=1e-8)
+    # the cantilever's tip value is 2 (-1)^(j+1)
+    np.testing.assert_allclose(np.ravel(data["X_contact"]), [2, -2, 2],
+                               atol=1e-12)
+
+
+def test_python_api_and_csv(capsys):
+    design = contactsep.thesis_design(d=0.5, beam2="timoshenko")
+    result = contactsep.modes(design, 2, 2)
+    assert result.f_hz.shape == (2,) and result.x_in == (1.25,)
+    assert main(["modes", "--member", "2", "--d", "0.5", "--beam2",
+                 "timoshenko", "--count", "2", "--csv"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("#") and lines[1] == "j,p_rad_s,f_hz,X_contact"
+    assert float(lines[2].split(",")[2]) == result.f_hz[0]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--member", "2", "--count", "0"], "count"),
+    (["--member", "2", "--beam2", "timoshenko", "--count", "500"], "count"),
+    (["--member", "2", "--kr2", "-1"], "--kr2"),
+    (["--member", "2", "--beam2", "rayleigh"], "--beam2"),
+])
+def test_bad_input_is_one_line(capsys, argv, message):
+    assert main(["modes", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("contactsep: error:") and message in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_evaluate_refuses_non_thesis_beams():
+    design = contactsep.thesis_design(kr2=1000.0)
+    with pytest.raises(contactsep.InputError, match="kr2: found 1000.0, but eq. 23"):
+        contactsep.evaluate(design)
+
+
+def test_separator_physical_is_the_fitted_supports(capsys):
+    physical = run_json(capsys, "--member", "2", "--separator", "physical",
+                        "--count", "2")
+    spelled = run_json(capsys, "--member", "2", "--beam2", "timoshenko",
+                       "--kr2", "21900", "--count", "2")
+    assert physical["theory"] == "timoshenko"
+    assert physical["f_hz"] == spelled["f_hz"]
+    # a typed field wins over the shortcut's
+    own = run_json(capsys, "--member", "2", "--separator", "physical",
+                   "--kr2", "5000", "--count", "2")
+    assert own["f_hz"][0] < physical["f_hz"][0]
+
+
+@pytest.mark.parametrize("argv", [
+    ["model", "--beam2", "timoshenko"],
+    ["study", "table2", "--separator", "physical"],
+    ["sweep", "--mass3", "0.01", "--vary", "d=0.2:0.3:2"],
+])
+def test_eq_23_commands_refuse_other_beams_in_one_line(capsys, argv):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("contactsep: error:") and "eq. 23" in err
+    assert len(err.strip().splitlines()) == 1
