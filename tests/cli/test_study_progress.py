@@ -14,8 +14,12 @@ from contactsep.cli.studies import _bar
 pytest.importorskip("tqdm")
 
 
-def test_always_draws_a_bar_that_counts_and_closes():
-    # (the bar shows itself once the study has taken a second)
+def test_always_draws_a_bar_that_counts_and_closes(monkeypatch):
+    # (the bar shows itself once the study has taken a second); no
+    # monitor thread, which would outlive the test and keep later tests'
+    # long calls from forking (output.interruptible)
+    import tqdm
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)
     with _bar(argparse.Namespace(progress="always"), 3) as update:
         bar = update.__self__
         for _ in range(3):
