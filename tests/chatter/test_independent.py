@@ -1,0 +1,236 @@
+"""The package's Hertz simulation against an independent simulator
+(independent_hertz.py: its own modes, release shape, integrator and
+crossing search; issue 26) on random designs varying every field that
+matters: the three contact points, the end conditions, preload,
+damping (Flores), materials, thicknesses, lengths and N.
+
+Window: from the release to the first impact plus 15 % of the upper
+contact's fundamental period (the impact, the separator's kick, the
+lower contact's first separations and re-contacts): long enough that
+every quantity compared has happened, short enough that the contact
+dynamics' sensitivity does not amplify round-off into O(1) differences.
+
+The step.  dt is set from the reference's contact dynamics: at most
+1/300 of the first contact's duration T_c and 0.05 over the fastest
+linearised Hertz frequency or damping rate of any contact phase (a
+preloaded light contact rattles far faster than the first impact lasts),
+a whole number of steps per sample interval.
+
+The tolerance, derived from the step.  The package integrates by Strang
+splitting (second order: its error at dt is C dt^2 + o(dt^2)); the
+reference is an 8th-order adaptive solve at rtol 1e-11, whose own error
+is negligible beside it.  The package at dt and dt/2 then differ by
+(3/4) C dt^2, so its error at dt is (4/3) |X(dt) - X(dt/2)| (Richardson);
+each tolerance is 3x that estimate (a margin for the o(dt^2) terms), plus
+a floor for the reference's own error and round-off.  A bug that moves
+the package's limit moves both runs alike: their difference stays
+O(dt^2) while the distance to the reference is O(1).  Exceptions, with
+their own bounds:
+* the first impact: the package reports the start of the first step
+  whose starting gap is closed, so it lies in [t*, t* + dt] (t* the
+  exact instant) up to the gap error over the impact speed;
+* the energy ratio: a bound, ENERGY_FLOOR, beside Richardson (below);
+* the circuit's open instants: Richardson on each instant; openings
+  shorter than 20 dt (a graze of the threshold, which appears or not with
+  O(dt^2) changes of the gap) are left out of the interval match, not of
+  the total open time.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import independent_hertz as ih
+from contactsep.model import Design
+from package_call import run
+
+pytest.importorskip("scipy")
+
+MATERIALS = {"aluminium": (10.0e6, 0.100), "steel": (30.0e6, 0.283),
+             "bronze": (16.0e6, 0.320), "becu": (18.5e6, 0.298)}
+ENDS = ("clamped-free", "clamped-clamped", "clamped-pinned",
+        "pinned-pinned")
+#: Richardson margin, and the floors (relative and absolute).
+MARGIN = 3.0 * 4.0 / 3.0
+SHORT_OPENING_STEPS = 20
+#: The energy at a sample is not smooth in dt: the splitting's energy
+#: error is bounded and oscillates (a symplectic scheme's modified
+#: energy), measured -8e-7, -1.6e-8, -1.4e-9, +1.2e-9 at dt, dt/2,
+#: dt/4, dt/8 on one design (seed 9): no Richardson estimate, a bound.
+ENERGY_FLOOR = 2e-6
+
+
+def random_design(seed: int, n_max: int = 4):
+    """A random design and preload/damping settings, the thesis rig's
+    scale or a relay's."""
+    rng = np.random.default_rng(seed)
+    scale = rng.choice([1.0, 0.06])          # thesis rig, or a relay
+    names = list(MATERIALS)
+    (e1, g1), (e2, g2), (e3, g3) = (MATERIALS[names[i]] for i in
+                                     rng.integers(0, 4, 3))
+    length = scale * rng.uniform(12.0, 20.0)
+    l2 = scale * rng.uniform(1.5, 4.0)
+    thick = scale * rng.uniform(0.08, 0.16)
+    end1 = "clamped-free" if rng.random() < 0.7 else str(rng.choice(ENDS))
+    end3 = "clamped-free" if rng.random() < 0.7 else str(rng.choice(ENDS))
+    end2 = str(rng.choice(ENDS))
+
+    def point(end, span):
+        if end == "clamped-free":
+            return span * rng.uniform(0.6, 1.0)
+        return span * rng.uniform(0.25, 0.75)
+    fields = dict(
+        L1=length, b1=scale * 2.0, h1=thick, E1=e1, gamma1=g1, end1=end1,
+        L2=l2, b2=scale * 0.5, h2=scale * rng.uniform(0.1, 0.6), E2=e2,
+        gamma2=g2, end2=end2,
+        L3=length * rng.uniform(0.8, 1.2), b3=scale * 2.0,
+        h3=thick * rng.uniform(0.8, 1.25), E3=e3, gamma3=g3, end3=end3,
+        ys=length * rng.uniform(0.005, 0.03), e=rng.uniform(0.3, 1.0),
+        n_modes=int(rng.integers(1, n_max + 1)),
+        release="tip" if end1 == "clamped-free" else "contact")
+    fields["x1"] = point(end1, fields["L1"])
+    fields["x2"] = point("clamped-clamped", l2)
+    fields["x3"] = point(end3, fields["L3"])
+    design = Design(**fields)
+    damping = "flores" if rng.random() < 0.5 else "none"
+    preload_fraction = 0.0 if rng.random() < 0.5 else rng.uniform(0.0005,
+                                                                 0.01)
+    return design, damping, preload_fraction
+
+
+def setup_of(design, damping, preload):
+    """The reference's setup: the design's fields written out."""
+    def member(i, default_x):
+        x = getattr(design, "x" + i)
+        return dict(end=str(getattr(design, "end" + i)),
+                    L=float(getattr(design, "L" + i)),
+                    b=float(getattr(design, "b" + i)),
+                    h=float(getattr(design, "h" + i)),
+                    gamma=float(getattr(design, "gamma" + i)),
+                    E=float(getattr(design, "E" + i)),
+                    x=default_x if x is None else float(x))
+    return ih.Setup(upper=member("1", float(design.L1)),
+                    separator=member("2", float(design.L2) / 2.0),
+                    lower=member("3", float(design.L3)),
+                    ys=float(design.ys), n_modes=int(design.n_modes),
+                    e=float(design.e), preload=float(preload),
+                    damping=damping, release=design.release)
+
+
+def reference_preload(setup, fraction):
+    """A preload that bends the lower contact at x3 by ``fraction`` of
+    its length (the reference's own static flexibility at x3, the exact
+    point-load deflection of static_shape)."""
+    lower = setup.lower
+    y = ih.static_shape(lower["end"], lower["L"], lower["x"])
+    inertia = lower["b"] * lower["h"]**3 / 12.0
+    flexibility = float(y(lower["x"])) / (lower["E"] * inertia)
+    return fraction * lower["L"] / flexibility
+
+
+def compare(seed, n_max=4):
+    design, damping, fraction = random_design(seed, n_max)
+    setup = setup_of(design, damping, 0.0)
+    preload = reference_preload(setup, fraction) if fraction else 0.0
+    setup = setup_of(design, damping, preload)
+    upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
+                    setup.upper["h"], setup.upper["gamma"],
+                    setup.upper["E"], 1)
+    period = 2.0 * math.pi / float(upper.p[0])
+    first = ih.simulate(setup, 2.0 * period, to_first_impact=True)
+    assert math.isfinite(first.first_impact_s), "no impact in the window"
+    t_end = first.first_impact_s + 0.15 * period
+    ref = ih.simulate(setup, t_end)
+    samples = 400
+    rate = ref.stiffest_rate(ref.k, ref.chi, ref.m)
+    dt = min(ref.first_contact_s / 300.0, 0.05 / rate)
+    per_sample = max(1, int(math.ceil(t_end / samples / dt)))
+    dt = t_end / (samples * per_sample)
+    runs = [run(design, dt=h, t_end=t_end, samples=samples,
+                damping=damping, preload=preload) for h in (dt, dt / 2)]
+    coarse, fine = runs
+    np.testing.assert_array_equal(coarse.t, fine.t)
+    g_ref = ref.gaps(coarse.t)
+    scale = float(setup.ys)
+
+    def tolerance(a, b, floor):
+        return MARGIN * np.abs(np.asarray(a) - np.asarray(b)) + floor
+
+    # the gap histories
+    for c, name in ((0, "gap_upper"), (1, "gap_lower")):
+        err = np.abs(getattr(coarse, name) - g_ref[c])
+        tol = MARGIN * np.max(np.abs(getattr(coarse, name)
+                                     - getattr(fine, name))) + 1e-9 * scale
+        assert err.max() <= tol, (seed, name, err.max(), tol)
+    gap_tol = MARGIN * max(np.max(np.abs(coarse.gap_upper - fine.gap_upper)),
+                           np.max(np.abs(coarse.gap_lower - fine.gap_lower))
+                           ) + 1e-9 * scale
+    # the first impact: in [t*, t* + dt], up to the gap error / speed
+    slack = gap_tol / ref.v_impact + 1e-12
+    assert ref.first_impact_s - slack <= coarse.first_impact_s \
+        <= ref.first_impact_s + dt + slack, (seed, coarse.first_impact_s,
+                                             ref.first_impact_s, dt)
+    # the first impulse and the largest lower gap
+    assert abs(coarse.first_impulse_lb_s - ref.first_impulse_lb_s) <= \
+        tolerance(coarse.first_impulse_lb_s, fine.first_impulse_lb_s,
+                  1e-8 * ref.first_impulse_lb_s), (
+        seed, coarse.first_impulse_lb_s, fine.first_impulse_lb_s,
+        ref.first_impulse_lb_s)
+    assert abs(coarse.max_lower_gap_in - ref.max_lower_gap()) <= tolerance(
+        coarse.max_lower_gap_in, fine.max_lower_gap_in,
+        gap_tol + 2e-6 * abs(ref.max_lower_gap())), (
+        seed, coarse.max_lower_gap_in, fine.max_lower_gap_in,
+        ref.max_lower_gap())
+    # the energy ratio (elastic: 1; Flores: what the damping removed)
+    ref_ratio = ref.energy_end / ref.energy0
+    assert abs(coarse.energy_ratio - ref_ratio) <= tolerance(
+        coarse.energy_ratio, fine.energy_ratio, ENERGY_FLOOR), (
+        seed, coarse.energy_ratio, fine.energy_ratio, ref_ratio)
+    # each contact's and the circuit's open intervals
+    pairs = ((coarse.upper_open_intervals, fine.upper_open_intervals,
+              ref.open_intervals(0)),
+             (coarse.lower_open_intervals, fine.lower_open_intervals,
+              ref.open_intervals(1)),
+             (coarse.circuit_open_intervals, fine.circuit_open_intervals,
+              ref.circuit_intervals()))
+    for a, b, r in pairs:
+        keep = [x[(x[:, 1] - x[:, 0]) > SHORT_OPENING_STEPS * dt]
+                for x in (a, b, r)]
+        assert keep[0].shape == keep[1].shape == keep[2].shape, (
+            seed, a, r)
+        np.testing.assert_array_less(
+            np.abs(keep[0] - keep[2]),
+            tolerance(keep[0], keep[1], 1e-11 + 1e-6 * dt) + 1e-300)
+    assert abs(coarse.circuit_open_s - sum(
+        ref.circuit_intervals()[:, 1] - ref.circuit_intervals()[:, 0])) \
+        <= SHORT_OPENING_STEPS * dt * (1 + len(ref.circuit_intervals())) \
+        + 1e-9, (seed, coarse.circuit_open_s, ref.circuit_intervals())
+    return design, damping, preload
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_package_agrees_with_the_independent_simulator(seed):
+    compare(seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(100, 400))
+def test_the_package_agrees_on_a_few_hundred_random_designs(seed):
+    compare(seed, n_max=8)
+
+
+def test_the_random_designs_vary_every_field_that_matters():
+    """The default seeds cover off-tip, off-mid-span contact points,
+    other end conditions, both damping laws, preloads and several N."""
+    seen = [random_design(seed) for seed in range(5)]
+    designs = [d for d, _, _ in seen]
+    assert {damping for (_, damping, _) in seen} == {"none", "flores"}
+    assert any(f > 0 for (_, _, f) in seen) and any(f == 0 for
+                                                    (_, _, f) in seen)
+    assert len({int(d.n_modes) for d in designs}) >= 2
+    assert any(abs(float(d.x2) - float(d.L2) / 2) > 0.05 * float(d.L2)
+               for d in designs)
+    assert len({(d.end1, d.end2, d.end3) for d in designs}) >= 3
