@@ -1,5 +1,6 @@
-"""The one place the issue-26 tests (test_independent.py,
-test_identities.py, test_docs_claims.py) call the package's simulation,
+"""The one place the issue-26 tests (tests/chatter/test_independent.py,
+test_identities.py, test_docs_claims.py, test_one_sample.py,
+tests/studies/test_cheap_catches.py) call the package's simulation,
 with every setting written out, so that a changed default (the step,
 the window, a static correction) cannot change what these tests check
 without an edit here.  To pin a new option for all of them, add it to
