@@ -80,6 +80,10 @@ def test_the_printed_claims_are_on_the_page():
     assert "(3.62e-3, 1.79e-3, 8.94e-4, 4.48e-4 lb s)" in text
     assert "(9.22, 8.79, 8.27, 8.04e-3 lb s" in text
     assert "(0.654, 0.725, 0.787, 0.837 of the initial)" in text
+    for d, claims in SIDE_BY_SIDE.items():
+        assert f"| {d:.3f} | " + " | ".join(claims) + " |" in text
+    assert ("at 0.02235–0.02324 s, for 34–37 ms of the window, in 5–77 "
+            "events") in text
     for claim in NEWTON_FIRST_IMPULSE.values():
         assert claim in text
 
@@ -166,3 +170,41 @@ def test_appendix_e_counts_impulses_and_energies_in_n():
         assert _printed(float(stop.impulse[0]), first)
         assert _printed(float(stop.impulse.sum()), total)
         assert f"{stop.final_energy / stop.initial_energy:.3f}" == left
+
+
+# "The three models side by side": d -> Newton N = 4, 16, 32, Hertz
+# N = 4, 16, 32 (max lower gap, in), default steppers and dt, 0.06 s
+SIDE_BY_SIDE = {
+    0.125: ("0.0913", "0.0227", "0.0231", "0.1141", "0.0304", "0.0269"),
+    0.250: ("0.0864", "0.0213", "0.0107", "0.0649", "0.0173", "0.0116"),
+    0.350: ("0.0829", "0.0203", "0.0101", "0.0319", "0.0083", "0.0054"),
+    0.500: ("0.0782", "0.0190", "0.0095", "0.0091", "0.0026", "0.0016"),
+    0.750: ("0.0714", "0.0173", "0.0086", "0.0017", "0.00042", "0.00028"),
+}
+
+
+def _significant(value: float, claim: str) -> bool:
+    """value to the claim's significant digits ("0.00042": two)."""
+    digits = len(claim.replace(".", "").lstrip("0"))
+    return f"{value:.{digits - 1}e}" == f"{float(claim):.{digits - 1}e}"
+
+
+def test_the_three_models_side_by_side():
+    """The table of "The three models side by side" and "The circuit
+    opens in every case, at 0.02235-0.02324 s, for 34-37 ms of the
+    window, in 5-77 events" (30 simulations, ~3 s)."""
+    firsts, opens, events = [], [], []
+    for d, claims in SIDE_BY_SIDE.items():
+        results = [run(contactsep.thesis_design(n_modes=n, d=d),
+                       model=model, dt=5e-8, t_end=0.06, samples=10)
+                   for model in ("newton", "hertz") for n in (4, 16, 32)]
+        for r, claim in zip(results, claims):
+            assert _significant(r.max_lower_gap_in, claim), (
+                d, r.model, r.n_modes, r.max_lower_gap_in, claim)
+            firsts.append(r.first_circuit_open_s)
+            opens.append(r.circuit_open_s)
+            events.append(r.n_events)
+    assert (f"{min(firsts):.5f}", f"{max(firsts):.5f}") == ("0.02235",
+                                                          "0.02324")
+    assert (round(1e3 * min(opens)), round(1e3 * max(opens))) == (34, 37)
+    assert (min(events), max(events)) == (5, 77)
