@@ -228,6 +228,8 @@ def _disagreements(a, b, points=5):
     ends = np.unique(np.concatenate([a.ravel(), b.ravel()]))
     out = []
     for lo, hi in zip(ends[:-1], ends[1:]):
+        if hi - lo <= 1e-12 * hi:
+            continue        # the round-off of an instant (t_end = steps dt)
         mid = 0.5 * (lo + hi)
         inside_a = bool(np.any((a[:, 0] <= mid) & (mid < a[:, 1])))
         inside_b = bool(np.any((b[:, 0] <= mid) & (mid < b[:, 1])))
