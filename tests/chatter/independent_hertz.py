@@ -358,8 +358,11 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
     t_hit = t_end
     if hit.size:
         j = hit[0]
-        t_hit = brentq(lambda s: float(g_up(np.array([s]))[0]),
-                       s_grid[j - 1], s_grid[j], xtol=1e-16, rtol=1e-15)
+        # the sample before may itself be within tol_g below zero: bracket
+        # g + tol_g / 2, as in flight
+        t_hit = brentq(lambda s: float(g_up(np.array([s]))[0]) + tol_g / 2,
+                       s_grid[j - 1] if j > 0 else 0.0, s_grid[j],
+                       xtol=1e-16, rtol=1e-15)
     t_hit = min(t_hit, t_end)
     for s_cross, up in _flight_crossings(
             lambda s: g_up(s), lambda s: _rate(p1, q[:n], v[:n], x1, s),
