@@ -71,3 +71,46 @@ def as_precision(values, precision: str) -> np.ndarray:
     """Values rounded to the working precision, as the program reads them."""
     dtype = np.float32 if precision == "single" else np.float64
     return np.asarray(values, dtype=dtype).astype(np.float64)
+
+
+#: Seconds past pytest-timeout's limit at which the watchdog below ends
+#: the run.
+WATCHDOG_MARGIN_S = 60.0
+
+
+@pytest.fixture(autouse=True)
+def _hang_watchdog(request):
+    """End the run if a test outlives the per-test limit inside a
+    compiled call (issue 26).  f2py calls hold the GIL, so neither of
+    pytest-timeout's methods can act while a Fortran loop runs (a
+    Flores sign error made one run forever); faulthandler's timer is a
+    C thread that needs no GIL: it dumps every thread's stack and exits
+    (status 1)."""
+    import faulthandler
+    import sys
+
+    try:
+        limit = float(request.config.getini("timeout") or 0.0)
+    except (ValueError, TypeError):
+        limit = 0.0
+    marker = request.node.get_closest_marker("timeout")
+    if marker is not None and marker.args:
+        limit = float(marker.args[0])
+    option = getattr(request.config.option, "timeout", None)
+    if option:
+        limit = float(option)
+    if limit <= 0.0:
+        yield
+        return
+    out = sys.stderr
+    try:   # the real stderr (the capture would swallow the dump)
+        from _pytest.faulthandler import fault_handler_stderr_fd_key
+        out = request.config.stash[fault_handler_stderr_fd_key]
+    except (ImportError, KeyError):
+        pass
+    faulthandler.dump_traceback_later(limit + WATCHDOG_MARGIN_S, exit=True,
+                                      file=out)
+    try:
+        yield
+    finally:
+        faulthandler.cancel_dump_traceback_later()

