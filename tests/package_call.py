@@ -17,7 +17,7 @@ from contactsep.chatter.simulate import CoarseStepWarning
 SETTINGS = dict(model="hertz", damping="none", preload=0.0,
                 open_threshold=1e-6, min_open=1e-5, nu=0.33,
                 button_radius=0.125, stepper="adaptive", backend="compiled",
-                theta=0.5, single_impulse=False)
+                theta=0.5, single_impulse=False, static_correction=False)
 
 
 def run(design, *, dt, t_end, samples, **settings):

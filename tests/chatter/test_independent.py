@@ -113,7 +113,7 @@ def random_design(seed: int, n_max: int = 4):
     return design, damping, preload_fraction
 
 
-def setup_of(design, damping, preload):
+def setup_of(design, damping, preload, static=STATIC_CORRECTION):
     """The reference's setup: the design's fields written out."""
     def member(i, default_x):
         x = getattr(design, "x" + i)
@@ -130,7 +130,7 @@ def setup_of(design, damping, preload):
                     ys=float(design.ys), n_modes=int(design.n_modes),
                     e=float(design.e), preload=float(preload),
                     damping=damping, release=design.release,
-                    static_correction=STATIC_CORRECTION)
+                    static_correction=static)
 
 
 def reference_preload(setup, fraction):
@@ -144,11 +144,18 @@ def reference_preload(setup, fraction):
     return fraction * lower["L"] / flexibility
 
 
-def compare(seed, n_max=4):
+def compare(seed, n_max=4, static=False, intervals=True):
+    """The package against the reference on random design ``seed``;
+    ``static``: both with the static correction (and no preload: the
+    reference does not define the preloaded state with it)."""
     design, damping, fraction = random_design(seed, n_max)
-    setup = setup_of(design, damping, 0.0)
+    if static:
+        # elastic: a closed contact's physical gap, g + C lambda, from
+        # the modal one needs the force, which Flores ties to the rate
+        fraction, damping = 0.0, "none"
+    setup = setup_of(design, damping, 0.0, static)
     preload = reference_preload(setup, fraction) if fraction else 0.0
-    setup = setup_of(design, damping, preload)
+    setup = setup_of(design, damping, preload, static)
     upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
                     setup.upper["h"], setup.upper["gamma"],
                     setup.upper["E"], 1)
@@ -163,10 +170,18 @@ def compare(seed, n_max=4):
     per_sample = max(1, int(math.ceil(t_end / samples / dt)))
     dt = t_end / (samples * per_sample)
     runs = [run(design, dt=h, t_end=t_end, samples=samples,
-                damping=damping, preload=preload) for h in (dt, dt / 2)]
+                damping=damping, preload=preload, static_correction=static)
+            for h in (dt, dt / 2)]
     coarse, fine = runs
     np.testing.assert_array_equal(coarse.t, fine.t)
     g_ref = ref.gaps(coarse.t)
+    if static:
+        # the package reports the physical gaps (a closed contact: minus
+        # the Hertz element's own penetration), the reference its modal
+        cmat = ih.residual_matrix(setup)
+        lam = np.array([ih.series_forces(ref.k, 0.0, cmat, g, np.zeros(2))
+                        for g in g_ref.T]).T
+        g_ref = g_ref + cmat @ lam
     scale = float(setup.ys)
     # Flores's force depends on the velocity the kick changes, and its
     # clamp at zero has a kink: the splitting is first order there, its
@@ -221,6 +236,15 @@ def compare(seed, n_max=4):
                            ref.open_intervals(1)),
                           (None, coarse.circuit_open_intervals,
                            ref.circuit_intervals())):
+        if not intervals:
+            continue
+        if static:
+            # with the correction, a crossing during a step with a force
+            # is found on the grid's physical gaps (docs/chatter.md, "The
+            # static correction"): its instant should be good to a step
+            for t in _disagreements(a, r):
+                assert t[-1] - t[0] <= 2.0 * dt, (seed, contact, t, a, r)
+            continue
         for t in _disagreements(a, r):
             near = np.abs(ref.gaps(t) - threshold) <= np.array(
                 gap_tols)[:, None]
@@ -248,6 +272,32 @@ def _disagreements(a, b, points=5):
 @pytest.mark.parametrize("seed", range(5))
 def test_the_package_agrees_with_the_independent_simulator(seed):
     compare(seed)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_static_correction_agrees_with_the_independent_simulator(seed):
+    """Issue 25's static correction: the reference's own residual
+    flexibilities (G from its static beam, less its own mode sum) in
+    series with each contact, against the package's: the gap
+    histories, the first impact and impulse, the largest lower gap and
+    the energy (the open instants: the next test)."""
+    compare(seed, static=True, intervals=False)
+
+
+#: Found by this check, not resolved: with the static correction the
+#: package's open instants differ from the reference's by more than a
+#: step (seed 1: the lower contact opens 1.2e-5 s, 14 steps, early; seed
+#: 2: 3e-8 s, 3 steps); the gaps themselves agree (the test above).
+OPEN_INSTANTS_DIFFER = pytest.mark.xfail(
+    reason="the static correction's open instants: more than a step off",
+    strict=True)
+
+
+@pytest.mark.parametrize("seed", [
+    pytest.param(s, marks=OPEN_INSTANTS_DIFFER) if s in (1, 2) else s
+    for s in range(5)])
+def test_the_static_corrections_open_instants_agree_to_a_step(seed):
+    compare(seed, static=True)
 
 
 #: Seeds where dt and dt/2 are not yet in the asymptotic range, so
