@@ -476,6 +476,12 @@ def _check_stops() -> None:
         check()
 
 
+def check_stops() -> None:
+    """Call the :func:`stop_checks` checks now: a wait on a compiled
+    call that runs in a thread does, as :func:`interruptible` does."""
+    _check_stops()
+
+
 def interruptible(long: bool, function, *args):
     """``function(*args)``; when the call is ``long``, in a child process.
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactsep import output
 from contactsep.chatter import circuit
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import series_energy
@@ -66,6 +67,7 @@ def _stoppable(work, call):
         worker.start()
         while worker.is_alive():
             worker.join(0.1)
+            output.check_stops()        # a progress bar's tick
     except BaseException:
         # (a signal inside start() may come before the thread is seen
         # alive: the flag, left set, stops it at its first look)

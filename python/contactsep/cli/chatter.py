@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib.util
 import math
 import sys
@@ -94,6 +95,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                                 f"constant (in; default "
                                 f"{DEFAULT_BUTTON_RADIUS:g})")
     out_group = parser.add_argument_group("output")
+    out_group.add_argument("--progress", choices=("auto", "always",
+                                                  "never"), default="auto",
+                           help="the elapsed time of a long run on stderr: "
+                                "auto (on a terminal, after a second), "
+                                "always, never")
     out_group.add_argument("--events", type=_event_count, default=10,
                            metavar="N|all",
                            help="circuit openings listed after the "
@@ -133,13 +139,15 @@ def run(args: argparse.Namespace) -> int:
     output.check_targets({"--csv": args.csv, "--png": args.png},
                          {"--design": args.design} if args.design else {})
     try:
-        result = simulate(design, model=args.model, damping=args.damping,
-                          dt=args.dt, t_end=args.t_end, preload=args.preload,
-                          open_threshold=args.open_threshold,
-                          min_open=args.min_open, stepper=args.stepper,
-                          nu=args.nu, button_radius=args.button_radius,
-                          static_correction=args.static_correction == "on",
-                          verify=args.verify)
+        with elapsed(args.progress) as tick, output.stop_checks(tick):
+            result = simulate(
+                design, model=args.model, damping=args.damping, dt=args.dt,
+                t_end=args.t_end, preload=args.preload,
+                open_threshold=args.open_threshold, min_open=args.min_open,
+                stepper=args.stepper, nu=args.nu,
+                button_radius=args.button_radius,
+                static_correction=args.static_correction == "on",
+                verify=args.verify)
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
@@ -163,6 +171,33 @@ def run(args: argparse.Namespace) -> int:
               "smallest preload that keeps the circuit closed",
               file=sys.stderr)
     return 0
+
+
+@contextlib.contextmanager
+def elapsed(progress: str):
+    """A tick that shows a long run's elapsed time on stderr (tqdm, no
+    total: a compiled run reports no steps), for output.stop_checks; a
+    no-op without a bar (--progress never, or auto off a terminal)."""
+    enabled = {"auto": sys.stderr.isatty(), "always": True,
+               "never": False}[progress]
+    bar = None
+    if enabled:
+        try:
+            from tqdm import tqdm
+        except ImportError:
+            bar = None
+        else:
+            # no monitor thread: a live thread keeps a long run from
+            # forking (output.interruptible)
+            tqdm.monitor_interval = 0
+            bar = tqdm(total=None, desc="simulating", delay=1.0,
+                       bar_format="{desc}: {elapsed}", file=sys.stderr,
+                       leave=False)
+    try:
+        yield (lambda: None) if bar is None else (lambda: bar.update(0))
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def refuse_blown_up(result) -> None:
