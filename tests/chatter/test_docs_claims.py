@@ -82,6 +82,8 @@ def test_the_printed_claims_are_on_the_page():
     assert "(0.654, 0.725, 0.787, 0.837 of the initial)" in text
     for d, claims in SIDE_BY_SIDE.items():
         assert f"| {d:.3f} | " + " | ".join(claims) + " |" in text
+    assert ("the plain truncation gave 0.1141, 0.0304, 0.0269 in at d = "
+            "0.125 in and 0.0017, 0.00042, 0.00028 in at 0.75 in") in text
     assert ("at 0.02235–0.02324 s, for 34–37 ms of the window, in 5–77 "
             "events") in text
     for claim in NEWTON_FIRST_IMPULSE.values():
@@ -181,13 +183,17 @@ def test_appendix_e_counts_impulses_and_energies_in_n():
 
 # "The three models side by side": d -> Newton N = 4, 16, 32, Hertz
 # N = 4, 16, 32 (max lower gap, in), default steppers and dt, 0.06 s
+#: Hertz with the static correction (the default since issue 25).
 SIDE_BY_SIDE = {
-    0.125: ("0.0913", "0.0227", "0.0231", "0.1141", "0.0304", "0.0269"),
-    0.250: ("0.0864", "0.0213", "0.0107", "0.0649", "0.0173", "0.0116"),
-    0.350: ("0.0829", "0.0203", "0.0101", "0.0319", "0.0083", "0.0054"),
-    0.500: ("0.0782", "0.0190", "0.0095", "0.0091", "0.0026", "0.0016"),
-    0.750: ("0.0714", "0.0173", "0.0086", "0.0017", "0.00042", "0.00028"),
+    0.125: ("0.0913", "0.0227", "0.0231", "0.0237", "0.0310", "0.0270"),
+    0.250: ("0.0864", "0.0213", "0.0107", "0.0032", "0.0144", "0.0116"),
+    0.350: ("0.0829", "0.0203", "0.0101", "0.0011", "0.0063", "0.0052"),
+    0.500: ("0.0782", "0.0190", "0.0095", "0.00036", "0.0018", "0.0015"),
+    0.750: ("0.0714", "0.0173", "0.0086", "0.000097", "0.00027", "0.00027"),
 }
+#: The page's note: the plain truncation's Hertz columns at two rows.
+PLAIN_HERTZ = {0.125: ("0.1141", "0.0304", "0.0269"),
+               0.750: ("0.0017", "0.00042", "0.00028")}
 
 
 def _significant(value: float, claim: str) -> bool:
@@ -203,7 +209,8 @@ def test_the_three_models_side_by_side():
     firsts, opens, events = [], [], []
     for d, claims in SIDE_BY_SIDE.items():
         results = [run(contactsep.thesis_design(n_modes=n, d=d),
-                       model=model, dt=5e-8, t_end=0.06, samples=10)
+                       model=model, dt=5e-8, t_end=0.06, samples=10,
+                       static_correction=model == "hertz")
                    for model in ("newton", "hertz") for n in (4, 16, 32)]
         for r, claim in zip(results, claims):
             assert _significant(r.max_lower_gap_in, claim), (
@@ -215,3 +222,8 @@ def test_the_three_models_side_by_side():
                                                           "0.02324")
     assert (round(1e3 * min(opens)), round(1e3 * max(opens))) == (34, 37)
     assert (min(events), max(events)) == (5, 77)
+    for d, claims in PLAIN_HERTZ.items():
+        for n, claim in zip((4, 16, 32), claims):
+            r = run(contactsep.thesis_design(n_modes=n, d=d), dt=5e-8,
+                    t_end=0.06, samples=10)
+            assert _significant(r.max_lower_gap_in, claim), (d, n, claim)
