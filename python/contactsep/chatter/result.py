@@ -3,7 +3,6 @@ summary a designer reads (docs/chatter.md)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
 

@@ -235,7 +235,6 @@ def _event_count(text: str):
 def summary_text(result, listed: int | None = 10) -> str:
     """The inputs and the summary, with units, 6 significant digits, and
     the circuit's first ``listed`` open intervals (None: all)."""
-    inputs = result.inputs()
     lines = [f"model {result.model}, N = {result.n_modes}, "
              f"dt = {_g(result.dt)} s ({result.stepper}, "
              f"{result.dt_source}), window 0 to {_g(result.t_end_s)} s "
