@@ -16,26 +16,17 @@ case shows the cost when the contact is closed at every step.
 from __future__ import annotations
 
 import sys
-import time
 import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
+from bench_chatter import best  # noqa: E402 (this folder: a script)
 from design_family import FAMILY  # noqa: E402
 
 from contactsep import chatter  # noqa: E402
 
 REPEATS = 3
-
-
-def best(fn, repeats=REPEATS) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def main() -> None:
@@ -49,9 +40,9 @@ def main() -> None:
         design = FAMILY[name].replace(n_modes=32)
         common = dict(samples=1, single_impulse=False, preload=preload)
         old = best(lambda: chatter.simulate(design, dt=5e-8, t_end=0.06,
-                                            **common))
+                                            **common), REPEATS)
         result = chatter.simulate(design, **common)
-        default = best(lambda: chatter.simulate(design, **common))
+        default = best(lambda: chatter.simulate(design, **common), REPEATS)
         verify = best(lambda: chatter.simulate(design, verify=True,
                                                **common), 1)
         label = name + (f", preload {preload:g} lb" if preload else "")

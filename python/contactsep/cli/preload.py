@@ -12,6 +12,7 @@ from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
+from contactsep.studies.design_preload import spans_text
 
 #: simulate()'s keywords that are options of the command.
 _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
@@ -175,11 +176,6 @@ def _g(value, unit="") -> str:
     return f"{value:.5g}{unit}"
 
 
-def _spans(spans) -> str:
-    return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
-                     for lo, hi in spans) or "none"
-
-
 def summary_text(answer) -> str:
     """The answer, its change, the windows and the robust answer."""
     change = answer.min_preload_change
@@ -192,8 +188,8 @@ def summary_text(answer) -> str:
              f"  longest opening there    "
              f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
              f"openings >= min_open)",
-             f"  event windows (lb)       {_spans(answer.event_windows)}",
-             f"  closed below it (lb)     {_spans(answer.closed_windows)}"]
+             f"  event windows (lb)       {spans_text(answer.event_windows)}",
+             f"  closed below it (lb)     {spans_text(answer.closed_windows)}"]
     r = answer.robust
     if r is not None:
         ci = r.p_open_ci95

@@ -143,9 +143,9 @@ class PreloadAnswer:
                  f"# min_preload_change = {_g(self.min_preload_change)} "
                  f"(at half the step and twice the modes: "
                  f"{_g(self.verify_min_preload_lb)} lb)",
-                 "# event windows (lb): " + _spans(self.event_windows),
+                 "# event windows (lb): " + spans_text(self.event_windows),
                  "# closed windows below the answer (lb): "
-                 + _spans(self.closed_windows)]
+                 + spans_text(self.closed_windows)]
         if self.robust is not None:
             r = self.robust
             ci = r.p_open_ci95
@@ -179,7 +179,8 @@ def _g(value) -> str:
     return f"{value:.6g}"
 
 
-def _spans(spans) -> str:
+def spans_text(spans) -> str:
+    """Windows (lb) as text: '0.5; 0.7-0.9' ('none' for none)."""
     return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
                      for lo, hi in spans) or "none"
 
