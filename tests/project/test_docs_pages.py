@@ -1,0 +1,436 @@
+"""The numbers docs/studies.md and docs/model.md quote come from the
+code (issue 30, item 8): each is read off the page by the sentence that
+quotes it and compared, to the digits the page prints, with a committed
+CSV of docs/studies (which tests/studies/test_committed_outputs.py holds
+equal to the code) or with a fresh computation (cheap ones in the
+default run, the costly ones slow).  A page that drifts from the code,
+or a sentence reworded so that its number is no longer found, fails."""
+
+from __future__ import annotations
+
+import csv
+import re
+import warnings
+
+import numpy as np
+import pytest
+
+import contactsep
+from conftest import ROOT
+from contactsep.model import evaluate, thesis_design
+
+STUDIES = ROOT / "docs" / "studies"
+
+
+def page(name: str) -> str:
+    """The page's text, every run of white space one blank."""
+    return " ".join((ROOT / "docs" / name).read_text().split())
+
+
+def quoted(name: str, pattern: str) -> tuple[str, ...]:
+    """The groups of ``pattern`` (a regular expression, white space
+    already one blank) in page ``name``; fails when it is not there."""
+    found = re.search(pattern, page(name))
+    assert found, f"{name}: no longer says {pattern!r}"
+    return found.groups()
+
+
+NUMBER = r"([-+]?[\d.]+(?:e-?\d+)?)"
+
+
+def printed(value: float, claim: str) -> bool:
+    """``value`` written as the page writes ``claim`` is ``claim``: to its
+    decimals (0.137, +5.4), or to its significant digits (3.6e-6)."""
+    claim = claim.replace(",", "")
+    if "e" in claim:
+        digits = len(claim.split("e")[0].replace(".", "").lstrip("+-0")) - 1
+        return f"{value:.{digits}e}" == f"{float(claim):.{digits}e}"
+    decimals = len(claim.split(".")[1]) if "." in claim else 0
+    text = f"{value:+.{decimals}f}" if claim[0] in "+-" else \
+        f"{value:.{decimals}f}"
+    return text == claim
+
+
+def rows(name: str) -> list[dict]:
+    """The rows of the committed docs/studies/NAME.csv."""
+    lines = [line for line in (STUDIES / f"{name}.csv").read_text()
+             .splitlines() if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def column(name: str, key: str, **where) -> np.ndarray:
+    return np.array([float(r[key]) for r in rows(name)
+                     if all(np.isclose(float(r[k]), v) if not
+                            isinstance(v, str) else r[k] == v
+                            for k, v in where.items())])
+
+
+def check(claims, values) -> None:
+    claims, values = list(claims), list(values)
+    assert len(claims) == len(values)
+    for claim, value in zip(claims, values):
+        assert printed(value, claim), (claim, value)
+
+
+# -- docs/studies.md, the figures --------------------------------------------
+
+def test_figure_5_numbers_are_fig5_csv():
+    at_half = quoted("studies.md", rf"y_s = 0.5 in: {NUMBER} in at d = "
+                     rf"0.10, {NUMBER} at 0.25, {NUMBER} at 0.50, {NUMBER} "
+                     rf"at 1.00 in")
+    check(at_half, [column("fig5", "y3_max_in", ys_in=0.5, d_in=d)[0]
+                    for d in (0.1, 0.25, 0.5, 1.0)])
+    by_ys = quoted("studies.md", rf"\({NUMBER}, {NUMBER}, {NUMBER} in at "
+                   rf"d = 0.10 for y_s = 0.25, 0.5, 0.75 in\)")
+    check(by_ys, [column("fig5", "y3_max_in", ys_in=ys, d_in=0.1)[0]
+                  for ys in (0.25, 0.5, 0.75)])
+
+
+def test_figure_6_numbers_are_fig6_csv():
+    claims = quoted("studies.md", rf"Curve I: {NUMBER} in at r = 1.00, "
+                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70; curve II: "
+                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70\.")
+    check(claims, [column("fig6", "y3_max_in", curve=c, r=r)[0] for c, r in
+                   (("I", 1.0), ("I", 0.78), ("I", 0.70), ("II", 0.78),
+                    ("II", 0.70))])
+
+
+def test_figure_7_coefficients_and_the_node():
+    """The c3_j of Figure 7's two designs (eq. 23 as printed, N = 4, the
+    thesis rig), recomputed; the node of the cantilever's mode 2."""
+    claims = quoted("studies.md", rf"c3_j \(in\) are {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} at 0.98 and {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} at 0.78: mode 2 is ([\d,]+) times "
+                    rf"weaker \(the node of the cantilever's mode 2 is at "
+                    rf"x/L = {NUMBER}\)")
+    c3 = evaluate(thesis_design(x3=np.array([0.98, 0.78]) * 19.0,
+                                lower_response="as-printed")).c3
+    from contactsep.studies.mode_share import second_mode_node
+    weaker = c3[0, 1] / c3[1, 1]
+    check(claims[:8], c3.ravel())
+    assert f"{round(weaker, -2):,.0f}" == claims[8]
+    check(claims[9:], [second_mode_node()])
+
+
+def test_figure_8_ends_are_fig8_csv():
+    claims = quoted("studies.md", rf"\({NUMBER} in at R = 0.05, {NUMBER} "
+                    rf"in at R = 5\)")
+    check(claims, [column("fig8", "y3_max_in", R=0.05)[0],
+                   column("fig8", "y3_max_in", R=5.0)[0]])
+
+
+def test_figure_23_numbers_are_fig23_csv():
+    claims = quoted("studies.md", rf"max y3 is {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER}, {NUMBER} in for d = 0.125, 0.25, "
+                    rf"0.35, 0.50, 0.75 in, against {NUMBER} \.\.\. "
+                    rf"{NUMBER} in without L_c")
+    corrected = column("fig23", "y3_max_in")
+    plain = column("fig23", "y3_max_uncorrected_in")
+    assert column("fig23", "d_in").tolist() == [0.125, 0.25, 0.35, 0.5,
+                                                0.75]
+    check(claims, [*corrected, plain[0], plain[-1]])
+    (lc,) = quoted("studies.md", rf"The 0.75 in row uses the printed "
+                   rf"L_c = {NUMBER} in")
+    check([lc], [column("fig23", "Lc_in", d_in=0.75)[0]])
+
+
+def test_the_new_convergence_value_is_convergence_csv():
+    (new,) = quoted("studies.md", rf"N = 50: max y3 0.105479 → {NUMBER} in")
+    check([new], [column("convergence", "y3_max_in", N=50)[0]])
+
+
+def test_conclusion_8_numbers_are_conclusion8_csv():
+    node, blevins, share, low, high, peak, at, tip, mid = quoted(
+        "studies.md", rf"second mode's node is at x3/L3 = {NUMBER} "
+        rf"\(Blevins: {NUMBER}\)\. There the share is {NUMBER} and y3 "
+        rf"swings once a period.*? every contact point from x3/L3 = "
+        rf"{NUMBER} to {NUMBER} swings once, and the share peaks at "
+        rf"{NUMBER} at x3/L3 = {NUMBER} \(it is {NUMBER} at the tip, with "
+        rf"two swings, and {NUMBER} at mid-length, with six\)")
+    from contactsep.studies.mode_share import MODES, second_mode_node
+    check([node], [second_mode_node()])
+    assert abs(float(blevins) - second_mode_node()) < 5e-4
+    c3 = evaluate(thesis_design(n_modes=MODES,
+                                x3=second_mode_node() * 19.0)).c3
+    check([share], [float(c3[0] ** 2 / np.sum(c3 ** 2))])
+    r = column("conclusion8", "r")
+    share_r = column("conclusion8", "first_mode_share")
+    swings = column("conclusion8", "n_maxima")
+    once = r[swings == 1]
+    check([low, high], [once.min(), once.max()])
+    # one band: every point between them swings once
+    assert np.all(swings[(r >= once.min()) & (r <= once.max())] == 1)
+    check([peak, at], [share_r.max(), r[np.argmax(share_r)]])
+    check([tip, mid], [share_r[r == 1.0][0], share_r[r == 0.5][0]])
+    assert swings[r == 1.0][0] == 2 and swings[r == 0.5][0] == 6
+
+
+# -- docs/studies.md, the tables -----------------------------------------------
+
+def test_tables_1_to_3_are_their_csvs():
+    t1 = quoted("studies.md", rf"\| I, contact frequencies \(cps\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| {NUMBER}, "
+                rf"{NUMBER}, {NUMBER}, {NUMBER} \| \*\*disagree by "
+                rf"{NUMBER}–{NUMBER} %\*\*: the printed theory implies "
+                rf"E/γ = {NUMBER} in, Table II {NUMBER} in")
+    model = column("table1", "model_cps")
+    check(t1[:4], model)
+    check(t1[4:8], column("table1", "printed_theoretical_cps"))
+    relative = 100 * column("table1", "relative_difference")
+    check(t1[8:10], [relative.min(), relative.max()])
+    # E/gamma the printed frequencies imply: frequencies go as its root
+    material = 10.0e6 / 0.100
+    implied = material * (column("table1", "printed_theoretical_cps")
+                          / model) ** 2
+    check(t1[10:], [implied.mean(), material])
+    t2 = quoted("studies.md", rf"\| II, separator frequency \(cps\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| "
+                rf"([\d, ]+) \| agree to {NUMBER} %")
+    check(t2[:5], column("table2", "model_cps"))
+    assert [float(x) for x in t2[5].split(",")] == column(
+        "table2", "printed_theoretical_cps").tolist()
+    check(t2[6:], [100 * np.abs(column("table2",
+                                       "relative_difference")).max()])
+    t3 = quoted("studies.md", rf"\| III, L_c = √\(1.3e6 d/p\) \(in\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, \*\*{NUMBER}\*\* "
+                rf"\| {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, "
+                rf"\*\*{NUMBER}\*\*")
+    check(t3[:5], column("table3", "Lc_formula_in"))
+    check(t3[5:], column("table3", "printed_Lc_in"))
+
+
+def test_the_formulas_constant_against_the_materials():
+    """"1.3e6 is 2.4 % off the material's 1.270e6": (k1 L)^2 sqrt(E g /
+    (12 gamma)) of the clamped-clamped aluminium separator."""
+    off, constant = quoted("studies.md", rf"1.3e6 is {NUMBER} % off the "
+                           rf"material's {NUMBER}\)")
+    from contactsep.beams import eigenvalues
+    from contactsep.constants import GRAVITY_IN_PER_S2 as G
+    k1 = eigenvalues("clamped-clamped", 1)[0]
+    material = k1 ** 2 * np.sqrt(10.0e6 * G / (12 * 0.100))
+    check([off, constant], [100 * (1.3e6 / material - 1), material])
+
+
+# -- docs/studies.md, sweeps ---------------------------------------------------
+
+def test_wilsons_z_and_the_largest_preload():
+    (z,) = quoted("studies.md", rf"with z = {NUMBER} ")
+    from scipy.stats import norm
+    check([z], [norm.ppf(0.975)])
+    from contactsep.studies.stats import wilson_interval
+    # the interval's z is that z: k = 0 of n gives z^2/(n + z^2) on top
+    low, high = wilson_interval(0, 100)
+    assert low == 0 and high == pytest.approx(norm.ppf(0.975) ** 2
+                                              / (100 + norm.ppf(0.975)
+                                                 ** 2), rel=1e-5)
+    (limit,) = quoted("studies.md", rf"by its length: {NUMBER} lb for the "
+                      rf"thesis rig\)")
+    from contactsep.chatter import DEFAULT_MODES
+    from contactsep.chatter.simulate import largest_preload
+    check([limit], [largest_preload(thesis_design(n_modes=DEFAULT_MODES))])
+
+
+@pytest.mark.slow
+def test_the_million_design_tolerance_sweep():
+    """The second sweep example's summary (1e6 designs of eq. 23 as
+    printed, seed 0): about 10 s on one core."""
+    n, mean, sd, p, low, high, closed = quoted(
+        "studies.md", rf"prints n = ([\d,]+), mean max y3 = {NUMBER} in, "
+        rf"sd {NUMBER} in, and p_exceed = {NUMBER} with its 95 % Wilson "
+        rf"interval \[{NUMBER}, {NUMBER}\].*?closed in {NUMBER} % of builds")
+    result = contactsep.sweep(sample=["d=normal(0.25,0.01)",
+                                      "ys=uniform(0.45,0.55)"],
+                              samples=1_000_000, threshold=0.12,
+                              fixed={"lower_response": "as-printed"},
+                              rows=False)
+    s = result.summary
+    assert f"{s['n']:,}" == n
+    check([mean, sd, p, low, high, closed],
+          [s["y3_max_mean_in"], s["y3_max_sd_in"], s["p_exceed"],
+           *s["p_exceed_ci95"], 100 * (1 - s["p_exceed"])])
+
+
+# -- docs/model.md ---------------------------------------------------------------
+
+def test_the_lower_response_factor():
+    """"v0 M3/(psi L3) (3.6 for the thesis rig, N = 4, d = 0.25 in)"."""
+    (factor,) = quoted("model.md", rf"S2 M3/\(M2 L3\) \({NUMBER} for the "
+                       rf"thesis rig, N = 4, d = 0.25 in\)")
+    ev = evaluate(thesis_design(n_modes=4, d=0.25))
+    check([factor], [float(ev.v0 * ev.M3 / (ev.psi * 19.0))])
+
+
+def test_the_one_second_window_truth():
+    """The old search's "0.10953 in where the truth is 0.11662 in at
+    tau = 1 s" (eq. 23 as printed, the thesis design, N = 4)."""
+    (truth,) = quoted("model.md", rf"where the truth is {NUMBER} in at "
+                      rf"τ = 1 s")
+    ev = evaluate(thesis_design(tau=1.0, lower_response="as-printed"))
+    check([truth], [float(ev.y3_max)])
+
+
+def convergence_table() -> dict:
+    """N -> the row's cells, as model.md prints them."""
+    text = (ROOT / "docs" / "model.md").read_text()
+    table = {}
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 7 and cells[0].isdigit():
+            table[int(cells[0])] = cells[1:]
+    return table
+
+
+def check_rows(table, ns, computed) -> None:
+    for n in ns:
+        for claim, value in zip(table[n], computed[n]):
+            assert printed(value, claim), (n, claim, value)
+
+
+def test_the_convergence_table_to_n_50_is_convergence_csv():
+    table = convergence_table()
+    assert sorted(table) == [1, 2, 3, 4, 8, 16, 32, 50, 100, 200, 400, 800,
+                             1600]
+    committed = {int(r["N"]): [float(r[k]) for k in (
+        "t1_s", "v_impact_in_s", "psi_lb_s")] + [
+        float(r["psi_lb_s"]) * int(r["N"])] + [float(r[k]) for k in (
+            "v0_in_s", "y3_max_in")] for r in rows("convergence")}
+    check_rows(table, [n for n in table if n <= 50], committed)
+
+
+@pytest.mark.slow
+def test_the_convergence_table_beyond_n_50_and_its_limits():
+    """The rows N = 100-1600 (eq. 23 as printed, the convergence study's
+    design), the falls of max y3, the Richardson limits and the errors
+    at N = 4."""
+    table = convergence_table()
+    ns = np.array([4, 100, 200, 400, 800, 1600])
+    design = thesis_design(n_modes=ns, lower_response="as-printed")
+    ev = evaluate(design)
+    computed = {int(n): [ev.t1[i], ev.v_impact[i], ev.psi[i],
+                         ev.psi[i] * n, ev.v0[i], ev.y3_max[i]]
+                for i, n in enumerate(ns)}
+    check_rows(table, [100, 200, 400, 800, 1600], computed)
+    y3 = dict(zip(ns.tolist(), ev.y3_max))
+    v0 = dict(zip(ns.tolist(), ev.v0))
+    (t_max,) = quoted("model.md", rf"t_max settles at {NUMBER} s")
+    check([t_max], [ev.t_max[-1]])
+    (psi_n,) = quoted("model.md", rf"ψ·N → {NUMBER} lb s")
+    check([psi_n], [ev.psi[-1] * 1600])
+    falls = quoted("model.md", rf"max y3 falls by {NUMBER}, {NUMBER}, "
+                   rf"{NUMBER} in from N = 200 to 1600")
+    check(falls, [y3[200] - y3[400], y3[400] - y3[800],
+                  y3[800] - y3[1600]])
+
+    def richardson(values, n):      # O(1/N): 2 f(2n) - f(n)
+        return 2 * values[2 * n] - values[n]
+
+    v0_limit, y3_limit, y3_limit_more, pair1, pair2 = quoted(
+        "model.md", rf"\*\*v0 → {NUMBER} in/s, max y3 → {NUMBER} in\*\* "
+        rf"\({NUMBER}; the pairs 200/400 and 400/800 give {NUMBER} and "
+        rf"{NUMBER}\)")
+    check([v0_limit, y3_limit, y3_limit_more, pair1, pair2],
+          [richardson(v0, 800), richardson(y3, 800), richardson(y3, 800),
+           richardson(y3, 200), richardson(y3, 400)])
+    v0_error, y3_error = quoted("model.md", rf"At the listing's N = 4 the "
+                                rf"errors are {NUMBER} % \(v0\) and "
+                                rf"{NUMBER} % \(max y3\)")
+    check([v0_error, y3_error],
+          [100 * (v0[4] / richardson(v0, 800) - 1),
+           100 * (y3[4] / richardson(y3, 800) - 1)])
+    (high,) = quoted("studies.md", rf"max y3 is {NUMBER} % above its N → ∞ "
+                     rf"limit there")
+    check([high.lstrip("+")], [100 * (y3[4] / richardson(y3, 800) - 1)])
+
+
+def test_the_energy_bound_numbers():
+    """"0.026 in from a 0.02 in release of an identical spring (1.3-3.2
+    times the bound on four of the nine designs of
+    tests/design_family.py at N = 4)"."""
+    from design_family import FAMILY, UNSEEN
+    from contactsep.model.energy import y3_energy_bound
+    gives, release, low, high, count, total = quoted(
+        "model.md", rf"it gives {NUMBER} in from a {NUMBER} in release of "
+        rf"an identical spring \({NUMBER}-{NUMBER} times the bound on "
+        rf"(\w+) of the (\w+) designs of tests/design_family.py at N = 4\)")
+    words = {"three": 3, "four": 4, "five": 5, "seven": 7, "nine": 9}
+    designs = {**FAMILY, **UNSEEN}
+    assert words[total] == len(designs)
+    ratios = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for design in designs.values():
+            printed_form = design.replace(lower_response="as-printed")
+            ratios.append(float(evaluate(printed_form).y3_max
+                                / y3_energy_bound(printed_form)))
+        relay = FAMILY["steel_relay"].replace(lower_response="as-printed")
+        check([gives, release], [float(evaluate(relay).y3_max),
+                                 float(relay.ys)])
+    over = [r for r in ratios if r > 1]
+    assert len(over) == words[count]
+    check([low, high], [min(over), max(over)])
+
+
+def test_cowpers_kappa():
+    (kappa,) = quoted("model.md", rf"for a rectangle \({NUMBER} at ν = "
+                      rf"0.33\)")
+    nu = 0.33
+    check([kappa], [10 * (1 + nu) / (12 + 11 * nu)])
+
+
+def test_the_long_window_in_periods():
+    """"tau = 10^4 s is 3.8e6 periods of the fastest of y3's 4 modes"."""
+    (periods,) = quoted("model.md", r"\(τ = 10⁴ s is ([\d.]+)·10⁶ periods "
+                        r"of the fastest of y3's 4 modes, the thesis design")
+    ev = evaluate(thesis_design(n_modes=4))
+    check([periods], [float(ev.p3.max()) * 1e4 / (2 * np.pi) / 1e6])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("field, value, claim", [
+    ("tau", 1e8, r"the thesis design at τ = 10⁸ s gives status 4"),
+    ("n_modes", 10_000, r"gives status 4, and so does N = 10⁴")])
+def test_the_searchs_limits_give_status_4(field, value, claim):
+    quoted("model.md", f"({claim})")
+    from contactsep.model import status
+    ev = evaluate(thesis_design(**{field: value}))
+    assert int(np.ravel(ev.status)[0]) == status.UNRESOLVED
+
+
+def test_the_sweep_limits_are_the_codes():
+    """The limits docs/studies.md states in words are the constants the
+    code uses (a changed constant fails here until the page says it)."""
+    from contactsep.studies import chatter_sweep, dask_run, pool, runner
+    from contactsep.studies import stats, sweep, writers
+    default, most = quoted("studies.md", r"`--chunk-size` \(default "
+                           r"([\d,]+), at most ([\d,]+)\)")
+    assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
+                               f"{sweep.MAX_CHUNK_SIZE:,}")
+    restarts, designs, workers = quoted(
+        "studies.md", r"up to (\d+) times a sweep.*?a sweep has at most "
+        r"(1e\d+) designs and (\d+) workers a usable core")
+    assert int(restarts) == runner.MAX_POOL_RESTARTS
+    assert float(designs) == sweep.MAX_DESIGNS
+    assert int(workers) == pool.WORKERS_PER_CORE
+    (group,) = quoted("studies.md", r"row groups of a fixed ([\d,]+) rows")
+    assert group == f"{writers.ROW_GROUP:,}"
+    (block,) = quoted("studies.md", r"the summary's sums are taken "
+                      r"([\d,]+) values at a time")
+    assert block == f"{stats.BLOCK:,}"
+    probe, lost = quoted("studies.md", r"refused in one line within (\d+) "
+                         r"s .*? a scheduler lost mid-sweep is one line "
+                         r"within about (\d+) s")
+    assert (int(probe), int(lost)) == (dask_run.PROBE_TIMEOUT_S,
+                                       dask_run.SCHEDULER_LOST_S)
+    (chunk,) = quoted("studies.md", r"\*\*Chunks\*\* are at most (\d+) "
+                      r"designs by default")
+    assert int(chunk) == chatter_sweep.CHUNK_SIZE
+
+
+def test_the_png_sizes():
+    """"default 100: 600 x 400 pixels, the tables 600 x 500"."""
+    import struct
+    size, table = quoted("studies.md", r"default 100: (\d+ × \d+) pixels, "
+                         r"the tables (\d+ × \d+)\)")
+    for name, claim in (("fig5", size), ("table1", table)):
+        head = (STUDIES / f"{name}.png").read_bytes()[16:24]
+        assert "{} × {}".format(*struct.unpack(">II", head)) == claim
