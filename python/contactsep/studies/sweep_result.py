@@ -35,7 +35,7 @@ class SweepResult:
         designs in sweep order; None when the sweep was run with
         ``rows=False``.
     comments : tuple of str
-        The ``#`` lines of the sweep's CSV, without the ``# ``: its
+        The comment lines of the sweep's CSV, without their ``#``: its
         title, the inputs in words and how to read the columns.
     """
 
