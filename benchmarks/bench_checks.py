@@ -1,7 +1,7 @@
 """The cost of numerics chosen from the design and of the checks (issue
 25), side by side in one run:
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_checks.py [--save]
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_checks.py [--cpu] [--save]
 
 For three designs of tests/design_family.py at N = 32 (the default N),
 elastic Hertz, summary only (samples=1): the thesis's old fixed settings
@@ -11,8 +11,9 @@ division, its cost is a rerun when a step is halved), and the default
 with verify=True (a second run at 2N and half the step).  Each time is
 the best of REPEATS calls; the ratios are to the default.  A preloaded
 case shows the cost when the contact is closed at every step.
-``--save``: also into benchmarks/results/bench_checks.md, the run
-docs/performance.md quotes.
+``--cpu``: CPU time (with the forked children's) instead of the wall
+clock; ``--save``: also into benchmarks/results/bench_checks.md, the
+run docs/performance.md quotes.
 """
 
 from __future__ import annotations
@@ -23,7 +24,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from bench_chatter import best  # noqa: E402 (this folder: a script)
+import bench_chatter  # noqa: E402 (this folder: a script)
+from bench_chatter import best  # noqa: E402
 from design_family import FAMILY  # noqa: E402
 from results import Report  # noqa: E402
 
@@ -32,9 +34,12 @@ from contactsep import chatter  # noqa: E402
 REPEATS = 3
 
 
-def main(save: bool = False) -> None:
+def main(save: bool = False, cpu: bool = False) -> None:
     warnings.simplefilter("ignore")
+    if cpu:
+        bench_chatter.clock = bench_chatter.cpu_time
     say = Report()
+    say(f"clock: {'process CPU time' if cpu else 'wall'}")
     say("| design, N = 32 | old fixed (5e-8 s, 0.06 s) | default | "
           "default + verify | default: dt (s), window (s), energy - 1 |")
     say("|---|---:|---:|---:|---|")
@@ -56,8 +61,9 @@ def main(save: bool = False) -> None:
             f"{result.t_end_s:.3g}, {result.energy_ratio - 1:.1e} |")
     if save:
         say.save("bench_checks", "OPENBLAS_NUM_THREADS=1 python "
-                 "benchmarks/bench_checks.py --save")
+                 "benchmarks/bench_checks.py " + ("--cpu " if cpu else "")
+                 + "--save")
 
 
 if __name__ == "__main__":
-    main(save="--save" in sys.argv[1:])
+    main(save="--save" in sys.argv[1:], cpu="--cpu" in sys.argv[1:])

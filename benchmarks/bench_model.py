@@ -109,12 +109,13 @@ def targets() -> None:
             t = best_of(lambda: compiled.evaluate_packed(packed), 1)
             best[key] = min(best[key], t / packed.size)
     say(f"numpy.sin: {t_sin * 1e9:.2f} ns an element (1e6 float64)")
-    say(f"{'random designs':14} {'N':>3} {'us/design':>10} "
-        f"{'bound (us)':>10} {'ratio':>6}")
+    say()
+    say("| random designs | N | us/design | bound (us) | ratio |")
+    say("|---|---:|---:|---:|---:|")
     for (family, n), t in best.items():
         bound = 38 * n * t_sin
-        say(f"{family:14} {n:3d} {t * 1e6:10.2f} {bound * 1e6:10.2f} "
-            f"{t / bound:6.2f}")
+        say(f"| {family} | {n} | {t * 1e6:.2f} | {bound * 1e6:.2f} | "
+            f"{t / bound:.2f} |")
 
 
 def memory_of_a_million() -> float:
@@ -150,20 +151,23 @@ def family_table() -> None:
 
     t_solve = best_of(loop, 3) / len(data_sets)
     rss = memory_of_a_million()
-    say(f"{'what':44} {'us/design':>10} {'designs/s':>11} {'ratio':>8}")
+    say("| what | us/design | designs/s | ratio |")
+    say("|---|---:|---:|---:|")
     rows = [("compiled batch, d sweep (contactsep.model._model)", t_compiled),
             ("compiled batch, nothing shared", t_unshared),
             ("NumPy twin (contactsep.model.twin), d sweep", t_twin),
             ("Python loop of contactsep.solve(double)", t_solve)]
     for name, t in rows:
-        say(f"{name:44} {t * 1e6:10.3f} {1 / t:11.0f} "
-            f"{t / t_compiled:8.3g}")
+        say(f"| {name} | {t * 1e6:.3f} | {1 / t:,.0f} | "
+            f"{t / t_compiled:.3g} |")
+    say()
     say(f"peak RSS for 1e6 designs: {rss:.0f} MB")
 
 
 def limits() -> None:
     """One design at many modes and over long windows (seconds each)."""
-    say(f"{'one thesis design':28} {'s':>8} {'status':>6}")
+    say("| one thesis design | s | status |")
+    say("|---|---:|---:|")
     for label, fields in (("N = 800", {"n_modes": 800}),
                           ("N = 1600", {"n_modes": 1600}),
                           ("N = 3200", {"n_modes": 3200}),
@@ -173,7 +177,7 @@ def limits() -> None:
         status = []
         t = best_of(lambda: status.append(
             int(contactsep.evaluate(design).status)), 1)
-        say(f"{label:28} {t:8.2f} {status[0]:6d}")
+        say(f"| {label} | {t:.2f} | {status[0]} |")
 
 
 def main() -> None:

@@ -107,3 +107,54 @@ def test_the_contact_dynamics_prose_is_the_run():
                             r"reference's 1.2 million")
     assert f"fixed_steps {fixed_steps.replace(',', '')}" in default[2]
     assert "fixed_steps 1200000" in rows["hertz N=16 fixed-step"][2]
+
+
+def checks_table() -> dict:
+    """design -> cells of the bench_checks run's rows."""
+    rows = {}
+    for line in result_lines("bench_checks"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 5 and \
+                cells[2].endswith("(1x)"):
+            rows[cells[0]] = cells
+    return rows
+
+
+def test_the_checks_prose_is_the_run():
+    rows = checks_table()
+
+    def ratio(cell):                  # "0.034 s (0.33x)" -> 0.33
+        return float(re.search(r"\(([\d.]+)x\)", cell).group(1))
+
+    def numerics(design):             # dt (s), window (s)
+        dt, window, _ = rows[design][4].split(", ")
+        return float(dt), float(window)
+
+    step, thesis = quoted(r"on the thesis rig 0.295 s instead of 0.06 s, "
+                          r"at a step ([\d.]+)x the old one, ([\d.]+)x the "
+                          r"time of the old settings")
+    assert numerics("thesis") == (pytest.approx(float(step) * 5e-8,
+                                                rel=0.01), 0.295)
+    assert f"{numerics('thesis')[0] / 5e-8:.2f}" == step
+    assert f"{1 / ratio(rows['thesis'][1]):.1f}" == thesis
+    low, high, finer_low, finer_high, cost_low, cost_high = quoted(
+        r"on the relays the window is short \((\d+)-(\d+) ms\) and the step "
+        r"([\d.]+)-([\d.]+)x finer, ([\d.]+)x to ([\d.]+)x the old cost")
+    relays = ("steel_relay", "becu_light")
+    windows = sorted(1e3 * numerics(r)[1] for r in relays)
+    assert [f"{w:.0f}" for w in windows] == [low, high]
+    finer = sorted(5e-8 / numerics(r)[0] for r in relays)
+    assert [f"{f:.1f}" for f in finer] == [finer_low, finer_high]
+    costs = sorted(1 / ratio(rows[r][1]) for r in relays)
+    assert [f"{c:.1f}" for c in costs] == [cost_low, cost_high]
+    steps, preloaded = quoted(r"window / step \(([\d.]+)x the old steps on "
+                              r"the steel relay\): the default is "
+                              r"([\d.]+)x the old settings' time there")
+    dt, window = numerics("steel_relay, preload 0.35 lb")
+    assert f"{(window / dt) / (0.06 / 5e-8):.1f}" == steps
+    assert f"{1 / ratio(rows['steel_relay, preload 0.35 lb'][1]):.1f}" \
+        == preloaded
+    low, high = quoted(r"`--verify` costs a run at 2N and half the step: "
+                       r"([\d.]+)-([\d.]+)x the run")
+    verify = [ratio(cells[3]) for cells in rows.values()]
+    assert (f"{min(verify):.1f}", f"{max(verify):.1f}") == (low, high)
