@@ -158,3 +158,17 @@ def test_the_checks_prose_is_the_run():
                        r"([\d.]+)-([\d.]+)x the run")
     verify = [ratio(cells[3]) for cells in rows.values()]
     assert (f"{min(verify):.1f}", f"{max(verify):.1f}") == (low, high)
+
+
+def test_the_models_targets_are_the_run():
+    rows = {}
+    for line in result_lines("bench_model"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if len(cells) == 5 and cells[1].isdigit():
+            rows[(cells[0], int(cells[1]))] = float(cells[4])
+    at4, at32 = quoted(r"Both targets hold: ([\d.]+)× at N = 4 \(1.5× "
+                       r"asked\) and ([\d.]+)× at N = 32 \(2.0× asked\)")
+    assert (float(at4), float(at32)) == (rows[("thesis-like", 4)],
+                                         rows[("thesis-like", 32)])
+    assert rows[("thesis-like", 4)] <= 1.5
+    assert rows[("thesis-like", 32)] <= 2.0
