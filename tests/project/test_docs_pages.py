@@ -434,3 +434,115 @@ def test_the_png_sizes():
     for name, claim in (("fig5", size), ("table1", table)):
         head = (STUDIES / f"{name}.png").read_bytes()[16:24]
         assert "{} × {}".format(*struct.unpack(">II", head)) == claim
+
+
+# -- docs/studies.md, Table II explained ----------------------------------------
+
+#: The page's model labels and data versions, as the CSV names them.
+FIT_MODELS = {"Bernoulli–Euler clamped": "bernoulli-euler-clamped",
+              "Timoshenko clamped": "timoshenko-clamped",
+              "Timoshenko + k_r2": "timoshenko-kr2",
+              "Timoshenko + k_r2, k_t2": "timoshenko-kr2-kt2",
+              "Timoshenko + k_r2, mid-span mass2": "timoshenko-kr2-mass2"}
+FIT_DATA = {"printed": "printed", "9,000": "last-9000"}
+
+
+def fit_rows() -> dict:
+    return {(r["model"], r["data"]): r for r in rows("separator-fit")}
+
+
+def residuals(row) -> list[float]:
+    return [float(row[k]) for k in row if k.startswith("res_")]
+
+
+def test_the_separator_fit_table_is_separator_fit_csv():
+    text = (ROOT / "docs" / "studies.md").read_text()
+    fits = fit_rows()
+    seen = set()
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 5 or cells[0] not in FIT_MODELS:
+            continue
+        row = fits[(FIT_MODELS[cells[0]], FIT_DATA[cells[1]])]
+        seen.add((row["model"], row["data"]))
+        rms = cells[3].strip("*").removesuffix(" %").strip("*")
+        check([rms], [float(row["rms_pct"])])
+        if cells[4] == "as k_r2 alone":
+            alone = fits[("timoshenko-kr2", row["data"])]
+            np.testing.assert_allclose(residuals(row), residuals(alone),
+                                       atol=1e-4)
+        else:
+            claims = cells[4].replace("−", "-").split(", ")
+            check(claims, residuals(row))
+        # the fitted parameters, to the digits the page gives
+        for claim in re.findall(r"(\d[\d.e]*) (?:lb in/rad|lb/in)",
+                                cells[2].replace("**", "")):
+            found = [float(x) for x in re.findall(
+                r"=([\d.e+]+) lb", row["parameters"])]
+            assert any(printed(x, claim) for x in found), (claim, row)
+    assert len(seen) == 8
+
+
+def test_the_separator_fit_prose_is_separator_fit_csv():
+    fits = fit_rows()
+    mass = fits[("timoshenko-kr2-mass2", "last-9000")]
+    within, last, rms, grams = quoted(
+        "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
+        rf"% against the issue's −4.8 %, rms {NUMBER} % against 2.3 %, "
+        rf"{NUMBER} g\)")
+    res = residuals(mass)
+    check([within, last, rms], [max(abs(r) for r in res[:4]), -res[4],
+                                float(mass["rms_pct"])])
+    check([grams], [float(re.search(r"\(([\d.]+) g\)",
+                                    mass["parameters"]).group(1))])
+    low, high = quoted("studies.md", rf"the one-stiffness fit's rms is "
+                       rf"{NUMBER}–{NUMBER} % here")
+    one = [float(fits[("timoshenko-kr2", d)]["rms_pct"])
+           for d in ("last-9000", "printed")]
+    check([low, high], one)
+    thin, thick, over_low, over_high = quoted(
+        "studies.md", rf"They lower the frequency by {NUMBER} % \(d = "
+        rf"0.125\) to {NUMBER} % \(d = 0.75\).*?the clamped Timoshenko "
+        rf"separator is still {NUMBER}–{NUMBER} % above every measurement")
+    bernoulli = np.array(residuals(fits[("bernoulli-euler-clamped",
+                                         "printed")]))
+    timoshenko = np.array(residuals(fits[("timoshenko-clamped",
+                                          "printed")]))
+    lowered = 100 * (1 - (1 + timoshenko / 100) / (1 + bernoulli / 100))
+    check([thin, thick], [lowered[0], lowered[-1]])
+    check([over_low, over_high], [timoshenko.min(), timoshenko.max()])
+    (fits_to,) = quoted("studies.md", rf"fits rows 1–4 to {NUMBER} %\*\*")
+    check([fits_to], [max(abs(r) for r in res[:4])])
+    (off,) = quoted("studies.md", rf"Against the printed 11,100 cps the "
+                    rf"same fitted model is {NUMBER} % low in the last row")
+    model_cps = 9000 * (1 + res[4] / 100)
+    check([off], [100 * (1 - model_cps / 11100)])
+
+
+def test_the_bare_separator_and_table_1_lines():
+    """The study's notes (the committed CSV's '#' lines) carry the bare
+    separator's L_c and the Timoshenko contacts; the page quotes them."""
+    notes = contactsep.read(STUDIES / "separator-fit.csv").attrs["comments"]
+    bare = next(n for n in notes if n.startswith("bare separator (printed"))
+    lengths = quoted("studies.md", rf"no mass\) they are {NUMBER}, "
+                     rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} in\.")
+    assert "L_c = " + ", ".join(lengths) + " in" in bare
+    table1 = next(n for n in notes if n.startswith("Table I ("))
+    lowest, highest, *cps = quoted(
+        "studies.md", rf"Timoshenko lowers the first four frequencies by "
+        rf"{NUMBER}–{NUMBER} % only \({NUMBER}, {NUMBER}, {NUMBER}, "
+        rf"{NUMBER} cps against Bernoulli–Euler's {NUMBER}, {NUMBER}, "
+        rf"{NUMBER}, {NUMBER}; measured ([\d./]+) upper, ([\d./]+) lower\): "
+        rf"the contacts' {NUMBER}–{NUMBER} % gap")
+    timoshenko = ", ".join(cps[:4])
+    bernoulli = ", ".join(cps[4:8])
+    assert f"Timoshenko {timoshenko} cps" in table1
+    assert f"Bernoulli-Euler {bernoulli} cps" in table1
+    assert f"measured upper {cps[8]}, lower {cps[9]}" in table1
+    change = re.search(r"\(-([\d.]+) to -([\d.]+) %\)", table1).groups()
+    check([lowest, highest], [float(change[1]), float(change[0])])
+    model = np.array([float(x) for x in cps[:4]])
+    measured = np.array([[float(x) for x in cps[k].split("/")]
+                         for k in (8, 9)])
+    gaps = 100 * (model / measured - 1)
+    check(cps[10:], [gaps.min(), gaps.max()])
