@@ -546,3 +546,31 @@ def test_the_bare_separator_and_table_1_lines():
                          for k in (8, 9)])
     gaps = 100 * (model / measured - 1)
     check(cps[10:], [gaps.min(), gaps.max()])
+
+
+def test_the_bare_separator_of_the_9000_fit_and_its_clamp():
+    notes = contactsep.read(STUDIES / "separator-fit.csv").attrs["comments"]
+    bare = next(n for n in notes if n.startswith("bare separator "
+                                                 "(last-9000"))
+    kr2, *numbers = quoted(
+        "studies.md", rf"9,000 cps fit \(k_r2 = {NUMBER} lb in/rad\) its "
+        rf"first frequencies are {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, "
+        rf"{NUMBER} cps and its equivalent lengths .*? {NUMBER}, "
+        rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} in, beside Table III's")
+    assert "f1 = " + ", ".join(numbers[:5]) + " cps" in bare
+    assert "L_c = " + ", ".join(numbers[5:]) + " in" in bare
+    fitted = float(re.search(r"kr2 = ([\d.e+]+)", bare).group(1))
+    check([kr2], [fitted])
+    # --separator physical is that clamp
+    from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+    (physical,) = quoted("studies.md", rf"`beam2 = timoshenko`, "
+                         rf"`kr2 = {NUMBER}`")
+    check([physical], [PHYSICAL_SEPARATOR["kr2"]])
+    check([physical], [fitted])
+    # "measured 2.0-2.6 times below the clamped Bernoulli-Euler theory"
+    low, high = quoted("studies.md", rf"were measured {NUMBER}–{NUMBER} "
+                       rf"times below the thesis's clamped Bernoulli–Euler "
+                       rf"theory")
+    ratio = 1 + np.array(residuals(fit_rows()[("bernoulli-euler-clamped",
+                                                "printed")])) / 100
+    check([low, high], [ratio.min(), ratio.max()])
