@@ -574,3 +574,58 @@ def test_the_bare_separator_of_the_9000_fit_and_its_clamp():
     ratio = 1 + np.array(residuals(fit_rows()[("bernoulli-euler-clamped",
                                                 "printed")])) / 100
     check([low, high], [ratio.min(), ratio.max()])
+
+
+def fortran_parameters() -> dict:
+    """name -> value text of the extremes search's Fortran parameters."""
+    found = {}
+    for path in sorted((ROOT / "fortran" / "model").glob("extremes*.f90")):
+        for name, value in re.findall(
+                r"parameter(?:, public)? :: (\w+) = ([^\n!]+)",
+                path.read_text()):
+            found[name] = value.strip()
+    return found
+
+
+SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
+
+
+def test_the_searchs_constants_are_the_fortrans():
+    """The budgets and tolerances docs/model.md states are the
+    parameters of fortran/model/extremes*.f90."""
+    f = fortran_parameters()
+
+    def power(text):                  # "2_int64**31" -> 2**31
+        (exponent,) = re.fullmatch(r"2(?:_int64|\.0_wp)?\*\*(\d+)",
+                                   text).groups()
+        return 2 ** int(exponent)
+
+    work, turns = quoted("model.md", r"gives up after 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) cell-mode "
+                         r"evaluations .*? when p_max τ ≥ 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) rad")
+    assert 2 ** int(work.translate(SUPERSCRIPT)) == power(f["work_budget"])
+    assert 2 ** int(turns.translate(SUPERSCRIPT)) == power(f["two_52"])
+    modes, designs, fewest, most, block, segment = quoted(
+        "model.md", r"blocks of about (\d+) modes \((\d+) designs of 4 "
+        r"modes, 16 of 32; (\d+) to (\d+) designs\), each with at most "
+        r"2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) live cell-modes.*?more than 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) live cell-modes")
+    assert int(modes) == int(f["block_modes"])
+    assert int(designs) == min(int(f["block_size"]), int(modes) // 4)
+    assert (int(fewest), int(most)) == (8, int(f["block_size"]))
+    assert 2 ** int(block.translate(SUPERSCRIPT)) == power(
+        f["block_cell_budget"])
+    assert 2 ** int(segment.translate(SUPERSCRIPT)) == power(
+        f["cell_budget"])
+    tie, finished = quoted("model.md", r"cannot come within the tie "
+                           r"\(([\d.e-]+) S\) of the best value found is "
+                           r"dropped; one whose bound is within ([\d.e-]+) "
+                           r"S of a value it holds is finished")
+    assert float(tie) == float(f["tie"].removesuffix("_wp"))
+    assert float(finished) == float(f["converged"].removesuffix("_wp"))
+    steps, order = quoted("model.md", r"first polished \((\w+) Newton "
+                          r"steps .*? to x([⁰¹²³⁴⁵⁶⁷⁸⁹]+)\)")
+    words = {"two": 2, "three": 3, "four": 4}
+    assert words[steps] == int(f["polish_steps"])
+    # the sine's Taylor series: each factor 1/((2k)(2k+1)) one more term
+    bounds = (ROOT / "fortran" / "model" / "extremes_bounds.f90").read_text()
+    factors = int(re.search(r"inv_sin\((\d+)\)", bounds).group(1))
+    assert int(order.translate(SUPERSCRIPT)) == 2 * factors + 1
