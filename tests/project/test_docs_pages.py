@@ -650,3 +650,24 @@ def test_the_listings_difference():
                                                  ds, "exact-mode"))
             worst = max(worst, abs(ratio - 1))
     check([claim], [worst])
+
+
+def test_the_domains_symmetry_corners_are_the_tests():
+    """model.md's ranges of the exact symmetries are the corners
+    tests/hostile/test_domain.py checks."""
+    import importlib.util
+    path = ROOT / "tests" / "hostile" / "test_domain.py"
+    spec = importlib.util.spec_from_file_location("_domain_corners", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    lam, kappa, mu, sigma = (quoted("model.md", pattern) for pattern in (
+        rf"every length times λ \({NUMBER} to {NUMBER}\)",
+        rf"E and γ times κ \({NUMBER} to {NUMBER}\)",
+        r"\(μ from 10\^([-\d.]+) to (\d+)\)",
+        rf"y_s times σ \({NUMBER} to {NUMBER}\)"))
+    for name, (low, high) in (("lam", lam), ("kappa", kappa),
+                              ("sigma", sigma)):
+        values = [c[name] for c in module.CORNERS if name in c]
+        assert (min(values), max(values)) == (float(low), float(high))
+    values = [c["mu"] for c in module.CORNERS if "mu" in c]
+    assert (min(values), max(values)) == (10 ** float(mu[0]), float(mu[1]))
