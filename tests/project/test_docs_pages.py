@@ -671,3 +671,15 @@ def test_the_domains_symmetry_corners_are_the_tests():
         assert (min(values), max(values)) == (float(low), float(high))
     values = [c["mu"] for c in module.CORNERS if "mu" in c]
     assert (min(values), max(values)) == (10 ** float(mu[0]), float(mu[1]))
+
+
+def test_the_general_members_limit_and_the_fe_tolerances():
+    from contactsep.beams.timoshenko import MAX_GENERAL_MODES
+    (most,) = quoted("model.md", r"A general member takes at most (\d+) "
+                     r"modes")
+    assert int(most) == MAX_GENERAL_MODES
+    three, six = quoted("model.md", r"first three modes to ([\d.e-]+), six "
+                        r"to ([\d.e-]+),")
+    source = (ROOT / "tests" / "shared" / "test_beams_timoshenko.py"
+              ).read_text()
+    assert f"[:3] < {three})" in source and f"< {six})" in source
