@@ -683,3 +683,18 @@ def test_the_general_members_limit_and_the_fe_tolerances():
     source = (ROOT / "tests" / "shared" / "test_beams_timoshenko.py"
               ).read_text()
     assert f"[:3] < {three})" in source and f"< {six})" in source
+
+
+def test_the_simulation_counts_of_the_long_studies():
+    """"study chatter ... # 45 simulations", "study preload ... # 1886
+    simulations": the chatter table's rows, the preload chart's count."""
+    chatter, chart = quoted("studies.md", r"contactsep study chatter --out "
+                            r"docs/studies # (\d+) simulations.*?contactsep "
+                            r"study preload --out docs/studies # (\d+) "
+                            r"simulations")
+    assert int(chatter) == len(rows("chatter"))
+    notes = contactsep.read(STUDIES / "preload.csv").attrs["comments"]
+    assert f"{chart} simulations" in notes
+    (again,) = quoted("studies.md", r"Not a batch of eq. 23 but (\d+) "
+                      r"three-beam simulations")
+    assert int(again) == len(rows("chatter"))
