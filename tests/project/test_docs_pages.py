@@ -72,7 +72,7 @@ def check(claims, values) -> None:
         assert printed(value, claim), (claim, value)
 
 
-# -- docs/studies.md, the figures --------------------------------------------
+# -- docs/studies.md, the figures ---------------------------------------------
 
 def test_figure_5_numbers_are_fig5_csv():
     at_half = quoted("studies.md", rf"y_s = 0.5 in: {NUMBER} in at d = "
@@ -165,7 +165,7 @@ def test_conclusion_8_numbers_are_conclusion8_csv():
     assert swings[r == 1.0][0] == 2 and swings[r == 0.5][0] == 6
 
 
-# -- docs/studies.md, the tables -----------------------------------------------
+# -- docs/studies.md, the tables ----------------------------------------------
 
 def test_tables_1_to_3_are_their_csvs():
     t1 = quoted("studies.md", rf"\| I, contact frequencies \(cps\) \| "
@@ -211,7 +211,7 @@ def test_the_formulas_constant_against_the_materials():
     check([off, constant], [100 * (1.3e6 / material - 1), material])
 
 
-# -- docs/studies.md, sweeps ---------------------------------------------------
+# -- docs/studies.md, sweeps --------------------------------------------------
 
 def test_wilsons_z_and_the_largest_preload():
     (z,) = quoted("studies.md", rf"with z = {NUMBER} ")
@@ -250,7 +250,7 @@ def test_the_million_design_tolerance_sweep():
            *s["p_exceed_ci95"], 100 * (1 - s["p_exceed"])])
 
 
-# -- docs/model.md ---------------------------------------------------------------
+# -- docs/model.md ------------------------------------------------------------
 
 def test_the_lower_response_factor():
     """"v0 M3/(psi L3) (3.6 for the thesis rig, N = 4, d = 0.25 in)"."""
@@ -347,6 +347,7 @@ def test_the_energy_bound_numbers():
     times the bound on four of the nine designs of
     tests/design_family.py at N = 4)"."""
     from design_family import FAMILY, UNSEEN
+
     from contactsep.model.energy import y3_energy_bound
     gives, release, low, high, count, total = quoted(
         "model.md", rf"it gives {NUMBER} in from a {NUMBER} in release of "
@@ -399,8 +400,15 @@ def test_the_searchs_limits_give_status_4(field, value, claim):
 def test_the_sweep_limits_are_the_codes():
     """The limits docs/studies.md states in words are the constants the
     code uses (a changed constant fails here until the page says it)."""
-    from contactsep.studies import chatter_sweep, dask_run, pool, runner
-    from contactsep.studies import stats, sweep, writers
+    from contactsep.studies import (
+        chatter_sweep,
+        dask_run,
+        pool,
+        runner,
+        stats,
+        sweep,
+        writers,
+    )
     default, most = quoted("studies.md", r"`--chunk-size` \(default "
                            r"([\d,]+), at most ([\d,]+)\)")
     assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
@@ -436,7 +444,7 @@ def test_the_png_sizes():
         assert "{} × {}".format(*struct.unpack(">II", head)) == claim
 
 
-# -- docs/studies.md, Table II explained ----------------------------------------
+# -- docs/studies.md, Table II explained --------------------------------------
 
 #: The page's model labels and data versions, as the CSV names them.
 FIT_MODELS = {"Bernoulli–Euler clamped": "bernoulli-euler-clamped",
@@ -588,6 +596,8 @@ def fortran_parameters() -> dict:
 
 
 SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
+#: An exponent written in superscript digits.
+POWER = "([⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
 
 
 def test_the_searchs_constants_are_the_fortrans():
@@ -600,14 +610,14 @@ def test_the_searchs_constants_are_the_fortrans():
                                    text).groups()
         return 2 ** int(exponent)
 
-    work, turns = quoted("model.md", r"gives up after 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) cell-mode "
-                         r"evaluations .*? when p_max τ ≥ 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) rad")
+    work, turns = quoted("model.md", rf"gives up after 2{POWER} cell-mode "
+                         rf"evaluations .*? when p_max τ ≥ 2{POWER} rad")
     assert 2 ** int(work.translate(SUPERSCRIPT)) == power(f["work_budget"])
     assert 2 ** int(turns.translate(SUPERSCRIPT)) == power(f["two_52"])
     modes, designs, fewest, most, block, segment = quoted(
         "model.md", r"blocks of about (\d+) modes \((\d+) designs of 4 "
         r"modes, 16 of 32; (\d+) to (\d+) designs\), each with at most "
-        r"2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) live cell-modes.*?more than 2([⁰¹²³⁴⁵⁶⁷⁸⁹]+) live cell-modes")
+        rf"2{POWER} live cell-modes.*?more than 2{POWER} live cell-modes")
     assert int(modes) == int(f["block_modes"])
     assert int(designs) == min(int(f["block_size"]), int(modes) // 4)
     assert (int(fewest), int(most)) == (8, int(f["block_size"]))
@@ -621,8 +631,8 @@ def test_the_searchs_constants_are_the_fortrans():
                            r"S of a value it holds is finished")
     assert float(tie) == float(f["tie"].removesuffix("_wp"))
     assert float(finished) == float(f["converged"].removesuffix("_wp"))
-    steps, order = quoted("model.md", r"first polished \((\w+) Newton "
-                          r"steps .*? to x([⁰¹²³⁴⁵⁶⁷⁸⁹]+)\)")
+    steps, order = quoted("model.md", rf"first polished \((\w+) Newton "
+                          rf"steps .*? to x{POWER}\)")
     words = {"two": 2, "three": 3, "four": 4}
     assert words[steps] == int(f["polish_steps"])
     # the sine's Taylor series: each factor 1/((2k)(2k+1)) one more term
@@ -698,3 +708,33 @@ def test_the_simulation_counts_of_the_long_studies():
     (again,) = quoted("studies.md", r"Not a batch of eq. 23 but (\d+) "
                       r"three-beam simulations")
     assert int(again) == len(rows("chatter"))
+
+
+def test_the_chatter_and_unit_limits_are_the_codes():
+    import importlib
+
+    from contactsep.chatter import circuit
+    from contactsep.cli import design_options
+    # the module (the package's attribute of that name is the function)
+    simulate = importlib.import_module("contactsep.chatter.simulate")
+    steps, work, coarse = quoted(
+        "studies.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
+        r"modes\) is refused before any work, one more than (\d+) times "
+        r"the default is warned")
+    assert (float(steps), float(work)) == (simulate.MAX_STEPS,
+                                           simulate.MAX_WORK)
+    assert float(coarse) == simulate.COARSE_DT
+    (min_open,) = quoted("studies.md", r"`min_open_s`, default ([\d.e-]+) "
+                         r"s\)")
+    assert float(min_open) == circuit.MIN_OPEN
+    (most,) = quoted("studies.md", r"d ≤ 0, N > (\d+),")
+    assert int(most) == simulate.MAX_MODES
+    (forked,) = quoted("studies.md", r"steps × modes ≥ (\de\d), goes to a "
+                       r"forked child")
+    assert float(forked) == simulate.FORKED_WORK
+    modulus, density, length = quoted(
+        "studies.md", r"a modulus below (1e\d) psi .*? a weight density "
+        r"above (\d+) lb/in³ .*? a member longer than (\d+) in")
+    assert (float(modulus), float(density), float(length)) == (
+        design_options.SOFTEST_PSI, design_options.DENSEST_LB_IN3,
+        design_options.LONGEST_IN)
