@@ -172,3 +172,13 @@ def test_the_models_targets_are_the_run():
                                          rows[("thesis-like", 32)])
     assert rows[("thesis-like", 4)] <= 1.5
     assert rows[("thesis-like", 32)] <= 2.0
+
+
+def test_the_memory_target_is_the_run():
+    ratios = dict(re.findall(r"\| `contactsep (\w+)` \| \d+ MB \| "
+                             r"([\d.]+)x \| exit 0", "\n".join(
+                                 result_lines("bench_memory"))))
+    replay, legacy = quoted(r"Target <= 3x: met \(`replay` ([\d.]+)x and "
+                            r"`legacy` ([\d.]+)x;")
+    assert (replay, legacy) == (ratios["replay"], ratios["legacy"])
+    assert max(float(replay), float(legacy)) <= 3
