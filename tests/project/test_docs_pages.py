@@ -738,3 +738,45 @@ def test_the_chatter_and_unit_limits_are_the_codes():
     assert (float(modulus), float(density), float(length)) == (
         design_options.SOFTEST_PSI, design_options.DENSEST_LB_IN3,
         design_options.LONGEST_IN)
+
+
+def test_the_kappa_five_sixths_and_per_row_clamps():
+    """"with kappa = 5/6 the clamped Timoshenko residuals are +98.6, ...
+    %" and the per-row clamp stiffnesses "(233, 2157, 1310 lb in/rad,
+    none, 1.0e5 with Cowper's kappa ...)": recomputed, each row's
+    stiffness by scipy's root finder on the study's separator."""
+    import dataclasses
+
+    from scipy.optimize import brentq
+
+    from contactsep.studies import separator_fit as sf
+
+    def first(d, kappa=None, kr2=None):
+        beam = sf.separator(d, "timoshenko-clamped",
+                            {} if kr2 is None else {"kr2": kr2})
+        beam = dataclasses.replace(beam, kappa=kappa)
+        return float(sf.modal_model(beam, 1, [beam.length / 2]).f_hz[0])
+
+    claims = quoted("studies.md", rf"with κ = 5/6 the clamped Timoshenko "
+                    rf"residuals are {NUMBER}, {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} %")
+    check(claims, [100 * (first(d, 5 / 6) / f - 1) for d, f in
+                   zip(sf.TABLE_II_D, sf.TABLE_II_EXPERIMENTAL)])
+    stiffness = []
+    for d, f in zip(sf.TABLE_II_D, sf.TABLE_II_EXPERIMENTAL):
+        def gap(log_kr, d=d, f=f):
+            return first(d, None, 10.0 ** log_kr) / f - 1
+
+        soft, stiff = gap(sf.BOUNDS["kr2"][0]), gap(sf.BOUNDS["kr2"][1])
+        stiffness.append(None if soft * stiff > 0 else 10.0 ** brentq(
+            gap, *sf.BOUNDS["kr2"], xtol=1e-8))
+    rows = quoted("studies.md", rf"the per-row clamp stiffnesses too "
+                  rf"\({NUMBER}, ([\d,]+), {NUMBER} lb in/rad, none, "
+                  rf"{NUMBER} with Cowper's κ")
+    assert stiffness[3] is None
+    check([rows[0], rows[1], rows[2], rows[3]],
+          [stiffness[0], stiffness[1], stiffness[2], stiffness[4]])
+    again = quoted("studies.md", rf"the stiffness scatters \({NUMBER}, "
+                   rf"{NUMBER}, {NUMBER} lb in/rad, none for d = 0.5")
+    for claim, value in zip(again, stiffness):
+        assert float(f"{value:.3g}") == float(claim), (claim, value)
