@@ -780,3 +780,16 @@ def test_the_kappa_five_sixths_and_per_row_clamps():
                    rf"{NUMBER}, {NUMBER} lb in/rad, none for d = 0.5")
     for claim, value in zip(again, stiffness):
         assert float(f"{value:.3g}") == float(claim), (claim, value)
+
+
+def test_a_converted_value_as_the_page_says():
+    """"a converted value is rounded to 15 significant digits (`10us` is
+    exactly 1e-05 s)"."""
+    pytest.importorskip("pint")
+    from contactsep import units
+    digits, typed, exact = quoted(
+        "studies.md", r"a converted value is rounded to (\d+) significant "
+        r"digits \(`(\w+)` is exactly ([\d.e-]+) s\)")
+    assert units.convert(typed, "s", "--min-open") == float(exact)
+    inches = units.convert("30.5mm", "in", "--L1")
+    assert inches == float(f"{30.5 / 25.4:.{digits}g}")
