@@ -1,7 +1,7 @@
 """The cost of numerics chosen from the design and of the checks (issue
 25), side by side in one run:
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_checks.py
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_checks.py [--cpu] [--save]
 
 For three designs of tests/design_family.py at N = 32 (the default N),
 elastic Hertz, summary only (samples=1): the thesis's old fixed settings
@@ -11,6 +11,9 @@ division, its cost is a rerun when a step is halved), and the default
 with verify=True (a second run at 2N and half the step).  Each time is
 the best of REPEATS calls; the ratios are to the default.  A preloaded
 case shows the cost when the contact is closed at every step.
+``--cpu``: CPU time (with the forked children's) instead of the wall
+clock; ``--save``: also into benchmarks/results/bench_checks.md, the
+run docs/performance.md quotes.
 """
 
 from __future__ import annotations
@@ -21,19 +24,25 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from bench_chatter import best  # noqa: E402 (this folder: a script)
+import bench_chatter  # noqa: E402 (this folder: a script)
+from bench_chatter import best  # noqa: E402
 from design_family import FAMILY  # noqa: E402
+from results import Report  # noqa: E402
 
 from contactsep import chatter  # noqa: E402
 
 REPEATS = 3
 
 
-def main() -> None:
+def main(save: bool = False, cpu: bool = False) -> None:
     warnings.simplefilter("ignore")
-    print("| design, N = 32 | old fixed (5e-8 s, 0.06 s) | default | "
+    if cpu:
+        bench_chatter.clock = bench_chatter.cpu_time
+    say = Report()
+    say(f"clock: {'process CPU time' if cpu else 'wall'}")
+    say("| design, N = 32 | old fixed (5e-8 s, 0.06 s) | default | "
           "default + verify | default: dt (s), window (s), energy - 1 |")
-    print("|---|---:|---:|---:|---|")
+    say("|---|---:|---:|---:|---|")
     cases = [("thesis", 0.0), ("steel_relay", 0.0), ("becu_light", 0.0),
              ("steel_relay", 0.35)]
     for name, preload in cases:
@@ -46,11 +55,15 @@ def main() -> None:
         verify = best(lambda: chatter.simulate(design, verify=True,
                                                **common), 1)
         label = name + (f", preload {preload:g} lb" if preload else "")
-        print(f"| {label} | {old:.3f} s ({old / default:.2f}x) | "
-              f"{default:.3f} s (1x) | {verify:.3f} s "
-              f"({verify / default:.1f}x) | {result.dt:.3g}, "
-              f"{result.t_end_s:.3g}, {result.energy_ratio - 1:.1e} |")
+        say(f"| {label} | {old:.3f} s ({old / default:.2f}x) | "
+            f"{default:.3f} s (1x) | {verify:.3f} s "
+            f"({verify / default:.1f}x) | {result.dt:.3g}, "
+            f"{result.t_end_s:.3g}, {result.energy_ratio - 1:.1e} |")
+    if save:
+        say.save("bench_checks", "OPENBLAS_NUM_THREADS=1 python "
+                 "benchmarks/bench_checks.py " + ("--cpu " if cpu else "")
+                 + "--save")
 
 
 if __name__ == "__main__":
-    main()
+    main(save="--save" in sys.argv[1:], cpu="--cpu" in sys.argv[1:])

@@ -1,6 +1,6 @@
 """Peak memory of the commands on huge decks (issue 9; not run by the tests).
 
-    python benchmarks/bench_memory.py [--mb 200] [--seconds 60]
+    python benchmarks/bench_memory.py [--mb 200] [--seconds 60] [--save]
 
 1. A deck of ``--mb`` megabytes (the thesis decks repeated), generated in a
    temporary directory and removed afterwards: peak RSS of ``replay``,
@@ -15,6 +15,8 @@
 
 Peak RSS is the child's ru_maxrss (os.wait4), so it includes the
 interpreter, NumPy and the extension modules (the baseline is printed).
+``--save``: also into benchmarks/results/bench_memory.md, the run
+docs/performance.md quotes.
 """
 
 from __future__ import annotations
@@ -27,6 +29,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from results import Report  # this folder: run as a script
 
 DECKS = Path(__file__).resolve().parent.parent / "data" / "decks"
 
@@ -61,12 +65,15 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--mb", type=float, default=200.0)
     parser.add_argument("--seconds", type=float, default=60.0)
+    parser.add_argument("--save", action="store_true",
+                        help="also write benchmarks/results/bench_memory.md")
     args = parser.parse_args()
+    say = Report()
     base, _, _ = peak([sys.executable, "-c",
                        "import contactsep.cli, contactsep.restored.compare, "
                        "contactsep.restored.core as c; c._api('single'); "
                        "c._api('double')"])
-    print(f"baseline (interpreter, NumPy, extensions): {base:.0f} MB")
+    say(f"baseline (interpreter, NumPy, extensions): {base:.0f} MB")
     with tempfile.TemporaryDirectory() as tmp:
         deck = Path(tmp) / "big.dat"
         unit = (DECKS / "thesis_all.dat").read_bytes()
@@ -75,13 +82,15 @@ def main() -> None:
             for _ in range(copies):
                 out.write(unit)
         size = deck.stat().st_size / 1e6
-        print(f"\n{size:.0f} MB deck ({copies} x thesis_all.dat), at most "
-              f"{args.seconds:g} s each")
-        print(f"{'command':<10}{'peak RSS':>12}{'ran':>10}  status")
+        say()
+        say(f"| {size:.0f} MB deck ({copies:,} x thesis_all.dat), at most "
+            f"{args.seconds:g} s each | peak RSS | ran | status |")
+        say("|---|---:|---:|---|")
         for name in ("replay", "legacy", "compare"):
             rss, ran, code = peak(command(name, str(deck)), args.seconds)
             state = "stopped (SIGTERM)" if code == -1 else f"exit {code}"
-            print(f"{name:<10}{rss:>9.0f} MB{ran:>9.1f}s  {state}")
+            say(f"| `contactsep {name}` | {rss:.0f} MB | {ran:.1f} s | "
+                f"{state} |")
         deck.unlink()
 
         lines = (DECKS / "thesis_d0250.dat").read_text().split("\n")
@@ -92,12 +101,17 @@ def main() -> None:
         with open(listing, "wb") as out:
             peak(command("replay", str(small)), stdout=out)
         size = listing.stat().st_size / 1e6
-        print(f"\nDELT = 6e-8 s data set: listing {size:.1f} MB")
-        print(f"{'command':<10}{'peak RSS':>12}{'/ listing':>11}")
+        say()
+        say(f"| DELT = 6e-8 s data set (thesis d = 0.250 in), listing "
+            f"{size:.1f} MB | peak RSS | / listing | ran |")
+        say("|---|---:|---:|---|")
         for name in ("replay", "legacy"):
             rss, ran, code = peak(command(name, str(small)))
-            print(f"{name:<10}{rss:>9.0f} MB{rss / size:>10.1f}x  "
-                  f"exit {code}, {ran:.1f} s")
+            say(f"| `contactsep {name}` | {rss:.0f} MB | {rss / size:.1f}x | "
+                f"exit {code}, {ran:.1f} s |")
+    if args.save:
+        say.save("bench_memory", "python benchmarks/bench_memory.py "
+                 + " ".join(sys.argv[1:]))
 
 
 if __name__ == "__main__":

@@ -2,12 +2,14 @@
 run.
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_model.py [--cpu]
-        [--targets-only]
+        [--targets-only] [--save]
 
---cpu times by the process's CPU time (time.process_time: user + system
-of this process only) instead of the wall clock, which other processes
-on a shared machine disturb less; --targets-only runs issue 17's table
-alone.
+--cpu times by CPU time (user + system of this process and of the
+children it waited for: a long design is evaluated in a forked child)
+instead of the wall clock, which other processes on a shared machine
+disturb less; --targets-only runs issue 17's table
+alone; --save writes what it printed to benchmarks/results/bench_model.md
+(the run docs/performance.md quotes).
 
 Issue 17's targets: the compiled batch on random designs against the
 bound of 38 N numpy.sin element evaluations per design, numpy.sin timed
@@ -23,6 +25,10 @@ Issue 11's table: the thesis design family (d from 0.1 to 1.0 in, N = 4):
 the compiled batch, with nothing shared, the NumPy twin, a Python loop of
 the restored core's solve(), and the peak memory of 1e6 designs in a
 fresh process.  docs/performance.md quotes both tables.
+
+The limits: one design of the thesis rig (a batch of one, in process) at
+N = 800, 1600 and 3200 modes (tau = 0.06 s), and at N = 4 with windows
+tau = 1e4 and 1e5 s: what docs/model.md's "Limits" call seconds.
 """
 
 from __future__ import annotations
@@ -34,6 +40,8 @@ import time
 import warnings
 
 import numpy as np
+from bench_chatter import cpu_time  # this folder: run as a script
+from results import Report
 
 import contactsep
 from contactsep import beams
@@ -43,6 +51,8 @@ from contactsep.restored import thesis_decks
 ROUNDS = 7
 #: The clock of every measurement (main() may switch it to CPU time).
 clock = time.perf_counter
+#: Prints, and keeps what it printed for --save.
+say = Report()
 
 
 def best_of(fn, repeat=5):
@@ -100,13 +110,14 @@ def targets() -> None:
         for key, packed in batches.items():
             t = best_of(lambda: compiled.evaluate_packed(packed), 1)
             best[key] = min(best[key], t / packed.size)
-    print(f"numpy.sin: {t_sin * 1e9:.2f} ns an element (1e6 float64)")
-    print(f"{'random designs':14} {'N':>3} {'us/design':>10} "
-          f"{'bound (us)':>10} {'ratio':>6}")
+    say(f"numpy.sin: {t_sin * 1e9:.2f} ns an element (1e6 float64)")
+    say()
+    say("| random designs | N | us/design | bound (us) | ratio |")
+    say("|---|---:|---:|---:|---:|")
     for (family, n), t in best.items():
         bound = 38 * n * t_sin
-        print(f"{family:14} {n:3d} {t * 1e6:10.2f} {bound * 1e6:10.2f} "
-              f"{t / bound:6.2f}")
+        say(f"| {family} | {n} | {t * 1e6:.2f} | {bound * 1e6:.2f} | "
+            f"{t / bound:.2f} |")
 
 
 def memory_of_a_million() -> float:
@@ -142,15 +153,33 @@ def family_table() -> None:
 
     t_solve = best_of(loop, 3) / len(data_sets)
     rss = memory_of_a_million()
-    print(f"{'what':44} {'us/design':>10} {'designs/s':>11} {'ratio':>8}")
+    say("| what | us/design | designs/s | ratio |")
+    say("|---|---:|---:|---:|")
     rows = [("compiled batch, d sweep (contactsep.model._model)", t_compiled),
             ("compiled batch, nothing shared", t_unshared),
             ("NumPy twin (contactsep.model.twin), d sweep", t_twin),
             ("Python loop of contactsep.solve(double)", t_solve)]
     for name, t in rows:
-        print(f"{name:44} {t * 1e6:10.3f} {1 / t:11.0f} "
-              f"{t / t_compiled:8.3g}")
-    print(f"peak RSS for 1e6 designs: {rss:.0f} MB")
+        say(f"| {name} | {t * 1e6:.3f} | {1 / t:,.0f} | "
+            f"{t / t_compiled:.3g} |")
+    say()
+    say(f"peak RSS for 1e6 designs: {rss:.0f} MB")
+
+
+def limits() -> None:
+    """One design at many modes and over long windows (seconds each)."""
+    say("| one thesis design | s | status |")
+    say("|---|---:|---:|")
+    for label, fields in (("N = 800", {"n_modes": 800}),
+                          ("N = 1600", {"n_modes": 1600}),
+                          ("N = 3200", {"n_modes": 3200}),
+                          ("N = 4, tau = 1e4 s", {"tau": 1e4}),
+                          ("N = 4, tau = 1e5 s", {"tau": 1e5})):
+        design = contactsep.thesis_design(**fields)
+        status = []
+        t = best_of(lambda: status.append(
+            int(contactsep.evaluate(design).status)), 1)
+        say(f"| {label} | {t:.2f} | {status[0]} |")
 
 
 def main() -> None:
@@ -160,16 +189,26 @@ def main() -> None:
                         help="time by process CPU time, not wall clock")
     parser.add_argument("--targets-only", action="store_true",
                         help="only issue 17's table")
+    parser.add_argument("--save", action="store_true",
+                        help="also write benchmarks/results/bench_model.md")
     args = parser.parse_args()
     if args.cpu:
-        clock = time.process_time
-    print(f"clock: {'process CPU time' if args.cpu else 'wall'}")
+        # a design of seconds is evaluated in a forked child: its CPU
+        # time counts too
+        clock = cpu_time
+    say(f"clock: {'process CPU time' if args.cpu else 'wall'}")
     # the d sweep runs past d/L2 = 0.3 on purpose: no warning per design
     warnings.simplefilter("ignore", contactsep.ContactsepWarning)
     targets()
     if not args.targets_only:
-        print()
+        say()
         family_table()
+        say()
+        limits()
+    if args.save:
+        options = " ".join(a for a in sys.argv[1:])
+        say.save("bench_model", f"OPENBLAS_NUM_THREADS=1 python "
+                 f"benchmarks/bench_model.py {options}")
 
 
 if __name__ == "__main__":

@@ -1,20 +1,26 @@
 """A 1e6-design tolerance sweep (issue 12), side by side in one run.
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sweep.py
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_sweep.py [--save]
 
-Summary only vs also streaming a CSV, one process vs the local cores.
+Summary only vs also streaming a CSV, one process vs the local cores
+(wall clock: the workers are other processes).  ``--save``: also into
+benchmarks/results/bench_sweep.md, the run docs/performance.md quotes.
 """
 
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 import time
+
+from results import Report  # this folder: run as a script
 
 from contactsep.studies import runner, sweep
 
 
-def main() -> None:
+def main(save: bool = False) -> None:
+    say = Report()
     spec = sweep.make_spec(sample=["h2=normal(0.25,0.01)",
                                    "ys=uniform(0.45,0.55)"],
                            samples=1_000_000, seed=1)
@@ -29,12 +35,15 @@ def main() -> None:
                                  workers=workers, progress=False)
                 rows.append((workers, csv, time.perf_counter() - start))
     base = rows[0][2]
-    print(f"{'workers':>7} {'csv':>5} {'seconds':>8} {'designs/s':>10} "
-          f"{'ratio':>6}")
+    say("| workers | CSV | seconds | designs/s | ratio |")
+    say("|---|---|---|---|---|")
     for workers, csv, seconds in rows:
-        print(f"{workers:7d} {str(csv):>5} {seconds:8.2f} "
-              f"{spec.size / seconds:10.0f} {seconds / base:6.2f}")
+        say(f"| {workers} | {'yes' if csv else 'no'} | {seconds:.2f} | "
+            f"{spec.size / seconds:,.0f} | {seconds / base:.2f} |")
+    if save:
+        say.save("bench_sweep", "OPENBLAS_NUM_THREADS=1 python "
+                 "benchmarks/bench_sweep.py --save")
 
 
 if __name__ == "__main__":
-    main()
+    main(save="--save" in sys.argv[1:])

@@ -13,7 +13,8 @@ below it):
   modes (``modes(design, member, count)``: Timoshenko beams, elastic
   supports, point masses).
 * :mod:`contactsep.chatter`: repeated impacts and circuit opening.
-* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps;
+* :mod:`contactsep.studies`: the thesis's figures and tables, sweeps
+  (``sweep(vary=..., sample=...)``: rows and summary, ``to_pandas()``);
   ``preload(design)``, the smallest preload that keeps a design's
   circuit closed (:mod:`contactsep.studies.design_preload`).
 * :mod:`contactsep.cli`: the ``contactsep`` command.
@@ -35,7 +36,8 @@ from contactsep.restored.result import Result
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 #: Names of the studies layer, imported on first use.
 _STUDIES_NAMES = {"read": "contactsep.studies.frames",
-                  "preload": "contactsep.studies.design_preload"}
+                  "preload": "contactsep.studies.design_preload",
+                  "sweep": "contactsep.studies.sweep_result"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 

@@ -181,7 +181,8 @@ def test_a_killed_computation_is_not_an_invalid_design(monkeypatch):
         return output.interruptible(True, _dies)
     monkeypatch.setattr(chatter_sweep, "simulate", killed_simulation)
     # forked even when earlier tests left threads running (Dask's loop)
-    monkeypatch.setattr(output.threading, "active_count", lambda: 1)
+    monkeypatch.setattr(output.interrupt.threading, "active_count",
+                        lambda: 1)
     spec = sweep.make_spec(vary=["h2=0.2,0.3"], model="hertz")
     with pytest.raises(output.ComputationLost,
                        match=r"^design 0: the computation's process ended "

@@ -165,6 +165,15 @@ def test_the_models_results_have_one_set_of_names(outputs):
     assert set(outputs["csv"]["sweep"]) - {"d_in"} <= json_keys
 
 
+def test_a_python_sweep_has_the_commands_names(outputs):
+    result = contactsep.sweep(vary=["h2=0.1:0.5:3"], threshold=0.1,
+                              workers=1)
+    assert result.to_pandas().columns.tolist() == outputs["csv"]["sweep"]
+    summary = result.to_pandas("summary").columns
+    checked(summary)
+    assert set(summary) <= set(outputs["sweep"])
+
+
 def test_chatter_outputs_share_their_names(outputs):
     r = simulate(contactsep.thesis_design(n_modes=4), model="hertz",
                  dt=5e-8, t_end=0.03)

@@ -263,3 +263,34 @@ def test_a_design_file_is_where_the_sweep_starts(tmp_path, capsys):
     assert main(["sweep", "--design", str(saved), "--d", "0.3", "--vary",
                  "d=0.2,0.4"]) == 2
     assert "fixed by a design option and varied" in capsys.readouterr().err
+
+
+def test_a_design_file_sweep_is_titled_by_its_file(tmp_path, capsys):
+    """A sweep of a --design file says so in its CSV's first line and
+    its Parquet title, not "on the thesis design" (issue 30)."""
+    pytest.importorskip("pyarrow")
+    import pyarrow.parquet as pq
+    saved = tmp_path / "relay.json"
+    saved.write_text(json.dumps({"L1": 10.0, "L3": 10.0, "x1": 10.0,
+                                 "x3": 10.0}))
+    plain, typed = tmp_path / "plain.csv", tmp_path / "typed.csv"
+    parquet = tmp_path / "typed.parquet"
+    assert main(["sweep", "--vary", "d=0.2,0.4", "--csv", str(plain),
+                 "--json", "--workers", "1"]) == 0
+    assert main(["sweep", "--design", str(saved), "--vary", "d=0.2,0.4",
+                 "--csv", str(typed), "--parquet", str(parquet), "--json",
+                 "--workers", "1"]) == 0
+    capsys.readouterr()
+    first = read_csv(plain)[0][0]
+    assert first.endswith("on the thesis design")
+    named = read_csv(typed)[0][0]
+    assert named == first.replace("the thesis design",
+                                  f"the design of {saved}")
+    about = json.loads(pq.read_schema(parquet).metadata[b"contactsep"])
+    assert about["title"] == named[2:]
+    # the rows are the file's design, not the thesis rig's
+    _, rows = read_csv(typed)
+    one = evaluate(thesis_design(d=0.4, L1=10.0, L3=10.0, x1=10.0,
+                                 x3=10.0))
+    assert float(rows[1]["v0_in_s"]) == pytest.approx(float(one.v0),
+                                                      rel=6e-12, abs=0)

@@ -484,11 +484,13 @@ def run_sweep(args: argparse.Namespace) -> int:
     try:
         if args.parquet:
             writers.append(NamedWriter(
-                runner.ParquetWriter(args.parquet, spec), "--parquet",
+                runner.ParquetWriter(args.parquet, spec,
+                                     design=args.design), "--parquet",
                 args.parquet))
         if args.csv:
-            writers.append(NamedWriter(runner.CsvWriter(args.csv, spec),
-                                       "--csv", args.csv))
+            writers.append(NamedWriter(
+                runner.CsvWriter(args.csv, spec, design=args.design),
+                "--csv", args.csv))
         # the writers hold the outputs' locks: the chunks are this run's
         store = runner.ChunkStore(kept, spec) if args.resume else None
         if store is None and kept:

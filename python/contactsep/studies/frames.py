@@ -143,12 +143,14 @@ class DataFrameWriter:
     def abort(self) -> None:
         self._chunks = []
 
+    def columns(self) -> dict:
+        """The rows written so far, one array per column ({} if none)."""
+        if not self._chunks:
+            return {}
+        return {k: np.concatenate([c[k] for c in self._chunks])
+                for k in self._chunks[0]}
+
     def to_pandas(self):
         """The rows written so far, one DataFrame."""
         pandas = output.require_pandas()
-        if not self._chunks:
-            return pandas.DataFrame()
-        keys = list(self._chunks[0])
-        return pandas.DataFrame({k: np.concatenate([c[k] for c in
-                                                    self._chunks])
-                                 for k in keys})
+        return pandas.DataFrame(self.columns())

@@ -12,7 +12,7 @@ import csv
 import numpy as np
 
 from contactsep import output
-from contactsep.errors import InputError
+from contactsep.errors import InputError, printable
 from contactsep.output import json_text
 from contactsep.studies import chatter_sweep
 from contactsep.studies.study import csv_comments
@@ -31,11 +31,29 @@ COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
 CSV_DIGITS = 12
 
 
-def title(spec: SweepSpec | None) -> str:
-    """The sweep's title (first CSV comment, Parquet metadata)."""
-    if spec is None or spec.model == "eq23":
-        return TITLE
-    return chatter_sweep.title(spec.model)
+def title(spec: SweepSpec | None, design: str | None = None) -> str:
+    """The sweep's title (first CSV comment, Parquet metadata).
+
+    Parameters
+    ----------
+    spec : SweepSpec or None
+        The sweep (None: an eq. 23 sweep of unknown inputs).
+    design : str, optional
+        The ``--design`` file the sweep's designs start from; the title
+        then names it instead of the thesis design.
+
+    Returns
+    -------
+    str
+        One line, e.g. "contactsep sweep of the general model (eq. 23)
+        on the design of relay.json".
+    """
+    text = (TITLE if spec is None or spec.model == "eq23"
+            else chatter_sweep.title(spec.model))
+    if design is not None:
+        text = text.replace("on the thesis design",
+                            f"on the design of {printable(str(design))}")
+    return text
 
 
 def column_notes(spec: SweepSpec | None) -> list[str]:
@@ -62,14 +80,18 @@ class CsvWriter:
     as the sweep goes, renamed into place by :meth:`close` (an
     interrupted sweep's finished chunks too, with a last comment line
     saying so); :meth:`abort` (a failed sweep) leaves ``path`` as it was.
-    A second sweep writing ``path`` meanwhile is refused (a lock)."""
+    A second sweep writing ``path`` meanwhile is refused (a lock).
+    ``design``: the ``--design`` file the designs start from (the first
+    comment line names it)."""
 
-    def __init__(self, path: str, spec: SweepSpec, notes=()):
+    def __init__(self, path: str, spec: SweepSpec, notes=(),
+                 design: str | None = None):
         self.path = path
         self._file = output.Replacement(path, lock=True)
         self._handle = self._file.stream
         try:
-            self._handle.write(csv_comments([title(spec), *spec.describe(),
+            self._handle.write(csv_comments([title(spec, design),
+                                             *spec.describe(),
                                              *column_notes(spec), *notes]))
         except BaseException:
             self._file.discard()
@@ -116,12 +138,15 @@ class ParquetWriter:
     Written, locked and put in place as :class:`CsvWriter`'s file; an
     interrupted sweep's file keeps its finished rows and says so in the
     file's metadata: ``partial`` = ``true`` and ``interrupted`` = what
-    was done (the CSV's last comment)."""
+    was done (the CSV's last comment).  ``design`` as for
+    :class:`CsvWriter`."""
 
-    def __init__(self, path: str, spec: SweepSpec | None = None):
+    def __init__(self, path: str, spec: SweepSpec | None = None,
+                 design: str | None = None):
         require_pyarrow()
         self.path = path
-        self._about = {"title": title(spec), "notes": column_notes(spec),
+        self._about = {"title": title(spec, design),
+                       "notes": column_notes(spec),
                        "inputs": spec.inputs() if spec is not None
                        else None}
         self._metadata = {"contactsep": json_text(self._about, indent=None)}

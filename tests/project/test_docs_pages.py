@@ -1,0 +1,795 @@
+"""The numbers docs/studies.md and docs/model.md quote come from the
+code (issue 30, item 8): each is read off the page by the sentence that
+quotes it and compared, to the digits the page prints, with a committed
+CSV of docs/studies (which tests/studies/test_committed_outputs.py holds
+equal to the code) or with a fresh computation (cheap ones in the
+default run, the costly ones slow).  A page that drifts from the code,
+or a sentence reworded so that its number is no longer found, fails."""
+
+from __future__ import annotations
+
+import csv
+import re
+import warnings
+
+import numpy as np
+import pytest
+
+import contactsep
+from conftest import ROOT
+from contactsep.model import evaluate, thesis_design
+
+STUDIES = ROOT / "docs" / "studies"
+
+
+def page(name: str) -> str:
+    """The page's text, every run of white space one blank."""
+    return " ".join((ROOT / "docs" / name).read_text().split())
+
+
+def quoted(name: str, pattern: str) -> tuple[str, ...]:
+    """The groups of ``pattern`` (a regular expression, white space
+    already one blank) in page ``name``; fails when it is not there."""
+    found = re.search(pattern, page(name))
+    assert found, f"{name}: no longer says {pattern!r}"
+    return found.groups()
+
+
+NUMBER = r"([-+]?[\d.]+(?:e-?\d+)?)"
+
+
+def printed(value: float, claim: str) -> bool:
+    """``value`` written as the page writes ``claim`` is ``claim``: to its
+    decimals (0.137, +5.4), or to its significant digits (3.6e-6)."""
+    claim = claim.replace(",", "")
+    if "e" in claim:
+        digits = len(claim.split("e")[0].replace(".", "").lstrip("+-0")) - 1
+        return f"{value:.{digits}e}" == f"{float(claim):.{digits}e}"
+    decimals = len(claim.split(".")[1]) if "." in claim else 0
+    text = f"{value:+.{decimals}f}" if claim[0] in "+-" else \
+        f"{value:.{decimals}f}"
+    return text == claim
+
+
+def rows(name: str) -> list[dict]:
+    """The rows of the committed docs/studies/NAME.csv."""
+    lines = [line for line in (STUDIES / f"{name}.csv").read_text()
+             .splitlines() if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def column(name: str, key: str, **where) -> np.ndarray:
+    return np.array([float(r[key]) for r in rows(name)
+                     if all(np.isclose(float(r[k]), v) if not
+                            isinstance(v, str) else r[k] == v
+                            for k, v in where.items())])
+
+
+def check(claims, values) -> None:
+    claims, values = list(claims), list(values)
+    assert len(claims) == len(values)
+    for claim, value in zip(claims, values):
+        assert printed(value, claim), (claim, value)
+
+
+# -- docs/studies.md, the figures ---------------------------------------------
+
+def test_figure_5_numbers_are_fig5_csv():
+    at_half = quoted("studies.md", rf"y_s = 0.5 in: {NUMBER} in at d = "
+                     rf"0.10, {NUMBER} at 0.25, {NUMBER} at 0.50, {NUMBER} "
+                     rf"at 1.00 in")
+    check(at_half, [column("fig5", "y3_max_in", ys_in=0.5, d_in=d)[0]
+                    for d in (0.1, 0.25, 0.5, 1.0)])
+    by_ys = quoted("studies.md", rf"\({NUMBER}, {NUMBER}, {NUMBER} in at "
+                   rf"d = 0.10 for y_s = 0.25, 0.5, 0.75 in\)")
+    check(by_ys, [column("fig5", "y3_max_in", ys_in=ys, d_in=0.1)[0]
+                  for ys in (0.25, 0.5, 0.75)])
+
+
+def test_figure_6_numbers_are_fig6_csv():
+    claims = quoted("studies.md", rf"Curve I: {NUMBER} in at r = 1.00, "
+                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70; curve II: "
+                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70\.")
+    check(claims, [column("fig6", "y3_max_in", curve=c, r=r)[0] for c, r in
+                   (("I", 1.0), ("I", 0.78), ("I", 0.70), ("II", 0.78),
+                    ("II", 0.70))])
+
+
+def test_figure_7_coefficients_and_the_node():
+    """The c3_j of Figure 7's two designs (eq. 23 as printed, N = 4, the
+    thesis rig), recomputed; the node of the cantilever's mode 2."""
+    claims = quoted("studies.md", rf"c3_j \(in\) are {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} at 0.98 and {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} at 0.78: mode 2 is ([\d,]+) times "
+                    rf"weaker \(the node of the cantilever's mode 2 is at "
+                    rf"x/L = {NUMBER}\)")
+    c3 = evaluate(thesis_design(x3=np.array([0.98, 0.78]) * 19.0,
+                                lower_response="as-printed")).c3
+    from contactsep.studies.mode_share import second_mode_node
+    weaker = c3[0, 1] / c3[1, 1]
+    check(claims[:8], c3.ravel())
+    assert f"{round(weaker, -2):,.0f}" == claims[8]
+    check(claims[9:], [second_mode_node()])
+
+
+def test_figure_8_ends_are_fig8_csv():
+    claims = quoted("studies.md", rf"\({NUMBER} in at R = 0.05, {NUMBER} "
+                    rf"in at R = 5\)")
+    check(claims, [column("fig8", "y3_max_in", R=0.05)[0],
+                   column("fig8", "y3_max_in", R=5.0)[0]])
+
+
+def test_figure_23_numbers_are_fig23_csv():
+    claims = quoted("studies.md", rf"max y3 is {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER}, {NUMBER} in for d = 0.125, 0.25, "
+                    rf"0.35, 0.50, 0.75 in, against {NUMBER} \.\.\. "
+                    rf"{NUMBER} in without L_c")
+    corrected = column("fig23", "y3_max_in")
+    plain = column("fig23", "y3_max_uncorrected_in")
+    assert column("fig23", "d_in").tolist() == [0.125, 0.25, 0.35, 0.5,
+                                                0.75]
+    check(claims, [*corrected, plain[0], plain[-1]])
+    (lc,) = quoted("studies.md", rf"The 0.75 in row uses the printed "
+                   rf"L_c = {NUMBER} in")
+    check([lc], [column("fig23", "Lc_in", d_in=0.75)[0]])
+
+
+def test_the_new_convergence_value_is_convergence_csv():
+    (new,) = quoted("studies.md", rf"N = 50: max y3 0.105479 → {NUMBER} in")
+    check([new], [column("convergence", "y3_max_in", N=50)[0]])
+
+
+def test_conclusion_8_numbers_are_conclusion8_csv():
+    node, blevins, share, low, high, peak, at, tip, mid = quoted(
+        "studies.md", rf"second mode's node is at x3/L3 = {NUMBER} "
+        rf"\(Blevins: {NUMBER}\)\. There the share is {NUMBER} and y3 "
+        rf"swings once a period.*? every contact point from x3/L3 = "
+        rf"{NUMBER} to {NUMBER} swings once, and the share peaks at "
+        rf"{NUMBER} at x3/L3 = {NUMBER} \(it is {NUMBER} at the tip, with "
+        rf"two swings, and {NUMBER} at mid-length, with six\)")
+    from contactsep.studies.mode_share import MODES, second_mode_node
+    check([node], [second_mode_node()])
+    assert abs(float(blevins) - second_mode_node()) < 5e-4
+    c3 = evaluate(thesis_design(n_modes=MODES,
+                                x3=second_mode_node() * 19.0)).c3
+    check([share], [float(c3[0] ** 2 / np.sum(c3 ** 2))])
+    r = column("conclusion8", "r")
+    share_r = column("conclusion8", "first_mode_share")
+    swings = column("conclusion8", "n_maxima")
+    once = r[swings == 1]
+    check([low, high], [once.min(), once.max()])
+    # one band: every point between them swings once
+    assert np.all(swings[(r >= once.min()) & (r <= once.max())] == 1)
+    check([peak, at], [share_r.max(), r[np.argmax(share_r)]])
+    check([tip, mid], [share_r[r == 1.0][0], share_r[r == 0.5][0]])
+    assert swings[r == 1.0][0] == 2 and swings[r == 0.5][0] == 6
+
+
+# -- docs/studies.md, the tables ----------------------------------------------
+
+def test_tables_1_to_3_are_their_csvs():
+    t1 = quoted("studies.md", rf"\| I, contact frequencies \(cps\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| {NUMBER}, "
+                rf"{NUMBER}, {NUMBER}, {NUMBER} \| \*\*disagree by "
+                rf"{NUMBER}–{NUMBER} %\*\*: the printed theory implies "
+                rf"E/γ = {NUMBER} in, Table II {NUMBER} in")
+    model = column("table1", "model_cps")
+    check(t1[:4], model)
+    check(t1[4:8], column("table1", "printed_theoretical_cps"))
+    relative = 100 * column("table1", "relative_difference")
+    check(t1[8:10], [relative.min(), relative.max()])
+    # E/gamma the printed frequencies imply: frequencies go as its root
+    material = 10.0e6 / 0.100
+    implied = material * (column("table1", "printed_theoretical_cps")
+                          / model) ** 2
+    check(t1[10:], [implied.mean(), material])
+    t2 = quoted("studies.md", rf"\| II, separator frequency \(cps\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| "
+                rf"([\d, ]+) \| agree to {NUMBER} %")
+    check(t2[:5], column("table2", "model_cps"))
+    assert [float(x) for x in t2[5].split(",")] == column(
+        "table2", "printed_theoretical_cps").tolist()
+    check(t2[6:], [100 * np.abs(column("table2",
+                                       "relative_difference")).max()])
+    t3 = quoted("studies.md", rf"\| III, L_c = √\(1.3e6 d/p\) \(in\) \| "
+                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, \*\*{NUMBER}\*\* "
+                rf"\| {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, "
+                rf"\*\*{NUMBER}\*\*")
+    check(t3[:5], column("table3", "Lc_formula_in"))
+    check(t3[5:], column("table3", "printed_Lc_in"))
+
+
+def test_the_formulas_constant_against_the_materials():
+    """"1.3e6 is 2.4 % off the material's 1.270e6": (k1 L)^2 sqrt(E g /
+    (12 gamma)) of the clamped-clamped aluminium separator."""
+    off, constant = quoted("studies.md", rf"1.3e6 is {NUMBER} % off the "
+                           rf"material's {NUMBER}\)")
+    from contactsep.beams import eigenvalues
+    from contactsep.constants import GRAVITY_IN_PER_S2 as G
+    k1 = eigenvalues("clamped-clamped", 1)[0]
+    material = k1 ** 2 * np.sqrt(10.0e6 * G / (12 * 0.100))
+    check([off, constant], [100 * (1.3e6 / material - 1), material])
+
+
+# -- docs/studies.md, sweeps --------------------------------------------------
+
+def test_wilsons_z_and_the_largest_preload():
+    (z,) = quoted("studies.md", rf"with z = {NUMBER} ")
+    from scipy.stats import norm
+    check([z], [norm.ppf(0.975)])
+    from contactsep.studies.stats import wilson_interval
+    # the interval's z is that z: k = 0 of n gives z^2/(n + z^2) on top
+    low, high = wilson_interval(0, 100)
+    assert low == 0 and high == pytest.approx(norm.ppf(0.975) ** 2
+                                              / (100 + norm.ppf(0.975)
+                                                 ** 2), rel=1e-5)
+    (limit,) = quoted("studies.md", rf"by its length: {NUMBER} lb for the "
+                      rf"thesis rig\)")
+    from contactsep.chatter import DEFAULT_MODES
+    from contactsep.chatter.simulate import largest_preload
+    check([limit], [largest_preload(thesis_design(n_modes=DEFAULT_MODES))])
+
+
+@pytest.mark.slow
+def test_the_million_design_tolerance_sweep():
+    """The second sweep example's summary (1e6 designs of eq. 23 as
+    printed, seed 0): about 10 s on one core."""
+    n, mean, sd, p, low, high, closed = quoted(
+        "studies.md", rf"prints n = ([\d,]+), mean max y3 = {NUMBER} in, "
+        rf"sd {NUMBER} in, and p_exceed = {NUMBER} with its 95 % Wilson "
+        rf"interval \[{NUMBER}, {NUMBER}\].*?closed in {NUMBER} % of builds")
+    result = contactsep.sweep(sample=["d=normal(0.25,0.01)",
+                                      "ys=uniform(0.45,0.55)"],
+                              samples=1_000_000, threshold=0.12,
+                              fixed={"lower_response": "as-printed"},
+                              rows=False)
+    s = result.summary
+    assert f"{s['n']:,}" == n
+    check([mean, sd, p, low, high, closed],
+          [s["y3_max_mean_in"], s["y3_max_sd_in"], s["p_exceed"],
+           *s["p_exceed_ci95"], 100 * (1 - s["p_exceed"])])
+
+
+# -- docs/model.md ------------------------------------------------------------
+
+def test_the_lower_response_factor():
+    """"v0 M3/(psi L3) (3.6 for the thesis rig, N = 4, d = 0.25 in)"."""
+    (factor,) = quoted("model.md", rf"S2 M3/\(M2 L3\) \({NUMBER} for the "
+                       rf"thesis rig, N = 4, d = 0.25 in\)")
+    ev = evaluate(thesis_design(n_modes=4, d=0.25))
+    check([factor], [float(ev.v0 * ev.M3 / (ev.psi * 19.0))])
+
+
+def test_the_one_second_window_truth():
+    """The old search's "0.10953 in where the truth is 0.11662 in at
+    tau = 1 s" (eq. 23 as printed, the thesis design, N = 4)."""
+    (truth,) = quoted("model.md", rf"where the truth is {NUMBER} in at "
+                      rf"τ = 1 s")
+    ev = evaluate(thesis_design(tau=1.0, lower_response="as-printed"))
+    check([truth], [float(ev.y3_max)])
+
+
+def convergence_table() -> dict:
+    """N -> the row's cells, as model.md prints them."""
+    text = (ROOT / "docs" / "model.md").read_text()
+    table = {}
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 7 and cells[0].isdigit():
+            table[int(cells[0])] = cells[1:]
+    return table
+
+
+def check_rows(table, ns, computed) -> None:
+    for n in ns:
+        for claim, value in zip(table[n], computed[n]):
+            assert printed(value, claim), (n, claim, value)
+
+
+def test_the_convergence_table_to_n_50_is_convergence_csv():
+    table = convergence_table()
+    assert sorted(table) == [1, 2, 3, 4, 8, 16, 32, 50, 100, 200, 400, 800,
+                             1600]
+    committed = {int(r["N"]): [float(r[k]) for k in (
+        "t1_s", "v_impact_in_s", "psi_lb_s")] + [
+        float(r["psi_lb_s"]) * int(r["N"])] + [float(r[k]) for k in (
+            "v0_in_s", "y3_max_in")] for r in rows("convergence")}
+    check_rows(table, [n for n in table if n <= 50], committed)
+
+
+@pytest.mark.slow
+def test_the_convergence_table_beyond_n_50_and_its_limits():
+    """The rows N = 100-1600 (eq. 23 as printed, the convergence study's
+    design), the falls of max y3, the Richardson limits and the errors
+    at N = 4."""
+    table = convergence_table()
+    ns = np.array([4, 100, 200, 400, 800, 1600])
+    design = thesis_design(n_modes=ns, lower_response="as-printed")
+    ev = evaluate(design)
+    computed = {int(n): [ev.t1[i], ev.v_impact[i], ev.psi[i],
+                         ev.psi[i] * n, ev.v0[i], ev.y3_max[i]]
+                for i, n in enumerate(ns)}
+    check_rows(table, [100, 200, 400, 800, 1600], computed)
+    y3 = dict(zip(ns.tolist(), ev.y3_max))
+    v0 = dict(zip(ns.tolist(), ev.v0))
+    (t_max,) = quoted("model.md", rf"t_max settles at {NUMBER} s")
+    check([t_max], [ev.t_max[-1]])
+    (psi_n,) = quoted("model.md", rf"ψ·N → {NUMBER} lb s")
+    check([psi_n], [ev.psi[-1] * 1600])
+    falls = quoted("model.md", rf"max y3 falls by {NUMBER}, {NUMBER}, "
+                   rf"{NUMBER} in from N = 200 to 1600")
+    check(falls, [y3[200] - y3[400], y3[400] - y3[800],
+                  y3[800] - y3[1600]])
+
+    def richardson(values, n):      # O(1/N): 2 f(2n) - f(n)
+        return 2 * values[2 * n] - values[n]
+
+    v0_limit, y3_limit, y3_limit_more, pair1, pair2 = quoted(
+        "model.md", rf"\*\*v0 → {NUMBER} in/s, max y3 → {NUMBER} in\*\* "
+        rf"\({NUMBER}; the pairs 200/400 and 400/800 give {NUMBER} and "
+        rf"{NUMBER}\)")
+    check([v0_limit, y3_limit, y3_limit_more, pair1, pair2],
+          [richardson(v0, 800), richardson(y3, 800), richardson(y3, 800),
+           richardson(y3, 200), richardson(y3, 400)])
+    v0_error, y3_error = quoted("model.md", rf"At the listing's N = 4 the "
+                                rf"errors are {NUMBER} % \(v0\) and "
+                                rf"{NUMBER} % \(max y3\)")
+    check([v0_error, y3_error],
+          [100 * (v0[4] / richardson(v0, 800) - 1),
+           100 * (y3[4] / richardson(y3, 800) - 1)])
+    (high,) = quoted("studies.md", rf"max y3 is {NUMBER} % above its N → ∞ "
+                     rf"limit there")
+    check([high.lstrip("+")], [100 * (y3[4] / richardson(y3, 800) - 1)])
+
+
+def test_the_energy_bound_numbers():
+    """"0.026 in from a 0.02 in release of an identical spring (1.3-3.2
+    times the bound on four of the nine designs of
+    tests/design_family.py at N = 4)"."""
+    from design_family import FAMILY, UNSEEN
+
+    from contactsep.model.energy import y3_energy_bound
+    gives, release, low, high, count, total = quoted(
+        "model.md", rf"it gives {NUMBER} in from a {NUMBER} in release of "
+        rf"an identical spring \({NUMBER}-{NUMBER} times the bound on "
+        rf"(\w+) of the (\w+) designs of tests/design_family.py at N = 4\)")
+    words = {"three": 3, "four": 4, "five": 5, "seven": 7, "nine": 9}
+    designs = {**FAMILY, **UNSEEN}
+    assert words[total] == len(designs)
+    ratios = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for design in designs.values():
+            printed_form = design.replace(lower_response="as-printed")
+            ratios.append(float(evaluate(printed_form).y3_max
+                                / y3_energy_bound(printed_form)))
+        relay = FAMILY["steel_relay"].replace(lower_response="as-printed")
+        check([gives, release], [float(evaluate(relay).y3_max),
+                                 float(relay.ys)])
+    over = [r for r in ratios if r > 1]
+    assert len(over) == words[count]
+    check([low, high], [min(over), max(over)])
+
+
+def test_cowpers_kappa():
+    (kappa,) = quoted("model.md", rf"for a rectangle \({NUMBER} at ν = "
+                      rf"0.33\)")
+    nu = 0.33
+    check([kappa], [10 * (1 + nu) / (12 + 11 * nu)])
+
+
+def test_the_long_window_in_periods():
+    """"tau = 10^4 s is 3.8e6 periods of the fastest of y3's 4 modes"."""
+    (periods,) = quoted("model.md", r"\(τ = 10⁴ s is ([\d.]+)·10⁶ periods "
+                        r"of the fastest of y3's 4 modes, the thesis design")
+    ev = evaluate(thesis_design(n_modes=4))
+    check([periods], [float(ev.p3.max()) * 1e4 / (2 * np.pi) / 1e6])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("field, value, claim", [
+    ("tau", 1e8, r"the thesis design at τ = 10⁸ s gives status 4"),
+    ("n_modes", 10_000, r"gives status 4, and so does N = 10⁴")])
+def test_the_searchs_limits_give_status_4(field, value, claim):
+    quoted("model.md", f"({claim})")
+    from contactsep.model import status
+    ev = evaluate(thesis_design(**{field: value}))
+    assert int(np.ravel(ev.status)[0]) == status.UNRESOLVED
+
+
+def test_the_sweep_limits_are_the_codes():
+    """The limits docs/studies.md states in words are the constants the
+    code uses (a changed constant fails here until the page says it)."""
+    from contactsep.studies import (
+        chatter_sweep,
+        dask_run,
+        pool,
+        runner,
+        stats,
+        sweep,
+        writers,
+    )
+    default, most = quoted("studies.md", r"`--chunk-size` \(default "
+                           r"([\d,]+), at most ([\d,]+)\)")
+    assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
+                               f"{sweep.MAX_CHUNK_SIZE:,}")
+    restarts, designs, workers = quoted(
+        "studies.md", r"up to (\d+) times a sweep.*?a sweep has at most "
+        r"(1e\d+) designs and (\d+) workers a usable core")
+    assert int(restarts) == runner.MAX_POOL_RESTARTS
+    assert float(designs) == sweep.MAX_DESIGNS
+    assert int(workers) == pool.WORKERS_PER_CORE
+    (group,) = quoted("studies.md", r"row groups of a fixed ([\d,]+) rows")
+    assert group == f"{writers.ROW_GROUP:,}"
+    (block,) = quoted("studies.md", r"the summary's sums are taken "
+                      r"([\d,]+) values at a time")
+    assert block == f"{stats.BLOCK:,}"
+    probe, lost = quoted("studies.md", r"refused in one line within (\d+) "
+                         r"s .*? a scheduler lost mid-sweep is one line "
+                         r"within about (\d+) s")
+    assert (int(probe), int(lost)) == (dask_run.PROBE_TIMEOUT_S,
+                                       dask_run.SCHEDULER_LOST_S)
+    (chunk,) = quoted("studies.md", r"\*\*Chunks\*\* are at most (\d+) "
+                      r"designs by default")
+    assert int(chunk) == chatter_sweep.CHUNK_SIZE
+
+
+def test_the_png_sizes():
+    """"default 100: 600 x 400 pixels, the tables 600 x 500"."""
+    import struct
+    size, table = quoted("studies.md", r"default 100: (\d+ × \d+) pixels, "
+                         r"the tables (\d+ × \d+)\)")
+    for name, claim in (("fig5", size), ("table1", table)):
+        head = (STUDIES / f"{name}.png").read_bytes()[16:24]
+        assert "{} × {}".format(*struct.unpack(">II", head)) == claim
+
+
+# -- docs/studies.md, Table II explained --------------------------------------
+
+#: The page's model labels and data versions, as the CSV names them.
+FIT_MODELS = {"Bernoulli–Euler clamped": "bernoulli-euler-clamped",
+              "Timoshenko clamped": "timoshenko-clamped",
+              "Timoshenko + k_r2": "timoshenko-kr2",
+              "Timoshenko + k_r2, k_t2": "timoshenko-kr2-kt2",
+              "Timoshenko + k_r2, mid-span mass2": "timoshenko-kr2-mass2"}
+FIT_DATA = {"printed": "printed", "9,000": "last-9000"}
+
+
+def fit_rows() -> dict:
+    return {(r["model"], r["data"]): r for r in rows("separator-fit")}
+
+
+def residuals(row) -> list[float]:
+    return [float(row[k]) for k in row if k.startswith("res_")]
+
+
+def test_the_separator_fit_table_is_separator_fit_csv():
+    text = (ROOT / "docs" / "studies.md").read_text()
+    fits = fit_rows()
+    seen = set()
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 5 or cells[0] not in FIT_MODELS:
+            continue
+        row = fits[(FIT_MODELS[cells[0]], FIT_DATA[cells[1]])]
+        seen.add((row["model"], row["data"]))
+        rms = cells[3].strip("*").removesuffix(" %").strip("*")
+        check([rms], [float(row["rms_pct"])])
+        if cells[4] == "as k_r2 alone":
+            alone = fits[("timoshenko-kr2", row["data"])]
+            np.testing.assert_allclose(residuals(row), residuals(alone),
+                                       atol=1e-4)
+        else:
+            claims = cells[4].replace("−", "-").split(", ")
+            check(claims, residuals(row))
+        # the fitted parameters, to the digits the page gives
+        for claim in re.findall(r"(\d[\d.e]*) (?:lb in/rad|lb/in)",
+                                cells[2].replace("**", "")):
+            found = [float(x) for x in re.findall(
+                r"=([\d.e+]+) lb", row["parameters"])]
+            assert any(printed(x, claim) for x in found), (claim, row)
+    assert len(seen) == 8
+
+
+def test_the_separator_fit_prose_is_separator_fit_csv():
+    fits = fit_rows()
+    mass = fits[("timoshenko-kr2-mass2", "last-9000")]
+    within, last, rms, grams = quoted(
+        "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
+        rf"% against the issue's −4.8 %, rms {NUMBER} % against 2.3 %, "
+        rf"{NUMBER} g\)")
+    res = residuals(mass)
+    check([within, last, rms], [max(abs(r) for r in res[:4]), -res[4],
+                                float(mass["rms_pct"])])
+    check([grams], [float(re.search(r"\(([\d.]+) g\)",
+                                    mass["parameters"]).group(1))])
+    low, high = quoted("studies.md", rf"the one-stiffness fit's rms is "
+                       rf"{NUMBER}–{NUMBER} % here")
+    one = [float(fits[("timoshenko-kr2", d)]["rms_pct"])
+           for d in ("last-9000", "printed")]
+    check([low, high], one)
+    thin, thick, over_low, over_high = quoted(
+        "studies.md", rf"They lower the frequency by {NUMBER} % \(d = "
+        rf"0.125\) to {NUMBER} % \(d = 0.75\).*?the clamped Timoshenko "
+        rf"separator is still {NUMBER}–{NUMBER} % above every measurement")
+    bernoulli = np.array(residuals(fits[("bernoulli-euler-clamped",
+                                         "printed")]))
+    timoshenko = np.array(residuals(fits[("timoshenko-clamped",
+                                          "printed")]))
+    lowered = 100 * (1 - (1 + timoshenko / 100) / (1 + bernoulli / 100))
+    check([thin, thick], [lowered[0], lowered[-1]])
+    check([over_low, over_high], [timoshenko.min(), timoshenko.max()])
+    (fits_to,) = quoted("studies.md", rf"fits rows 1–4 to {NUMBER} %\*\*")
+    check([fits_to], [max(abs(r) for r in res[:4])])
+    (off,) = quoted("studies.md", rf"Against the printed 11,100 cps the "
+                    rf"same fitted model is {NUMBER} % low in the last row")
+    model_cps = 9000 * (1 + res[4] / 100)
+    check([off], [100 * (1 - model_cps / 11100)])
+
+
+def test_the_bare_separator_and_table_1_lines():
+    """The study's notes (the committed CSV's '#' lines) carry the bare
+    separator's L_c and the Timoshenko contacts; the page quotes them."""
+    notes = contactsep.read(STUDIES / "separator-fit.csv").attrs["comments"]
+    bare = next(n for n in notes if n.startswith("bare separator (printed"))
+    lengths = quoted("studies.md", rf"no mass\) they are {NUMBER}, "
+                     rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} in\.")
+    assert "L_c = " + ", ".join(lengths) + " in" in bare
+    table1 = next(n for n in notes if n.startswith("Table I ("))
+    lowest, highest, *cps = quoted(
+        "studies.md", rf"Timoshenko lowers the first four frequencies by "
+        rf"{NUMBER}–{NUMBER} % only \({NUMBER}, {NUMBER}, {NUMBER}, "
+        rf"{NUMBER} cps against Bernoulli–Euler's {NUMBER}, {NUMBER}, "
+        rf"{NUMBER}, {NUMBER}; measured ([\d./]+) upper, ([\d./]+) lower\): "
+        rf"the contacts' {NUMBER}–{NUMBER} % gap")
+    timoshenko = ", ".join(cps[:4])
+    bernoulli = ", ".join(cps[4:8])
+    assert f"Timoshenko {timoshenko} cps" in table1
+    assert f"Bernoulli-Euler {bernoulli} cps" in table1
+    assert f"measured upper {cps[8]}, lower {cps[9]}" in table1
+    change = re.search(r"\(-([\d.]+) to -([\d.]+) %\)", table1).groups()
+    check([lowest, highest], [float(change[1]), float(change[0])])
+    model = np.array([float(x) for x in cps[:4]])
+    measured = np.array([[float(x) for x in cps[k].split("/")]
+                         for k in (8, 9)])
+    gaps = 100 * (model / measured - 1)
+    check(cps[10:], [gaps.min(), gaps.max()])
+
+
+def test_the_bare_separator_of_the_9000_fit_and_its_clamp():
+    notes = contactsep.read(STUDIES / "separator-fit.csv").attrs["comments"]
+    bare = next(n for n in notes if n.startswith("bare separator "
+                                                 "(last-9000"))
+    kr2, *numbers = quoted(
+        "studies.md", rf"9,000 cps fit \(k_r2 = {NUMBER} lb in/rad\) its "
+        rf"first frequencies are {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, "
+        rf"{NUMBER} cps and its equivalent lengths .*? {NUMBER}, "
+        rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} in, beside Table III's")
+    assert "f1 = " + ", ".join(numbers[:5]) + " cps" in bare
+    assert "L_c = " + ", ".join(numbers[5:]) + " in" in bare
+    fitted = float(re.search(r"kr2 = ([\d.e+]+)", bare).group(1))
+    check([kr2], [fitted])
+    # --separator physical is that clamp
+    from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+    (physical,) = quoted("studies.md", rf"`beam2 = timoshenko`, "
+                         rf"`kr2 = {NUMBER}`")
+    check([physical], [PHYSICAL_SEPARATOR["kr2"]])
+    check([physical], [fitted])
+    # "measured 2.0-2.6 times below the clamped Bernoulli-Euler theory"
+    low, high = quoted("studies.md", rf"were measured {NUMBER}–{NUMBER} "
+                       rf"times below the thesis's clamped Bernoulli–Euler "
+                       rf"theory")
+    ratio = 1 + np.array(residuals(fit_rows()[("bernoulli-euler-clamped",
+                                                "printed")])) / 100
+    check([low, high], [ratio.min(), ratio.max()])
+
+
+def fortran_parameters() -> dict:
+    """name -> value text of the extremes search's Fortran parameters."""
+    found = {}
+    for path in sorted((ROOT / "fortran" / "model").glob("extremes*.f90")):
+        for name, value in re.findall(
+                r"parameter(?:, public)? :: (\w+) = ([^\n!]+)",
+                path.read_text()):
+            found[name] = value.strip()
+    return found
+
+
+SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
+#: An exponent written in superscript digits.
+POWER = "([⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
+
+
+def test_the_searchs_constants_are_the_fortrans():
+    """The budgets and tolerances docs/model.md states are the
+    parameters of fortran/model/extremes*.f90."""
+    f = fortran_parameters()
+
+    def power(text):                  # "2_int64**31" -> 2**31
+        (exponent,) = re.fullmatch(r"2(?:_int64|\.0_wp)?\*\*(\d+)",
+                                   text).groups()
+        return 2 ** int(exponent)
+
+    work, turns = quoted("model.md", rf"gives up after 2{POWER} cell-mode "
+                         rf"evaluations .*? when p_max τ ≥ 2{POWER} rad")
+    assert 2 ** int(work.translate(SUPERSCRIPT)) == power(f["work_budget"])
+    assert 2 ** int(turns.translate(SUPERSCRIPT)) == power(f["two_52"])
+    modes, designs, fewest, most, block, segment = quoted(
+        "model.md", r"blocks of about (\d+) modes \((\d+) designs of 4 "
+        r"modes, 16 of 32; (\d+) to (\d+) designs\), each with at most "
+        rf"2{POWER} live cell-modes.*?more than 2{POWER} live cell-modes")
+    assert int(modes) == int(f["block_modes"])
+    assert int(designs) == min(int(f["block_size"]), int(modes) // 4)
+    assert (int(fewest), int(most)) == (8, int(f["block_size"]))
+    assert 2 ** int(block.translate(SUPERSCRIPT)) == power(
+        f["block_cell_budget"])
+    assert 2 ** int(segment.translate(SUPERSCRIPT)) == power(
+        f["cell_budget"])
+    tie, finished = quoted("model.md", r"cannot come within the tie "
+                           r"\(([\d.e-]+) S\) of the best value found is "
+                           r"dropped; one whose bound is within ([\d.e-]+) "
+                           r"S of a value it holds is finished")
+    assert float(tie) == float(f["tie"].removesuffix("_wp"))
+    assert float(finished) == float(f["converged"].removesuffix("_wp"))
+    steps, order = quoted("model.md", rf"first polished \((\w+) Newton "
+                          rf"steps .*? to x{POWER}\)")
+    words = {"two": 2, "three": 3, "four": 4}
+    assert words[steps] == int(f["polish_steps"])
+    # the sine's Taylor series: each factor 1/((2k)(2k+1)) one more term
+    bounds = (ROOT / "fortran" / "model" / "extremes_bounds.f90").read_text()
+    factors = int(re.search(r"inv_sin\((\d+)\)", bounds).group(1))
+    assert int(order.translate(SUPERSCRIPT)) == 2 * factors + 1
+
+
+def test_the_listings_difference():
+    """"not to 1e-8 but to 3.5e-5": the listing integrates the deck's
+    9-decimal mode function; the worst ratio of its impact sum to the
+    exact one over the thesis decks (the reference's two closed forms,
+    independent of the model)."""
+    from conftest import THESIS_DECKS
+    from contactsep.restored import reference
+    (claim,) = quoted("model.md", rf"not to 1e-8 but to {NUMBER},")
+    worst = 0.0
+    for deck in THESIS_DECKS:
+        for r in contactsep.replay(deck, precision="double"):
+            ds = r.inputs
+            p = reference.frequencies(ds)[0]
+            ratio = np.sum(p * ds.c * reference.initial_amplitudes(
+                ds, "closed-form")) / np.sum(p * ds.c * reference
+                                             .initial_amplitudes(
+                                                 ds, "exact-mode"))
+            worst = max(worst, abs(ratio - 1))
+    check([claim], [worst])
+
+
+def test_the_domains_symmetry_corners_are_the_tests():
+    """model.md's ranges of the exact symmetries are the corners
+    tests/hostile/test_domain.py checks."""
+    import importlib.util
+    path = ROOT / "tests" / "hostile" / "test_domain.py"
+    spec = importlib.util.spec_from_file_location("_domain_corners", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    lam, kappa, mu, sigma = (quoted("model.md", pattern) for pattern in (
+        rf"every length times λ \({NUMBER} to {NUMBER}\)",
+        rf"E and γ times κ \({NUMBER} to {NUMBER}\)",
+        r"\(μ from 10\^([-\d.]+) to (\d+)\)",
+        rf"y_s times σ \({NUMBER} to {NUMBER}\)"))
+    for name, (low, high) in (("lam", lam), ("kappa", kappa),
+                              ("sigma", sigma)):
+        values = [c[name] for c in module.CORNERS if name in c]
+        assert (min(values), max(values)) == (float(low), float(high))
+    values = [c["mu"] for c in module.CORNERS if "mu" in c]
+    assert (min(values), max(values)) == (10 ** float(mu[0]), float(mu[1]))
+
+
+def test_the_general_members_limit_and_the_fe_tolerances():
+    from contactsep.beams.timoshenko import MAX_GENERAL_MODES
+    (most,) = quoted("model.md", r"A general member takes at most (\d+) "
+                     r"modes")
+    assert int(most) == MAX_GENERAL_MODES
+    three, six = quoted("model.md", r"first three modes to ([\d.e-]+), six "
+                        r"to ([\d.e-]+),")
+    source = (ROOT / "tests" / "shared" / "test_beams_timoshenko.py"
+              ).read_text()
+    assert f"[:3] < {three})" in source and f"< {six})" in source
+
+
+def test_the_simulation_counts_of_the_long_studies():
+    """"study chatter ... # 45 simulations", "study preload ... # 1886
+    simulations": the chatter table's rows, the preload chart's count."""
+    chatter, chart = quoted("studies.md", r"contactsep study chatter --out "
+                            r"docs/studies # (\d+) simulations.*?contactsep "
+                            r"study preload --out docs/studies # (\d+) "
+                            r"simulations")
+    assert int(chatter) == len(rows("chatter"))
+    notes = contactsep.read(STUDIES / "preload.csv").attrs["comments"]
+    assert f"{chart} simulations" in notes
+    (again,) = quoted("studies.md", r"Not a batch of eq. 23 but (\d+) "
+                      r"three-beam simulations")
+    assert int(again) == len(rows("chatter"))
+
+
+def test_the_chatter_and_unit_limits_are_the_codes():
+    import importlib
+
+    from contactsep.chatter import circuit
+    from contactsep.cli import design_options
+    # the module (the package's attribute of that name is the function)
+    simulate = importlib.import_module("contactsep.chatter.simulate")
+    steps, work, coarse = quoted(
+        "studies.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
+        r"modes\) is refused before any work, one more than (\d+) times "
+        r"the default is warned")
+    assert (float(steps), float(work)) == (simulate.MAX_STEPS,
+                                           simulate.MAX_WORK)
+    assert float(coarse) == simulate.COARSE_DT
+    (min_open,) = quoted("studies.md", r"`min_open_s`, default ([\d.e-]+) "
+                         r"s\)")
+    assert float(min_open) == circuit.MIN_OPEN
+    (most,) = quoted("studies.md", r"d ≤ 0, N > (\d+),")
+    assert int(most) == simulate.MAX_MODES
+    (forked,) = quoted("studies.md", r"steps × modes ≥ (\de\d), goes to a "
+                       r"forked child")
+    assert float(forked) == simulate.FORKED_WORK
+    modulus, density, length = quoted(
+        "studies.md", r"a modulus below (1e\d) psi .*? a weight density "
+        r"above (\d+) lb/in³ .*? a member longer than (\d+) in")
+    assert (float(modulus), float(density), float(length)) == (
+        design_options.SOFTEST_PSI, design_options.DENSEST_LB_IN3,
+        design_options.LONGEST_IN)
+
+
+def test_the_kappa_five_sixths_and_per_row_clamps():
+    """"with kappa = 5/6 the clamped Timoshenko residuals are +98.6, ...
+    %" and the per-row clamp stiffnesses "(233, 2157, 1310 lb in/rad,
+    none, 1.0e5 with Cowper's kappa ...)": recomputed, each row's
+    stiffness by scipy's root finder on the study's separator."""
+    import dataclasses
+
+    from scipy.optimize import brentq
+
+    from contactsep.studies import separator_fit as sf
+
+    def first(d, kappa=None, kr2=None):
+        beam = sf.separator(d, "timoshenko-clamped",
+                            {} if kr2 is None else {"kr2": kr2})
+        beam = dataclasses.replace(beam, kappa=kappa)
+        return float(sf.modal_model(beam, 1, [beam.length / 2]).f_hz[0])
+
+    claims = quoted("studies.md", rf"with κ = 5/6 the clamped Timoshenko "
+                    rf"residuals are {NUMBER}, {NUMBER}, {NUMBER}, "
+                    rf"{NUMBER}, {NUMBER} %")
+    check(claims, [100 * (first(d, 5 / 6) / f - 1) for d, f in
+                   zip(sf.TABLE_II_D, sf.TABLE_II_EXPERIMENTAL)])
+    stiffness = []
+    for d, f in zip(sf.TABLE_II_D, sf.TABLE_II_EXPERIMENTAL):
+        def gap(log_kr, d=d, f=f):
+            return first(d, None, 10.0 ** log_kr) / f - 1
+
+        soft, stiff = gap(sf.BOUNDS["kr2"][0]), gap(sf.BOUNDS["kr2"][1])
+        stiffness.append(None if soft * stiff > 0 else 10.0 ** brentq(
+            gap, *sf.BOUNDS["kr2"], xtol=1e-8))
+    rows = quoted("studies.md", rf"the per-row clamp stiffnesses too "
+                  rf"\({NUMBER}, ([\d,]+), {NUMBER} lb in/rad, none, "
+                  rf"{NUMBER} with Cowper's κ")
+    assert stiffness[3] is None
+    check([rows[0], rows[1], rows[2], rows[3]],
+          [stiffness[0], stiffness[1], stiffness[2], stiffness[4]])
+    again = quoted("studies.md", rf"the stiffness scatters \({NUMBER}, "
+                   rf"{NUMBER}, {NUMBER} lb in/rad, none for d = 0.5")
+    for claim, value in zip(again, stiffness):
+        assert float(f"{value:.3g}") == float(claim), (claim, value)
+
+
+def test_a_converted_value_as_the_page_says():
+    """"a converted value is rounded to 15 significant digits (`10us` is
+    exactly 1e-05 s)"."""
+    pytest.importorskip("pint")
+    from contactsep import units
+    digits, typed, exact = quoted(
+        "studies.md", r"a converted value is rounded to (\d+) significant "
+        r"digits \(`(\w+)` is exactly ([\d.e-]+) s\)")
+    assert units.convert(typed, "s", "--min-open") == float(exact)
+    inches = units.convert("30.5mm", "in", "--L1")
+    assert inches == float(f"{30.5 / 25.4:.{digits}g}")

@@ -1,0 +1,184 @@
+"""docs/performance.md quotes committed benchmark runs (issue 30, item 8):
+every line a benchmark run with ``--save`` wrote to
+``benchmarks/results/NAME.md`` (its tables, its yardstick, its
+provenance: date, commit, load) is on the page as written, and the
+ratios the page's prose draws from a run are that run's.  Timings
+depend on the machine; what is checked is that the page says what the
+committed run measured, not what this machine would measure now."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from conftest import ROOT
+
+PAGE = ROOT / "docs" / "performance.md"
+RESULTS = ROOT / "benchmarks" / "results"
+
+
+def squeezed(line: str) -> str:
+    return " ".join(line.split())
+
+
+def page_lines() -> set[str]:
+    return {squeezed(line) for line in PAGE.read_text().splitlines()}
+
+
+def page_text() -> str:
+    return " ".join(PAGE.read_text().split())
+
+
+def result_lines(name: str) -> list[str]:
+    """The run's lines: its provenance, then what it printed (the
+    command, an HTML comment, left out)."""
+    lines = (RESULTS / f"{name}.md").read_text().splitlines()
+    assert lines[0].startswith("<!-- ") and lines[1].startswith("run ")
+    return [squeezed(line) for line in lines[1:] if line.strip()]
+
+
+def table(name: str) -> dict:
+    """label -> (ms, ratio to numpy.sin, work) of a run's table rows."""
+    rows = {}
+    for line in result_lines(name):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 4 and \
+                re.fullmatch(r"[\d.]+", cells[1]):
+            rows[cells[0]] = (float(cells[1]), float(cells[2]), cells[3])
+    return rows
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in
+                                        RESULTS.glob("*.md")))
+def test_every_line_of_a_committed_run_is_on_the_page(name):
+    lines = page_lines()
+    text = page_text()
+    for line in result_lines(name):
+        if line.startswith("run "):
+            # the provenance sits inside a sentence
+            assert line in text, (name, line)
+        elif line.startswith("|"):
+            assert line in lines, (name, line)
+        else:
+            assert line in text, (name, line)
+
+
+def quoted(pattern: str) -> tuple[str, ...]:
+    found = re.search(pattern, page_text())
+    assert found, f"performance.md no longer says {pattern!r}"
+    return found.groups()
+
+
+def test_the_contact_dynamics_prose_is_the_run():
+    rows = table("bench_chatter")
+    default = rows["hertz N=16 (default)"]
+    summary = rows["hertz N=16, summary only"]
+    plain = rows["hertz N=16, no static correction"]
+    plain_summary = rows["hertz N=16, summary, no static corr."]
+    a, b = quoted(r"the default run is ([\d.]+)× numpy.sin, the "
+                  r"summary-only run ([\d.]+)×")
+    assert (float(a), float(b)) == (default[1], summary[1])
+    a, b = quoted(r"the same runs are ([\d.]+)× and ([\d.]+)×")
+    assert (float(a), float(b)) == (plain[1], plain_summary[1])
+    assert default[1] > 2.5 and plain[1] < 2.5    # "no longer holds"
+    flight, fixed = quoted(r"the correction \(([\d,]+) flight, ([\d,]+) "
+                           r"fixed steps\)")
+    assert f"flight_steps {flight.replace(',', '')}" in plain[2]
+    assert f"fixed_steps {fixed.replace(',', '')}" in plain[2]
+
+    def per_step(row):
+        counts = dict(re.findall(r"(\w+_steps) (\d+)", row[2]))
+        return row[0] / sum(int(v) for v in counts.values())
+
+    (factor,) = quoted(r"costs no steps but about ([\d.]+)× the work a step")
+    assert f"{per_step(summary) / per_step(plain_summary):.1f}" == factor
+    (dearer,) = quoted(r"makes each design's simulation about ([\d.]+)× "
+                       r"dearer")
+    assert f"{summary[0] / plain_summary[0]:.1f}" == dearer
+    longer, mj, newton = quoted(r"the old Moreau–Jean default took (\d+)× "
+                                r"as long at N = 16 \(table: ([\d.]+) "
+                                r"against ([\d.]+) ms\)")
+    old = rows["newton N=16 Moreau-Jean 1e-7"][0]
+    new = rows["newton N=16 (default)"][0]
+    assert (float(mj), float(newton)) == (old, new)
+    assert f"{old / new:.0f}" == longer
+    (fixed_steps,) = quoted(r"fixed steps \(([\d,]+) of the fixed-step "
+                            r"reference's 1.2 million")
+    assert f"fixed_steps {fixed_steps.replace(',', '')}" in default[2]
+    assert "fixed_steps 1200000" in rows["hertz N=16 fixed-step"][2]
+
+
+def checks_table() -> dict:
+    """design -> cells of the bench_checks run's rows."""
+    rows = {}
+    for line in result_lines("bench_checks"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 5 and \
+                cells[2].endswith("(1x)"):
+            rows[cells[0]] = cells
+    return rows
+
+
+def test_the_checks_prose_is_the_run():
+    rows = checks_table()
+
+    def ratio(cell):                  # "0.034 s (0.33x)" -> 0.33
+        return float(re.search(r"\(([\d.]+)x\)", cell).group(1))
+
+    def numerics(design):             # dt (s), window (s)
+        dt, window, _ = rows[design][4].split(", ")
+        return float(dt), float(window)
+
+    step, thesis = quoted(r"on the thesis rig 0.295 s instead of 0.06 s, "
+                          r"at a step ([\d.]+)x the old one, ([\d.]+)x the "
+                          r"time of the old settings")
+    assert numerics("thesis") == (pytest.approx(float(step) * 5e-8,
+                                                rel=0.01), 0.295)
+    assert f"{numerics('thesis')[0] / 5e-8:.2f}" == step
+    assert f"{1 / ratio(rows['thesis'][1]):.1f}" == thesis
+    low, high, finer_low, finer_high, cost_low, cost_high = quoted(
+        r"on the relays the window is short \((\d+)-(\d+) ms\) and the step "
+        r"([\d.]+)-([\d.]+)x finer, ([\d.]+)x to ([\d.]+)x the old cost")
+    relays = ("steel_relay", "becu_light")
+    windows = sorted(1e3 * numerics(r)[1] for r in relays)
+    assert [f"{w:.0f}" for w in windows] == [low, high]
+    finer = sorted(5e-8 / numerics(r)[0] for r in relays)
+    assert [f"{f:.1f}" for f in finer] == [finer_low, finer_high]
+    costs = sorted(1 / ratio(rows[r][1]) for r in relays)
+    assert [f"{c:.1f}" for c in costs] == [cost_low, cost_high]
+    steps, preloaded = quoted(r"window / step \(([\d.]+)x the old steps on "
+                              r"the steel relay\): the default is "
+                              r"([\d.]+)x the old settings' time there")
+    dt, window = numerics("steel_relay, preload 0.35 lb")
+    assert f"{(window / dt) / (0.06 / 5e-8):.1f}" == steps
+    assert f"{1 / ratio(rows['steel_relay, preload 0.35 lb'][1]):.1f}" \
+        == preloaded
+    low, high = quoted(r"`--verify` costs a run at 2N and half the step: "
+                       r"([\d.]+)-([\d.]+)x the run")
+    verify = [ratio(cells[3]) for cells in rows.values()]
+    assert (f"{min(verify):.1f}", f"{max(verify):.1f}") == (low, high)
+
+
+def test_the_models_targets_are_the_run():
+    rows = {}
+    for line in result_lines("bench_model"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if len(cells) == 5 and cells[1].isdigit():
+            rows[(cells[0], int(cells[1]))] = float(cells[4])
+    at4, at32 = quoted(r"Both targets hold: ([\d.]+)× at N = 4 \(1.5× "
+                       r"asked\) and ([\d.]+)× at N = 32 \(2.0× asked\)")
+    assert (float(at4), float(at32)) == (rows[("thesis-like", 4)],
+                                         rows[("thesis-like", 32)])
+    assert rows[("thesis-like", 4)] <= 1.5
+    assert rows[("thesis-like", 32)] <= 2.0
+
+
+def test_the_memory_target_is_the_run():
+    ratios = dict(re.findall(r"\| `contactsep (\w+)` \| \d+ MB \| "
+                             r"([\d.]+)x \| exit 0", "\n".join(
+                                 result_lines("bench_memory"))))
+    replay, legacy = quoted(r"Target <= 3x: met \(`replay` ([\d.]+)x and "
+                            r"`legacy` ([\d.]+)x;")
+    assert (replay, legacy) == (ratios["replay"], ratios["legacy"])
+    assert max(float(replay), float(legacy)) <= 3
