@@ -121,3 +121,17 @@ def test_the_materials_study_runs_and_draws(tmp_path):
                                preloads=(0.0,), workers=1)
     save_png(points, tmp_path / "p.png")
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["contact-points", "materials"])
+def test_committed_study_is_what_the_code_computes(name):
+    """50 and 32 three-beam simulations (minutes): the committed CSVs
+    of docs/studies are today's; regenerate with `contactsep study NAME
+    --out docs/studies`."""
+    from test_committed_outputs import COMMITTED, compare
+    from contactsep.studies.recommendations import STUDIES
+    committed = (COMMITTED / f"{name}.csv").read_text()
+    compare(committed, STUDIES[name][0]().csv_text(), name)
+    assert (COMMITTED / f"{name}.png").read_bytes()[:8] == \
+        b"\x89PNG\r\n\x1a\n"

@@ -75,8 +75,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "Timoshenko separators with elastic clamps and a "
                     "sensor mass to Table II (no design options). "
                     "contact-points and materials (the thesis's "
-                    "recommendations 3 and 4, ~100 and ~30 simulations, "
-                    "N = 16) simulate how the circuit opens against where "
+                    "recommendations 3 and 4, 50 and 32 simulations, "
+                    "N = 32) simulate how the circuit opens against where "
                     "each contact touches the separator (x2, x2_lower) "
                     "and against the material presets of the contacts "
                     "and the separator.",

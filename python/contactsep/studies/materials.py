@@ -39,8 +39,8 @@ from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, refuse_fixed, thesis_design
 
-#: Modes per member.
-MODES = 16
+#: Modes per member (as study contact-points).
+MODES = 32
 #: The preload (lb) of the second set of rows (as study contact-points).
 PRELOAD = 6.0
 #: The fields the study sets itself.
