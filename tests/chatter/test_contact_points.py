@@ -215,6 +215,22 @@ def test_the_mirror_identity_of_a_symmetric_separator(settings, a, b):
                                                  rel=1e-9, abs=1e-15)
 
 
+def test_the_mirror_identity_of_a_timoshenko_separator_on_springs():
+    """The general beam path (transfer-matrix modes, the cross
+    flexibility with shear and elastic clamps): the Table II fit's
+    separator (Timoshenko, kr2 = 2.19e4 lb in/rad at both ends) is
+    symmetric too."""
+    left, right = _mirror_pair(0.8, 1.6, beam2="timoshenko", kr2=2.19e4)
+    one, two = (chatter.simulate(d, t_end=0.03, dt=1e-7, samples=300,
+                                 preload=0.05) for d in (left, right))
+    assert one.n_events == two.n_events >= 1
+    for name in ("gap_upper", "gap_lower"):
+        assert np.max(np.abs(getattr(one, name) - getattr(two, name))) \
+            <= 1e-12 * float(left.ys)
+    assert one.circuit_open_s == pytest.approx(two.circuit_open_s,
+                                               rel=1e-9)
+
+
 def test_the_mirror_is_not_the_identity_off_the_mirror():
     """The identity is not empty: moving only the lower point changes
     the answers."""
