@@ -106,7 +106,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "to e)")
     study.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
-                       help=f"preload and conclusionN only: local "
+                       help=f"preload, conclusionN, contact-points and "
+                            f"materials only: local "
                             f"processes for the simulations (default: the "
                             f"usable cores; at most {WORKERS_PER_CORE} a "
                             f"core)")
