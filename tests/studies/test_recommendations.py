@@ -135,3 +135,60 @@ def test_committed_study_is_what_the_code_computes(name):
     compare(committed, STUDIES[name][0]().csv_text(), name)
     assert (COMMITTED / f"{name}.png").read_bytes()[:8] == \
         b"\x89PNG\r\n\x1a\n"
+
+
+def _csv_rows(name):
+    import csv
+    from test_committed_outputs import COMMITTED
+    lines = [line for line in (COMMITTED / f"{name}.csv").read_text()
+             .splitlines() if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def _doc_table(heading):
+    """The first Markdown table after ``heading`` in docs/chatter.md:
+    {row label: [cells]}."""
+    from conftest import ROOT
+    text = (ROOT / "docs" / "chatter.md").read_text().split(heading, 1)[1]
+    rows = [line for line in text.split("\n\n| ", 1)[1].split("\n\n")[0]
+            .splitlines()]
+    out = {}
+    for line in rows[2:]:
+        cells = [c.strip().strip("*") for c in line.strip("| ").split("|")]
+        out[cells[0]] = cells[1:]
+    return out
+
+
+def test_the_docs_tables_are_the_committed_studies():
+    """docs/chatter.md's two tables (gap in 0.001 in / open ms at 6 lb)
+    against docs/studies/contact-points.csv and materials.csv."""
+    table = _doc_table("open time at 6 lb (ms), upper contact's x2 across")
+    rows = _csv_rows("contact-points")
+    assert len(table) == 5
+    for label, cells in table.items():
+        for x2, cell in zip(("0.5", "0.875", "1.25", "1.625", "2"), cells):
+            gap, open_ms = (float(v) for v in cell.split("/"))
+            got = {float(r["preload_lb"]): r for r in rows
+                   if r["x2_in"] == x2 and
+                   float(r["x2_lower_in"]) == float(label)}
+            assert gap == pytest.approx(
+                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
+            assert open_ms == pytest.approx(
+                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.0051)
+    table = _doc_table("Largest lower\ngap with no preload (0.001 in) / "
+                       "open time at 6 lb (ms):")
+    rows = _csv_rows("materials")
+    assert len(table) == 4
+    names = {"steel": "steel", "brass": "brass", "aluminium": "aluminium",
+             "beryllium copper": "beryllium-copper"}
+    for label, cells in table.items():
+        for separator, cell in zip(("steel", "brass", "beryllium-copper",
+                                    "aluminium"), cells):
+            gap, open_ms = (float(v) for v in cell.split("/"))
+            got = {float(r["preload_lb"]): r for r in rows
+                   if r["contact_material"] == names[label]
+                   and r["separator_material"] == separator}
+            assert gap == pytest.approx(
+                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
+            assert open_ms == pytest.approx(
+                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.051)
