@@ -192,3 +192,28 @@ def test_the_docs_tables_are_the_committed_studies():
                 1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
             assert open_ms == pytest.approx(
                 1e3 * float(got[6.0]["circuit_open_s"]), abs=0.051)
+
+
+def test_the_materials_study_runs_thorntons_law_where_simulate_has_it(
+        monkeypatch):
+    """The hook for issue 28 item 1's law: a simulate() that takes
+    ``contact`` and ``yield_pressure`` gets the Thornton rows, at the
+    lower of the two materials' yield pressures (a stand-in simulate
+    records what it is asked; the Hertz rows still run the real one)."""
+    from contactsep.chatter import simulate as real
+    asked = []
+
+    def simulate(design, contact="hertz", yield_pressure=None, **kw):
+        asked.append((contact, yield_pressure, kw["nu"]))
+        return real(design, **kw)
+
+    monkeypatch.setattr(mat, "simulate", simulate)
+    assert mat.thornton_available()
+    study = mat.materials(n_modes=2, contacts=("beryllium-copper",),
+                          separators=("aluminium",), preloads=(0.0,),
+                          workers=1)
+    assert list(study["law"]) == ["hertz", "thornton"]
+    becu, al = materials.material("becu"), materials.material("aluminium")
+    assert list(study["yield_pressure_psi"]) == [al.yield_pressure_psi] * 2
+    assert asked == [("hertz", None, becu.nu),
+                     ("thornton", 1.6 * al.yield_strength_psi, becu.nu)]
