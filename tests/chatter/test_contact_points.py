@@ -242,6 +242,28 @@ def test_the_mirror_is_not_the_identity_off_the_mirror():
         1e-4 * float(design.ys)
 
 
+@pytest.mark.parametrize("static", [True, False])
+def test_a_preload_at_x2_lower_is_a_static_state(static):
+    """The preload pushes the separator up at x2_lower: nothing moves
+    before the upper contact arrives (the lower gap keeps its start
+    value, the Hertz penetration), and the upper gap starts where it
+    starts without a preload (the release height kept above the
+    preloaded separator at x2: the cross flexibility)."""
+    design = thesis_design(n_modes=8, x2=0.7, x2_lower=1.9)
+    r = chatter.simulate(design, t_end=0.03, dt=1e-7, samples=300,
+                         preload=2.0, static_correction=static)
+    before = r.t < 0.9 * r.first_impact_s
+    assert before.sum() > 100
+    lower = r.gap_lower[before]
+    assert np.max(np.abs(lower - lower[0])) <= 1e-12 * float(design.ys)
+    assert lower[0] < 0.0          # pressed: the Hertz penetration
+    # the release height of the unpreloaded run (the N-mode release
+    # shape's own, 4e-5 below y_s at N = 8)
+    free = chatter.simulate(design, t_end=0.03, dt=1e-7, samples=300,
+                            static_correction=static)
+    assert r.gap_upper[0] == pytest.approx(free.gap_upper[0], rel=1e-12)
+
+
 # ---------------------------------------------------------------- refusals
 
 def test_eq23_refuses_a_lower_point_off_x2_in_one_line():
