@@ -29,7 +29,7 @@ import pytest
 import independent_hertz as ih
 from contactsep import chatter
 from contactsep.model import Design, DesignError, evaluate, thesis_design
-from contactsep.model.design import separator_points
+from contactsep.model.contact_points import separator_points
 from package_call import run
 from test_independent import (
     ENERGY_FLOOR,

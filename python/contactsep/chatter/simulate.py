@@ -159,7 +159,7 @@ def _single_impulse(design) -> dict:
                 "v_impact_in_s": _modal_impact_speed(design),
                 "psi_lb_s": math.nan, "v0_in_s": math.nan,
                 "y3_max_in": math.nan, "y3_max_impulse_form_in": math.nan}
-    from contactsep.model.design import lower_point_differs
+    from contactsep.model.contact_points import lower_point_differs
     with warnings.catch_warnings():
         # both forms are reported, labelled; the as-printed one may
         # exceed the release's energy (docs/model.md)

@@ -28,7 +28,7 @@ import numpy as np
 from contactsep import beams
 from contactsep.beams import member as member_beams
 from contactsep.model import Design, physics
-from contactsep.model.design import separator_points
+from contactsep.model.contact_points import separator_points
 from contactsep.model.twin import member_constants
 
 

@@ -18,6 +18,7 @@ from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT, LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import physics
+from contactsep.model.contact_points import lower_point_problem
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
@@ -195,56 +196,6 @@ def outside_domain(real: np.ndarray, ints: np.ndarray) -> np.ndarray:
 
 class DesignError(InputError):
     """A design the model cannot take; the message names the field."""
-
-
-def _lower_point_problem(design) -> str | None:
-    """x2_lower: None, or one finite number inside the separator's span
-    (the rule of x2; checked where L2 and end2 are single values)."""
-    value = design.x2_lower
-    if value is None:
-        return None
-    if isinstance(value, (bool, np.bool_, str)) or np.ndim(value) != 0 \
-            or np.asarray(value).dtype.kind not in "iuf":
-        return (f"x2_lower: found {value!r}, expected one number (in; "
-                f"None: x2) shared by a batch")
-    x = float(value)
-    length, end = np.asarray(design.L2), np.asarray(design.end2)
-    if length.ndim or end.ndim or not np.isfinite(float(length)):
-        return None if np.isfinite(x) else \
-            f"x2_lower: found {x!r}, expected a finite number (in)"
-    length, code = float(length), END_CODES[beams.ALIASES.get(
-        str(end), str(end))]
-    low = 0.0 if code == END_CODES["pinned-pinned"] else \
-        SUPPORT_CLEARANCE * length
-    high = length - SUPPORT_CLEARANCE * length \
-        if code == END_CODES["clamped-clamped"] else length
-    free = code == END_CODES["clamped-free"]
-    if np.isfinite(x) and low < x and (x < high or (free and x <= high)):
-        return None
-    return (f"x2_lower: found {x!r}, expected {low:.6g} < x2_lower "
-            f"{'<=' if free else '<'} {high:.6g} in: inside the span of "
-            f"the {_end_name(code)} separator (end2), at least "
-            f"{SUPPORT_CLEARANCE:g} L2 from a clamped end")
-
-
-def separator_points(design) -> tuple[float, float]:
-    """(x2, x2_lower) of a single design, in: where the upper and the
-    lower contact touch the separator, defaults resolved (mid-span;
-    x2_lower = x2)."""
-    x2 = float(design.L2) / 2.0 if design.x2 is None else float(design.x2)
-    lower = x2 if design.x2_lower is None else float(design.x2_lower)
-    return x2, lower
-
-
-def lower_point_differs(design) -> bool:
-    """True where the lower contact touches the separator elsewhere than
-    the upper one (x2_lower given and not x2, in any design of a
-    batch)."""
-    if design.x2_lower is None:
-        return False
-    x2 = np.asarray(design.L2, dtype=np.float64) / 2.0 \
-        if design.x2 is None else np.asarray(design.x2, dtype=np.float64)
-    return bool(np.any(x2 != float(design.x2_lower)))
 
 
 @dataclass(frozen=True)
@@ -435,8 +386,8 @@ class Design:
                     f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
             _check_number(name, getattr(self, name))
-        physics_problem = physics.problem(self) or _lower_point_problem(
-            self)
+        physics_problem = physics.problem(self) or \
+            lower_point_problem(self, SUPPORT_CLEARANCE)
         if physics_problem:
             raise DesignError(physics_problem)
         n = self._n_array()

@@ -12,13 +12,13 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model import energy, physics
+from contactsep.model.contact_points import lower_point_differs
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
     DesignError,
     Packed,
-    lower_point_differs,
     outside_domain,
     pack,
 )
