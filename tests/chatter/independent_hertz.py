@@ -49,7 +49,11 @@ both), and the thesis's g = 386.4 in/s^2 (Appendix B's listing value).
   (conserved to 2e-14 on the thesis rig at N = 4).
 
 Units: in, lb, s.  Gaps positive open: g_upper = y1(x1) - y2(x2),
-g_lower = y2(x2) - y3(x3) (+ the preload's offsets).
+g_lower = y2(x2_lower) - y3(x3) (+ the preload's offsets); the
+separator's ``x_lower`` (default its ``x``) is where the lower contact
+touches it (issue 28, item 4): the lower gap's Jacobian row, the preload
+acting there, and C's off-diagonal the residual cross flexibility
+G2(x2, x2_lower) - sum_j X_j(x2) X_j(x2_lower) / (M p_j^2).
 """
 
 from __future__ import annotations
@@ -235,6 +239,7 @@ def build(setup: Setup):
     b1, x1 = _member(setup.upper, n)
     b2, x2 = _member(setup.separator, n)
     b3, x3 = _member(setup.lower, n)
+    x2l = b2.shapes([_lower_point(setup.separator)])[:, 0]
     at = b1.length if (setup.release == "tip"
                        and b1.end == "clamped-free") \
         else float(setup.upper["x"])
@@ -244,18 +249,19 @@ def build(setup: Setup):
     p = np.concatenate([b1.p, b2.p, b3.p])
     z = np.zeros(n)
     h = np.array([np.concatenate([x1, -x2, z]),
-                  np.concatenate([z, x2, -x3])])
+                  np.concatenate([z, x2l, -x3])])
     q = np.concatenate([q1, z, z])
     g0 = np.zeros(2)
     k = hertz_constant(setup)
     if setup.preload > 0.0:
         f = setup.preload
-        q2 = f * x2 / (b2.mass * b2.p**2)      # equilibrium: M p^2 q = X F
+        q2 = f * x2l / (b2.mass * b2.p**2)     # equilibrium: M p^2 q = X F
         q3 = -f * x3 / (b3.mass * b3.p**2)
         q[n:2 * n], q[2 * n:] = q2, q3
         depth = (f / k) ** (2.0 / 3.0)         # F = k depth^1.5
-        lift, drop = float(x2 @ q2), float(x3 @ q3)
-        g0 = np.array([lift, -depth - (lift - drop)])
+        lift, drop = float(x2l @ q2), float(x3 @ q3)
+        # the upper gap's offset: the separator's deflection at x2
+        g0 = np.array([float(x2 @ q2), -depth - (lift - drop)])
     return m, p, h, g0, q, k
 
 
@@ -267,16 +273,35 @@ def point_flexibility(member: dict) -> float:
     return float(y(member["x"])) / (member["E"] * inertia)
 
 
+def _lower_point(separator: dict) -> float:
+    return float(separator.get("x_lower", separator["x"]))
+
+
 def residual_matrix(setup: Setup) -> np.ndarray:
     """C = [[c1 + c2, -c2], [-c2, c2 + c3]] of the residual flexibilities
     c_i = G_i(x_i) - sum_j X_j(x_i)^2 / (M_i p_j^2) (the part of each
-    member's static flexibility its N modes leave out)."""
+    member's static flexibility its N modes leave out); with the lower
+    contact at x2_lower, [[c1 + c2, -c2x], [-c2x, c2l + c3]] (c2l at
+    x2_lower, c2x the cross term between x2 and x2_lower)."""
     c = []
     for member in (setup.upper, setup.separator, setup.lower):
         b, x = _member(member, setup.n_modes)
         c.append(point_flexibility(member)
                  - float(np.sum(x**2 / (b.mass * b.p**2))))
-    return np.array([[c[0] + c[1], -c[1]], [-c[1], c[1] + c[2]]])
+    sep = setup.separator
+    if _lower_point(sep) == float(sep["x"]):
+        return np.array([[c[0] + c[1], -c[1]], [-c[1], c[1] + c[2]]])
+    # the separator at the lower contact's point, and between the two
+    lower = dict(sep, x=_lower_point(sep))
+    b, x = _member(sep, setup.n_modes)
+    xl = b.shapes([lower["x"]])[:, 0]
+    inertia = sep["b"] * sep["h"]**3 / 12.0
+    y = static_shape(sep["end"], sep["L"], sep["x"])
+    cross = float(y(lower["x"])) / (sep["E"] * inertia) \
+        - float(np.sum(x * xl / (b.mass * b.p**2)))
+    c_low = point_flexibility(lower) \
+        - float(np.sum(xl**2 / (b.mass * b.p**2)))
+    return np.array([[c[0] + c[1], -cross], [-cross, c_low + c[2]]])
 
 
 def series_forces(k, chi, cmat, g, u):

@@ -37,7 +37,8 @@ DIMENSIONLESS = {
     "lc_reading", "release", "data_set", "title", "event", "curve",
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
-    "verify_n_modes", "verify_status"}
+    "verify_n_modes", "verify_status", "contact_material",
+    "separator_material", "law"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
@@ -145,7 +146,11 @@ def test_the_design_has_one_set_of_names(outputs):
     model_design = outputs["model"]["design"]
     chatter_design = outputs["chatter"]["inputs"]["design"]
     assert set(model_design) == set(chatter_design)
-    assert len(model_design) == len(dataclasses.fields(Design))
+    # every field, but those shown only when given (x2_lower: None
+    # keeps the outputs of designs without it unchanged)
+    assert len(model_design) == len(dataclasses.fields(Design)) - len(
+        names.SHOWN_WHEN_GIVEN)
+    assert names.design_keys(Design(x2_lower=1.0))["x2_lower_in"] == 1.0
     assert "d_in" in model_design and "h2" not in model_design
     fixed = outputs["chatter_sweep"]["inputs"]["fixed"]
     assert set(fixed) <= set(model_design)

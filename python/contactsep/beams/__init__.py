@@ -20,5 +20,5 @@ One module per concern:
 from contactsep.beams.bernoulli_euler import (  # noqa: F401
     ALIASES, END_CONDITIONS, SUPPORTS, _alpha_parts, _canonical, _check,
     _sigma_parts, alphas, eigenvalues, end_code, midspan_values,
-    mode_shapes, residual_flexibility, sigmas, static_flexibility,
-    tip_values)
+    mode_shapes, residual_cross_flexibility, residual_flexibility, sigmas,
+    static_flexibility, static_influence, tip_values)

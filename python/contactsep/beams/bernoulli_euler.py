@@ -190,6 +190,55 @@ def static_flexibility(end: str, xi) -> np.ndarray:
     return xi**2 * b**2 / 3.0
 
 
+def _cantilever_influence(xi, eta):
+    """y(xi) of a cantilever (clamped at 0) under a unit load at eta."""
+    near, far = np.minimum(xi, eta), np.maximum(xi, eta)
+    return near**2 * (3.0 * far - near) / 6.0
+
+
+def static_influence(end: str, xi, eta) -> np.ndarray:
+    """G(xi, eta) = y(xi) EI / (F L^3): deflection at x = xi L under a
+    point load F at a = eta L, exact (strength of materials).
+
+    Symmetric (Maxwell's reciprocity), equal to :func:`static_flexibility`
+    on the diagonal, and to sum over all j of X_j(xi) X_j(eta) /
+    (k_jL)^4 (the modal expansion), which the tests check.  The propped
+    cantilever is the cantilever less its prop's reaction,
+    R = eta^2 (3 - eta) / 2, at the pinned end.
+    """
+    end = _canonical(end)
+    xi, eta = np.broadcast_arrays(np.asarray(xi, dtype=np.float64),
+                                  np.asarray(eta, dtype=np.float64))
+    near, far = np.minimum(xi, eta), np.maximum(xi, eta)
+    if end == "clamped-free":
+        return _cantilever_influence(xi, eta)
+    if end == "clamped-clamped":
+        # near side x <= a of the load, b = 1 - a: b^2 x^2 (3a - x(3a + b))/6
+        b = 1.0 - far
+        return b**2 * near**2 * (3.0 * far - near * (1.0 + 2.0 * far)) / 6.0
+    if end == "clamped-pinned":
+        reaction = eta**2 * (3.0 - eta) / 2.0
+        return _cantilever_influence(xi, eta) - reaction * \
+            _cantilever_influence(xi, 1.0)
+    b = 1.0 - far
+    return b * near * (1.0 - b**2 - near**2) / 6.0
+
+
+def residual_cross_flexibility(end: str, n: int, xi, eta) -> float:
+    """r_N(xi, eta) = G(xi, eta) - sum_{j<=n} X_j(xi) X_j(eta) / (k_jL)^4:
+    the static cross flexibility between two points of the modes the
+    n-mode model leaves out (units of :func:`static_flexibility`).  The
+    static correction's off-diagonal term when two contacts touch one
+    member at different points; on the diagonal it is
+    :func:`residual_flexibility`.  Summed with compensation."""
+    import math
+    end = _check(end, n)
+    shapes = mode_shapes(end, n, [float(xi), float(eta)])
+    terms = shapes[:, 0] * shapes[:, 1] / eigenvalues(end, n)**4
+    return math.fsum([float(static_influence(end, xi, eta))]
+                     + list(-terms))
+
+
 def residual_flexibility(end: str, n: int, xi) -> np.ndarray:
     """r_N(xi) = G(xi) - sum_{j<=n} X_j(xi)^2 / (k_jL)^4: the static point
     flexibility at a = xi L of the modes the n-mode model leaves out, in

@@ -167,3 +167,13 @@ def static_flexibility(beam: timoshenko.Beam, xi) -> np.ndarray:
             beam.kt is None:
         return be.static_flexibility(beam.end, xi)
     return timoshenko.static_flexibility(beam, xi)
+
+
+def static_influence(beam: timoshenko.Beam, xi: float, eta: float) -> float:
+    """G(xi, eta) = y(xi) EI/(F L^3) under a load at eta of a
+    dimensionless beam (shear and supports included), closed form for
+    the thesis's physics."""
+    if beam.r2 == 0.0 and beam.s2 == 0.0 and beam.kr is None and \
+            beam.kt is None:
+        return float(be.static_influence(beam.end, xi, eta))
+    return timoshenko.static_influence(beam, xi, eta)

@@ -419,3 +419,26 @@ def static_flexibility(beam: Beam, xi) -> np.ndarray:
                              f"equilibrium)") from None
         out[index] = state[4 * at]
     return out
+
+
+def static_influence(beam: Beam, xi: float, eta: float) -> float:
+    """G(xi, eta) = y(xi) EI/(F L^3): deflection at x = xi L under a point
+    load F at a = eta L (shear and supports included; masses carry no
+    static load), both points inside (0, 1]; on the diagonal
+    :func:`static_flexibility`."""
+    xi, eta = float(xi), float(eta)
+    if not (0.0 < xi <= 1.0 and 0.0 < eta <= 1.0):
+        raise ValueError("xi and eta must lie in (0, 1]")
+    plain = Beam(beam.end, 0.0, beam.s2, beam.kr, beam.kt)
+    nodes = _mesh(plain, 1.0, extra=(xi, eta))
+    matrix = _assemble(plain, nodes, 0.0)[0]
+    rhs = np.zeros(matrix.shape[0])
+    load = int(np.flatnonzero(nodes == eta)[0])
+    read = int(np.flatnonzero(nodes == xi)[0])
+    rhs[2 + 4 * (load - 1) + 3] = -1.0      # Q(a+) - Q(a-) = -F
+    try:
+        state = np.linalg.solve(matrix, rhs)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{beam}: a mechanism (no static "
+                         f"equilibrium)") from None
+    return float(state[4 * read])

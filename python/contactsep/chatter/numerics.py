@@ -84,9 +84,11 @@ class StepChoice:
     stiffness_lb_in: float
 
 
-def _mobility(member) -> float:
-    """sum_j X_j(x)^2 / M at the member's contact point (1/(lb s^2/in))."""
-    return float(np.sum(member.x**2) / member.mass)
+def _mobility(member, values=None) -> float:
+    """sum_j X_j(x)^2 / M at the member's contact point, or at the point
+    of the mode ``values`` given (1/(lb s^2/in))."""
+    values = member.x if values is None else values
+    return float(np.sum(values**2) / member.mass)
 
 
 def largest_speed(upper) -> float:
@@ -112,7 +114,10 @@ def design_step(members, hertz_k=None, preload=0.0) -> StepChoice:
         depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
         force = hertz_k * depth**1.5 + float(preload)
         stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0 / 3.0)
-    trace = (_mobility(upper) + 2.0 * _mobility(sep) + _mobility(lower))
+    # the separator at each contact's point (x2, x2_lower; at one point
+    # the sum is 2 mobility exactly)
+    trace = (_mobility(upper) + (_mobility(sep) + _mobility(
+        sep, sep.lower_x)) + _mobility(lower))
     omega = math.sqrt(p_max**2 + stiffness * trace)
     dt = STEP_SAFETY * 2.0 / omega
     if stiffness > 0.0:

@@ -94,7 +94,7 @@ def _stack(design):
     p = np.concatenate([upper.p, sep.p, lower.p])
     zeros1, zeros3 = np.zeros(upper.p.size), np.zeros(lower.p.size)
     h = np.stack([np.concatenate([upper.x, -sep.x, zeros3]),
-                  np.concatenate([zeros1, sep.x, -lower.x])])
+                  np.concatenate([zeros1, sep.lower_x, -lower.x])])
     q0 = np.concatenate([upper.q0, sep.q0, lower.q0])
     return m, p, h, q0, np.zeros_like(q0), (upper, sep, lower)
 
@@ -102,7 +102,7 @@ def _stack(design):
 def _largest_preload(design, sep, lower) -> float:
     # a preload that bends a member by more than its length is no small
     # deflection (1e300 lb gave a lower gap of -1.3e285 in)
-    return min(float(design.L2) / system.flexibility(sep),
+    return min(float(design.L2) / system.lower_flexibility(sep),
                float(design.L3) / system.flexibility(lower))
 
 
@@ -159,12 +159,22 @@ def _single_impulse(design) -> dict:
                 "v_impact_in_s": _modal_impact_speed(design),
                 "psi_lb_s": math.nan, "v0_in_s": math.nan,
                 "y3_max_in": math.nan, "y3_max_impulse_form_in": math.nan}
+    from contactsep.model.contact_points import lower_point_differs
     with warnings.catch_warnings():
         # both forms are reported, labelled; the as-printed one may
         # exceed the release's energy (docs/model.md)
         warnings.simplefilter("ignore", EnergyBoundWarning)
-        ev = evaluate(design.replace(lower_response="as-printed"))
-    impulse = evaluate(design.replace(lower_response="impulse"))
+        ev = evaluate(design.replace(lower_response="as-printed",
+                                     x2_lower=None))
+    if lower_point_differs(design):
+        # eq. 23 passes the impulse through one separator point: only the
+        # release flight (t1, the impact speed) holds at x2
+        return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
+                "v_impact_in_s": float(ev.v_impact), "psi_lb_s": math.nan,
+                "v0_in_s": math.nan, "y3_max_in": math.nan,
+                "y3_max_impulse_form_in": math.nan}
+    impulse = evaluate(design.replace(lower_response="impulse",
+                                      x2_lower=None))
     if ev.status != 0:
         # the figures are null: say why, once (issue 31: tau = 1e300
         # gave them all null and nothing on stderr)

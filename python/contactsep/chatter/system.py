@@ -19,6 +19,7 @@ its static sag is a constant offset absorbed by the preload).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 
@@ -27,6 +28,7 @@ import numpy as np
 from contactsep import beams
 from contactsep.beams import member as member_beams
 from contactsep.model import Design, physics
+from contactsep.model.contact_points import separator_points
 from contactsep.model.twin import member_constants
 
 
@@ -47,6 +49,19 @@ class Member:
     #: point: G(x) L^3/(EI) minus the N-mode sum (the static correction's
     #: series spring, docs/chatter.md; :func:`beams.residual_flexibility`).
     residual: float = 0.0
+    #: The separator only, where the lower contact touches it elsewhere
+    #: than the upper one (Design.x2_lower): X_j there, the residual
+    #: flexibility there and the residual cross flexibility between the
+    #: two points (in/lb; :func:`beams.residual_cross_flexibility`).
+    #: None: one contact point, ``x`` and ``residual`` serve both.
+    x_lower: np.ndarray | None = None
+    residual_lower: float = 0.0
+    residual_cross: float = 0.0
+
+    @property
+    def lower_x(self) -> np.ndarray:
+        """X_j where the lower contact touches (the separator), else x."""
+        return self.x if self.x_lower is None else self.x_lower
 
     def energy(self, q, v) -> np.ndarray:
         """Kinetic + strain energy (in lb), for states (..., n)."""
@@ -82,6 +97,44 @@ def _general(design: Design, i: str):
 
 
 def _member(design: Design, i: str, n: int, q0=None) -> Member:
+    member = _member_at(design, i, n, q0)
+    if i != "2":
+        return member
+    x2, x2_lower = separator_points(design)
+    if x2_lower == x2:
+        return member
+    return _two_points(design, member, n, x2, x2_lower)
+
+
+def _two_points(design: Design, member: Member, n: int, x2: float,
+                x2_lower: float) -> Member:
+    """The separator seen at both contact points: the mode values, the
+    residual flexibility at x2_lower and the residual cross flexibility
+    G(x2, x2_lower) L^3/(EI) less the N-mode sum (the static
+    correction's off-diagonal spring)."""
+    general = _general(design, "2")
+    spec = physics.member_beam(design, "2")
+    scale = spec.length**3 / (float(design.E2) * spec.inertia)
+    xi, eta = x2 / spec.length, x2_lower / spec.length
+    if general is None:
+        end = str(design.end2)
+        values = _modes(end, n, eta)[1].copy()
+        residual = _residual(end, n, eta) * scale
+        cross = beams.residual_cross_flexibility(end, n, xi, eta) * scale
+    else:
+        model = member_beams.modal_model(spec, n, [x2_lower])
+        values = model.values[:, 0].copy()
+        stiff = model.mass * model.p**2
+        residual = max(float(member_beams.static_flexibility(
+            general, eta)) * scale - float(np.sum(values**2 / stiff)), 0.0)
+        cross = member_beams.static_influence(general, xi, eta) * scale \
+            - float(np.sum(member.x * values / stiff))
+    return dataclasses.replace(member, x_lower=values,
+                               residual_lower=float(residual),
+                               residual_cross=float(cross))
+
+
+def _member_at(design: Design, i: str, n: int, q0=None) -> Member:
     general = _general(design, i)
     if general is not None:
         x = getattr(design, "x" + i)
@@ -156,15 +209,28 @@ def flexibility(member: Member) -> float:
     return float(np.sum(member.x**2 / (member.mass * member.p**2)))
 
 
+def lower_flexibility(member: Member) -> float:
+    """:func:`flexibility` where the lower contact touches the separator
+    (x2_lower; the same as flexibility at one contact point)."""
+    if member.x_lower is None:
+        return flexibility(member)
+    return float(np.sum(member.x_lower**2 / (member.mass * member.p**2)))
+
+
 def series_matrix(upper: Member, separator: Member,
                   lower: Member) -> np.ndarray:
-    """C = [[c1 + c2, -c2], [-c2, c2 + c3]] (in/lb): the gaps' quasi-
+    """C = [[c1 + c2, -c2x], [-c2x, c2l + c3]] (in/lb): the gaps' quasi-
     static change per unit contact force from the members' residual
     flexibilities (the upper force pushes member 1 up and the separator
-    down, the lower one the separator up and member 3 down; both act at
-    the separator's one contact point x2)."""
+    down at x2, the lower one the separator up at x2_lower and member 3
+    down).  c2 and c2l are the separator's residual flexibilities at x2
+    and x2_lower, c2x its residual cross flexibility between them; at
+    one contact point all three are c2."""
     c1, c2, c3 = upper.residual, separator.residual, lower.residual
-    return np.array([[c1 + c2, -c2], [-c2, c2 + c3]])
+    if separator.x_lower is None:
+        return np.array([[c1 + c2, -c2], [-c2, c2 + c3]])
+    c2l, c2x = separator.residual_lower, separator.residual_cross
+    return np.array([[c1 + c2, -c2x], [-c2x, c2l + c3]])
 
 
 def preload_state(separator: Member, lower: Member, force: float,
@@ -182,7 +248,13 @@ def preload_state(separator: Member, lower: Member, force: float,
     residual springs' F c_i: the exact F G(x) L^3/(EI) of a point load,
     and the offsets make the series law's force exactly F (the Hertz
     element's own penetration, docs/chatter.md).
+    Where the lower contact touches the separator at x2_lower, the
+    force acts there and the upper gap's offset is the separator's
+    deflection at x2 (the cross flexibility: modes + residual spring).
     Returns (q_separator, q_lower, g0)."""
+    if separator.x_lower is not None:
+        return _preload_two_points(separator, lower, force, penetration,
+                                   static_correction)
     q_sep = force * separator.x / (separator.mass * separator.p**2)
     q_low = -force * lower.x / (lower.mass * lower.p**2)
     lift = force * flexibility(separator)     # = sum X_j q_j, separator
@@ -195,4 +267,24 @@ def preload_state(separator: Member, lower: Member, force: float,
     # a rigid contact open for a step and start a rattle at rest)
     slack = 8.0 * np.finfo(float).eps * (abs(lift) + abs(drop))
     g0 = np.array([lift, -max(penetration, slack) - (lift - drop)])
+    return q_sep, q_low, g0
+
+
+def _preload_two_points(separator: Member, lower: Member, force: float,
+                        penetration: float, static_correction: bool):
+    """:func:`preload_state` with the lower contact at x2_lower: the
+    separator's deflection there (``lift``) sets the lower gap, its
+    deflection at x2 (``upper``) the upper gap's offset."""
+    stiff = separator.mass * separator.p**2
+    q_sep = force * separator.x_lower / stiff
+    q_low = -force * lower.x / (lower.mass * lower.p**2)
+    upper = force * float(np.sum(separator.x * separator.x_lower / stiff))
+    lift = force * lower_flexibility(separator)
+    drop = -force * flexibility(lower)
+    if static_correction:
+        upper += force * separator.residual_cross
+        lift += force * separator.residual_lower
+        drop -= force * lower.residual
+    slack = 8.0 * np.finfo(float).eps * (abs(lift) + abs(drop))
+    g0 = np.array([upper, -max(penetration, slack) - (lift - drop)])
     return q_sep, q_low, g0

@@ -18,7 +18,11 @@ a sweep's --vary and --sample (``fields_from_file(args)`` names the
 fields only the file gave).  An option given twice: the last one wins
 (a base command line with an override appended); two spellings of one
 field (``--d`` and ``--h2``, ``--set h2=``) with different values are
-refused.  Values are read by
+refused.  A material preset (``--material2 steel``, ``--material`` for
+all three members, ``"material2": "steel"`` in a file) fills E, gamma
+and nu of a member in its place among the options: the last given wins,
+whether the preset or an explicit ``--E2`` (in a file the explicit
+fields win).  Values are read by
 :func:`contactsep.studies.fields.parse_value`, the one place that reads
 a field from text.
 """
@@ -46,7 +50,28 @@ _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
               "impact_velocity": ("--impact-velocity",),
               "lower_response": ("--lower-response",),
               "lc_reading": ("--lc-reading",), "release": ("--release",),
+              "x2_lower": ("--x2-lower",),
               **{f"x_mass{m}": (f"--x-mass{m}",) for m in "123"}}
+
+#: Material preset options (contactsep.model.materials) -> the members
+#: whose E, gamma and nu they fill.
+PRESETS = {"--material": "123", "--material1": "1", "--material2": "2",
+           "--material3": "3"}
+#: The same in a --design file.
+_FILE_PRESETS = {option[2:]: members for option, members in
+                 PRESETS.items()}
+
+
+class _Preset(argparse.Action):
+    """--materialN NAME: kept in order with the design options (the last
+    given wins), expanded by design_overrides."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = list(getattr(namespace, _GIVEN, None) or [])
+        given.append((("preset", PRESETS[option_string]), option_string,
+                      values))
+        setattr(namespace, _GIVEN, given)
+
 
 class _Given(argparse.Action):
     """Keeps the text and the option as typed; design_overrides reads
@@ -91,6 +116,18 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
             group.add_argument(*options, dest=_GIVEN, action=_Given,
                                const=field, default=argparse.SUPPRESS,
                                help=_help(field), **kwargs)
+    from contactsep.model.materials import MATERIALS
+    group = parser.add_argument_group(
+        "design: material presets (E, gamma and nu of a member; the last "
+        "option given wins, an explicit --E2 after --material2 too)")
+    for option, members in PRESETS.items():
+        whose = "all three members" if len(members) == 3 else \
+            F.MEMBERS[members]
+        group.add_argument(option, dest=_GIVEN, action=_Preset,
+                           default=argparse.SUPPRESS,
+                           metavar="{" + ",".join(MATERIALS) + "}",
+                           help=f"a material preset for {whose} "
+                                f"(docs/model.md, \"Material presets\")")
     group = parser.add_argument_group("design: other ways to give it")
     group.add_argument("--set", dest=_GIVEN, action=_Given, const=None,
                        default=argparse.SUPPRESS, metavar="FIELD=VALUE",
@@ -117,10 +154,21 @@ def design_overrides(args: argparse.Namespace) -> dict:
     values, labels = {}, {}
     path = getattr(args, "design", None)
     if path:
-        for key, value in _read_design_file(path).items():
+        data = _read_design_file(path)
+        for key, value in data.items():
+            if key in _FILE_PRESETS:
+                # the file's own fields win over its presets
+                for field, number in _preset(
+                        value, _FILE_PRESETS[key], f"{path}: {key}").items():
+                    values[field] = number
+                    labels[field] = f"{path}: {key}"
+        for key, value in data.items():
+            if key in _FILE_PRESETS:
+                continue
             label = f"{path}: {key}"
             field = F.field_name(key, label)
-            if field in labels:
+            if field in labels and labels[field] not in (
+                    f"{path}: {k}" for k in _FILE_PRESETS):
                 # two names of one field ("d_in" and "h2"), refused as
                 # on the command line (issue 31: the last one won)
                 raise InputError(f"{label}: the {F.FIELDS[field][2]} is "
@@ -129,6 +177,12 @@ def design_overrides(args: argparse.Namespace) -> dict:
             labels[field] = label
     typed = {}
     for field, option, text in getattr(args, _GIVEN, None) or ():
+        if isinstance(field, tuple):    # --materialN NAME: E, gamma, nu
+            for name, number in _preset(text, field[1], option).items():
+                typed[name] = option
+                values[name] = number
+                labels[name] = f"{option} {text}"
+            continue
         if field is None:               # --set NAME=VALUE
             name, sep, text = text.partition("=")
             option = f"--set {name.strip()}"
@@ -137,7 +191,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
             field = F.field_name(name, option)
         value = F.parse_value(field, text, option)
         if field in typed and typed[field] != option and \
-                values[field] != value:
+                typed[field] not in PRESETS and values[field] != value:
             raise InputError(f"{option}: the {F.FIELDS[field][2]} is "
                              f"already given by {typed[field]} "
                              f"(another value)")
@@ -189,6 +243,16 @@ def unit_system_doubts(values: dict, labels: dict) -> list[str]:
             doubts.append(f"{label}: a member {value:g} in long: a length "
                           f"in mm? Give the unit, e.g. {value:g}mm")
     return doubts
+
+
+def _preset(name, members: str, label: str) -> dict:
+    """The fields a material preset fills, or an InputError naming the
+    option (or file key) as given."""
+    from contactsep.model.materials import material_fields
+    try:
+        return material_fields(name, members)
+    except InputError as error:
+        raise InputError(f"{label}: {error}") from None
 
 
 def fields_from_file(args: argparse.Namespace) -> set:

@@ -58,6 +58,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "model and print it as a labelled table. NAME is one "
                     f"of {', '.join(STUDIES)}, chatter, preload, "
                     "conclusion3, conclusion5, conclusion6, conclusion7, "
+                    "contact-points, materials, "
                     "or all (every study of eq. 23; with --out). "
                     "Design options change the thesis rig the study starts "
                     "from; a study refuses those it sets itself (fig5 its "
@@ -72,7 +73,13 @@ def register(commands: argparse._SubParsersAction) -> None:
                     f"(each: default --model hertz, --n-modes "
                     f"{PRELOAD_MODES}). separator-fit (a minute) fits "
                     "Timoshenko separators with elastic clamps and a "
-                    "sensor mass to Table II (no design options).",
+                    "sensor mass to Table II (no design options). "
+                    "contact-points and materials (the thesis's "
+                    "recommendations 3 and 4, 50 and 32 simulations, "
+                    "N = 32) simulate how the circuit opens against where "
+                    "each contact touches the separator (x2, x2_lower) "
+                    "and against the material presets of the contacts "
+                    "and the separator.",
         **examples("contactsep study fig6 --n-modes 16 --restitution 0.5 "
                    "--csv fig6.csv",
                    "contactsep study all --out figs   # CSV and PNG of "
@@ -99,7 +106,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "to e)")
     study.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
-                       help=f"preload and conclusionN only: local "
+                       help=f"preload, conclusionN, contact-points and "
+                            f"materials only: local "
                             f"processes for the simulations (default: the "
                             f"usable cores; at most {WORKERS_PER_CORE} a "
                             f"core)")
@@ -232,6 +240,9 @@ def _compute(name: str, args, overrides: dict):
         k in fields_from_file(args) and k in own.get(name, ()))}
     if name == "preload":
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
+    from contactsep.studies.recommendations import STUDIES as ADVICE
+    if name in ADVICE:
+        return _recommendation(name, args, overrides)
     searches = ("preload", *CONCLUSIONS)
     if name not in searches and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
@@ -293,6 +304,21 @@ def _search_study(name: str, args, overrides: dict):
         raise InputError(f"{options}:{rest}") from None
 
 
+def _recommendation(name: str, args, overrides: dict):
+    """study contact-points and materials (the thesis's recommendations
+    3 and 4): three-beam simulations, Hertz contact; N and workers."""
+    from contactsep.studies.recommendations import STUDIES as ADVICE
+    if args.backend or args.model or args.damping:
+        raise InputError(f"study {name} runs the chatter simulation with "
+                         f"Hertz contact (no --backend, --model or "
+                         f"--damping)")
+    study, _, fixed = ADVICE[name]
+    own = {k: v for k, v in overrides.items() if k not in fields_from_file(
+        args) or k not in fixed}
+    with _bar(args, None) as bar:
+        return study(workers=args.workers, progress=bar, **own)
+
+
 @contextlib.contextmanager
 def _bar(args, total):
     """A progress bar's update (or None) for a study of simulations:
@@ -344,8 +370,10 @@ def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
     from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
 
+    from contactsep.studies.recommendations import STUDIES as ADVICE
+
     names = list(STUDIES) if args.name == "all" else [args.name]
-    searches = ("preload", *CONCLUSIONS)
+    searches = ("preload", *CONCLUSIONS, *ADVICE)
     if args.name not in (*STUDIES, "chatter", "separator-fit", *searches,
                          "all"):
         raise InputError(f"study {args.name!r}: expected one of "

@@ -64,6 +64,9 @@ def data_set_from_design(design: Design, *,
         if value is not None and value != default:
             raise DesignError(f"{name}: a deck's contacts are at the tips "
                               f"and mid-span")
+    if d.x2_lower is not None and d.x2_lower != 0.5 * d.L2:
+        raise DesignError("x2_lower: a deck's contacts are at the tips "
+                          "and mid-span")
     if not isinstance(d.n_modes, (int, np.integer)):
         raise DesignError("n_modes: a deck has one N for all members")
     if d.tau != LISTING_TAU_S:

@@ -18,6 +18,7 @@ from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import CUBIC_INCHES_PER_CUBIC_FOOT, LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import physics
+from contactsep.model.contact_points import lower_point_problem
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
@@ -231,7 +232,12 @@ class Design:
         "clamped-clamped", "clamped-pinned", "pinned-pinned"
         (clamped-free, clamped-clamped, clamped-free).
     x1, x2, x3 : in or None
-        Contact points (None: the tip L1, mid-span L2/2, the tip L3).
+        Contact points (None: the tip L1, mid-span L2/2, the tip L3); x2
+        is where the upper contact touches the separator.
+    x2_lower : in or None
+        Where the lower contact touches the separator (None: at x2, as
+        in the thesis).  One number shared by a batch; the chatter
+        models take it, eq. 23 (``evaluate``) only where it equals x2.
     Lc : in or None
         Separator equivalent length L_c of Table III (None: not used).
     ys : in
@@ -362,6 +368,8 @@ class Design:
     x_mass1: object = None
     x_mass2: object = None
     x_mass3: object = None
+    #: Where the lower contact touches the separator (in); None: at x2.
+    x2_lower: object = None
 
     def __post_init__(self) -> None:
         for name, allowed in _OPTIONS.items():
@@ -378,7 +386,8 @@ class Design:
                     f"one of {', '.join(beams.END_CONDITIONS)}")
         for name in REAL_COLUMNS:
             _check_number(name, getattr(self, name))
-        physics_problem = physics.problem(self)
+        physics_problem = physics.problem(self) or \
+            lower_point_problem(self, SUPPORT_CLEARANCE)
         if physics_problem:
             raise DesignError(physics_problem)
         n = self._n_array()

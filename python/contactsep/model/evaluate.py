@@ -12,6 +12,7 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model import energy, physics
+from contactsep.model.contact_points import lower_point_differs
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
@@ -215,6 +216,12 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
             f"only the thesis's beams (Bernoulli-Euler, rigid ends, no "
             f"added mass): its kernel computes their modes itself; "
             f"contactsep chatter and contactsep modes take this design")
+    if lower_point_differs(design):
+        raise DesignError(
+            f"x2_lower: found {design.x2_lower!r}, but eq. 23 (evaluate, "
+            f"sweep) takes both contacts at the separator's one point x2 "
+            f"(its impulse passes through it); contactsep chatter takes "
+            f"this design")
     packed = pack(design)
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))

@@ -28,6 +28,8 @@ FIELDS.update({
     "x1": ("in", "in", "contact point on the upper contact, from x = 0"),
     "x2": ("in", "in", "contact point on the separator, from x = 0"),
     "x3": ("in", "in", "contact point on the lower contact, from x = 0"),
+    "x2_lower": ("in", "in", "where the lower contact touches the "
+                             "separator, from x = 0 (default: x2)"),
     "Lc": ("in", "in", "separator equivalent length L_c (Table III)"),
     "ys": ("in", "in", "static deflection of the upper contact before "
                        "release"),
@@ -63,6 +65,9 @@ for _m, _member in MEMBERS.items():
 
 #: The name a field has in outputs, where it is not the field's own.
 OUTPUT_NAMES = {"h2": "d"}
+#: Fields an output shows only when given (None, their default, is
+#: left out, so that the outputs of designs without them are unchanged).
+SHOWN_WHEN_GIVEN = ("x2_lower",)
 
 #: The general model's results (:class:`contactsep.model.Evaluation`):
 #: (attribute, key with its unit, unit as printed, meaning), in order.
@@ -102,13 +107,16 @@ def field_key(field: str) -> str:
 
 def design_keys(design) -> dict:
     """Every field of a single Design under its output key, plain values
-    (a tuple of mode counts as a list)."""
+    (a tuple of mode counts as a list; a field of SHOWN_WHEN_GIVEN only
+    when given)."""
     import dataclasses
 
     import numpy as np
     out = {}
     for f in dataclasses.fields(design):
         value = getattr(design, f.name)
+        if value is None and f.name in SHOWN_WHEN_GIVEN:
+            continue
         if isinstance(value, tuple):
             value = list(value)
         elif isinstance(value, np.ndarray) and value.ndim == 0:

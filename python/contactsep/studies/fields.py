@@ -41,7 +41,12 @@ from contactsep.model.design import (
     REAL_COLUMNS,
     RELEASES,
 )
-from contactsep.model.names import FIELDS, MEMBERS, OUTPUT_NAMES
+from contactsep.model.names import (
+    FIELDS,
+    MEMBERS,
+    OUTPUT_NAMES,
+    SHOWN_WHEN_GIVEN,
+)
 
 
 #: The chatter simulation's settings a chatter sweep may fix, vary or
@@ -77,7 +82,7 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            **{f"beam{m}": THEORIES for m in MEMBERS}}
 #: Fields that may be None, and what None means.
 OPTIONAL = {"x1": "its tip (L1)", "x2": "mid-span (L2/2)",
-            "x3": "its tip (L3)", "Lc": "none",
+            "x3": "its tip (L3)", "Lc": "none", "x2_lower": "x2",
             **{f"kappa{m}": "Cowper's 10(1+nu)/(12+11nu)" for m in MEMBERS},
             **{f"kr{m}": "rigid" for m in MEMBERS},
             **{f"kt{m}": "rigid" for m in MEMBERS},
@@ -142,7 +147,7 @@ def parse_value(field: str, text, label: str):
     Real fields take a number (any float; the Design checks its range;
     a text may carry a unit, ``'30.5mm'``, converted by
     :mod:`contactsep.units`;
-    x1, x2, x3 and Lc also None, their default), the settings preload
+    x1, x2, x3, x2_lower and Lc also None, their default), the settings preload
     and min_open a finite number >= 0, dt one > 0 below the window,
     damping none or flores,
     end conditions and the options one of their words, ``n_modes`` an
@@ -243,7 +248,7 @@ def describe(design_fields: dict) -> dict:
 GROUPS = (("upper contact (member 1)", ("L1", "b1", "h1", "gamma1", "E1",
                                         "end1", "x1", "ys")),
           ("separator (member 2)", ("L2", "b2", "h2", "gamma2", "E2",
-                                    "end2", "x2", "Lc")),
+                                    "end2", "x2", "x2_lower", "Lc")),
           ("lower contact (member 3)", ("L3", "b3", "h3", "gamma3", "E3",
                                         "end3", "x3")),
           ("impact and model", ("e", "n_modes", "tau", "gap",
@@ -287,6 +292,8 @@ def design_lines(design, per_row=()) -> list[str]:
                    None, 0.0, "bernoulli-euler", 0.33) for name in names)]
     for title, names in GROUPS + tuple(physics):
         parts = [f"{OUTPUT_NAMES.get(name, name)} = "
-                 f"{_value_text(design, name, per_row)}" for name in names]
+                 f"{_value_text(design, name, per_row)}" for name in names
+                 if not (name in SHOWN_WHEN_GIVEN and name not in per_row
+                         and getattr(design, name, None) is None)]
         lines.append(f"{title}: " + ", ".join(parts))
     return lines

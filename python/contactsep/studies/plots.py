@@ -296,6 +296,11 @@ _ONE_PANEL = {"fig5": _fig5, "fig6": _fig6, "fig7": _fig7, "fig8": _fig8,
               "preload": _preload}
 
 
+def _recommendations() -> dict:
+    from contactsep.studies.recommendations import STUDIES
+    return STUDIES
+
+
 def save_png(study: Study, path, dpi: int = DPI) -> None:
     """Draw the study as the thesis drew it and write a PNG (module
     docstring)."""
@@ -309,6 +314,15 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig, grid = _chatter_figure(plt, study.columns)
         fig.suptitle("\n".join(textwrap.wrap(study.title, 80)), fontsize=9)
         fig.tight_layout(rect=(0.0, 0.05, 1.0, 1.0))
+        _write(plt, fig, path, dpi)
+        return
+    elif name in _recommendations():
+        # the thesis's recommendations 3 and 4: two maps (their modules)
+        fig, axes = plt.subplots(2, 1, figsize=(6.0, 7.0))
+        _recommendations()[name][1](axes, study)
+        axes[0].set_title("\n".join(textwrap.wrap(study.title, 64)),
+                          fontsize=9)
+        fig.tight_layout()
         _write(plt, fig, path, dpi)
         return
     elif name == "separator-fit":

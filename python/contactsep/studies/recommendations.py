@@ -1,0 +1,16 @@
+"""The thesis's recommendations (Chapter VII) as studies of three-beam
+simulations, by name (``contactsep study contact-points``, ``study
+materials``): each entry the study, its figure and the fields it sets
+itself."""
+
+from __future__ import annotations
+
+from contactsep.studies import contact_points, materials
+
+#: name -> (study(**overrides, n_modes=, workers=, progress=) -> Study,
+#: draw(axes, study), the fields it sets: field -> why).
+STUDIES = {
+    "contact-points": (contact_points.contact_points, contact_points.draw,
+                       contact_points.FIXED),
+    "materials": (materials.materials, materials.draw, materials.FIXED),
+}

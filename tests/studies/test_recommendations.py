@@ -1,0 +1,219 @@
+"""The studies of the thesis's recommendations 3 and 4 (issue 28, items
+4 and 5): ``study contact-points`` and ``study materials``, and the
+material presets.
+
+Independent paths: the mirror identity of a symmetric separator (the
+study's own rows must hold it), the presets against the handbooks' SI
+values converted by pint (contactsep.units), and the command line's
+"last given wins" against the Design built by hand."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from contactsep.cli import main
+from contactsep.errors import InputError
+from contactsep.model import Design, materials
+from contactsep.studies import contact_points as cp
+from contactsep.studies import materials as mat
+from contactsep.studies.plots import save_png
+from contactsep import units
+
+
+def test_the_contact_points_study_is_its_own_mirror():
+    """(a, b) and (L2 - a, L2 - b) are one system on the clamped-clamped
+    separator: the study's rows pair up to round-off."""
+    study = cp.contact_points(n_modes=4, ratios=(0.3, 0.5, 0.7),
+                              preloads=(0.0,), workers=1)
+    length = 2.5
+    rows = {(round(a, 9), round(b, 9)): k for k, (a, b) in enumerate(
+        zip(study["x2_in"], study["x2_lower_in"]))}
+    assert len(rows) == 9
+    for (a, b), k in rows.items():
+        m = rows[(round(length - a, 9), round(length - b, 9))]
+        assert study["n_events"][k] == study["n_events"][m]
+        assert study["circuit_open_s"][k] == pytest.approx(
+            study["circuit_open_s"][m], rel=1e-9)
+        assert study["max_lower_gap_in"][k] == pytest.approx(
+            study["max_lower_gap_in"][m], rel=1e-9)
+    # and the positions matter: not every row is the same
+    assert np.ptp(study["max_lower_gap_in"]) > 0.1 * np.max(
+        study["max_lower_gap_in"])
+
+
+def test_the_studies_refuse_the_fields_they_set():
+    with pytest.raises(InputError, match="x2_lower"):
+        cp.contact_points(x2_lower=1.0)
+    with pytest.raises(InputError, match="E2"):
+        mat.materials(E2=3e7)
+
+
+#: Handbook values in SI (the ASM / CDA / MatWeb tables docs/model.md
+#: cites): E, density.
+HANDBOOK = {"steel": ("205 GPa", "7.87 g/cm^3"),
+            "brass": ("110 GPa", "8.53 g/cm^3"),
+            "beryllium-copper": ("128 GPa", "8.25 g/cm^3"),
+            "aluminium": ("68.9 GPa", "2.70 g/cm^3")}
+
+
+@pytest.mark.parametrize("name", list(HANDBOOK))
+def test_the_presets_are_the_handbook_values_in_the_packages_units(name):
+    preset = materials.material(name)
+    modulus, density = HANDBOOK[name]
+    assert preset.E_psi == pytest.approx(units.convert(modulus, "psi", "E"),
+                                         rel=0.005)
+    # a weight density: mass density times g, in lb/in^3 (lbf)
+    assert preset.gamma_lb_in3 == pytest.approx(
+        units.convert(density, "lb/in^3", "gamma"), rel=0.005)
+    assert 0.0 < preset.nu < 0.5
+    assert preset.yield_pressure_psi == 1.6 * preset.yield_strength_psi
+
+
+def test_material_names_and_aliases():
+    assert materials.material("Aluminum").name == "aluminium"
+    assert materials.material("becu").name == "beryllium-copper"
+    with pytest.raises(materials.MaterialError, match="one of steel"):
+        materials.material("copper")
+
+
+def _design(argv, capsys) -> dict:
+    assert main(["model", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)["design"]
+
+
+def test_a_preset_fills_a_member_and_the_last_given_wins(capsys, tmp_path):
+    steel = materials.material("steel")
+    d = _design(["--material2", "steel"], capsys)
+    assert (d["E2_psi"], d["gamma2_lb_in3"], d["nu2"]) == (
+        steel.E_psi, steel.gamma_lb_in3, steel.nu)
+    assert d["E1_psi"] == Design().E1
+    assert _design(["--material2", "steel", "--E2", "25e6"],
+                   capsys)["E2_psi"] == 25e6
+    assert _design(["--E2", "25e6", "--material2", "steel"],
+                   capsys)["E2_psi"] == steel.E_psi
+    every = _design(["--material", "brass"], capsys)
+    assert every["E1_psi"] == every["E2_psi"] == every["E3_psi"] == 16e6
+    path = tmp_path / "d.json"
+    path.write_text('{"material2": "brass", "E2_psi": 1.2e7}')
+    from_file = _design(["--design", str(path)], capsys)
+    assert (from_file["E2_psi"], from_file["gamma2_lb_in3"]) == (1.2e7,
+                                                                 0.308)
+    assert main(["model", "--material3", "copper"]) == 2
+    assert "--material3: found 'copper'" in capsys.readouterr().err
+
+
+def test_the_materials_study_runs_and_draws(tmp_path):
+    study = mat.materials(n_modes=2, contacts=("aluminium",),
+                          separators=("aluminium", "steel"),
+                          preloads=(0.0,), workers=1)
+    assert len(study) == 2
+    assert list(study["separator_material"]) == ["aluminium", "steel"]
+    # the yield-pressure column comes with Thornton's law, only
+    assert ("yield_pressure_psi" in study.columns) == \
+        mat.thornton_available()
+    pytest.importorskip("matplotlib")
+    save_png(study, tmp_path / "m.png")
+    assert (tmp_path / "m.png").read_bytes()[:4] == b"\x89PNG"
+    points = cp.contact_points(n_modes=2, ratios=(0.4, 0.6),
+                               preloads=(0.0,), workers=1)
+    save_png(points, tmp_path / "p.png")
+    assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["contact-points", "materials"])
+def test_committed_study_is_what_the_code_computes(name):
+    """50 and 32 three-beam simulations (minutes): the committed CSVs
+    of docs/studies are today's; regenerate with `contactsep study NAME
+    --out docs/studies`."""
+    from test_committed_outputs import COMMITTED, compare
+    from contactsep.studies.recommendations import STUDIES
+    committed = (COMMITTED / f"{name}.csv").read_text()
+    compare(committed, STUDIES[name][0]().csv_text(), name)
+    assert (COMMITTED / f"{name}.png").read_bytes()[:8] == \
+        b"\x89PNG\r\n\x1a\n"
+
+
+def _csv_rows(name):
+    import csv
+    from test_committed_outputs import COMMITTED
+    lines = [line for line in (COMMITTED / f"{name}.csv").read_text()
+             .splitlines() if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def _doc_table(heading):
+    """The first Markdown table after ``heading`` in docs/chatter.md:
+    {row label: [cells]}."""
+    from conftest import ROOT
+    text = (ROOT / "docs" / "chatter.md").read_text().split(heading, 1)[1]
+    rows = [line for line in text.split("\n\n| ", 1)[1].split("\n\n")[0]
+            .splitlines()]
+    out = {}
+    for line in rows[2:]:
+        cells = [c.strip().strip("*") for c in line.strip("| ").split("|")]
+        out[cells[0]] = cells[1:]
+    return out
+
+
+def test_the_docs_tables_are_the_committed_studies():
+    """docs/chatter.md's two tables (gap in 0.001 in / open ms at 6 lb)
+    against docs/studies/contact-points.csv and materials.csv."""
+    table = _doc_table("open time at 6 lb (ms), upper contact's x2 across")
+    rows = _csv_rows("contact-points")
+    assert len(table) == 5
+    for label, cells in table.items():
+        for x2, cell in zip(("0.5", "0.875", "1.25", "1.625", "2"), cells):
+            gap, open_ms = (float(v) for v in cell.split("/"))
+            got = {float(r["preload_lb"]): r for r in rows
+                   if r["x2_in"] == x2 and
+                   float(r["x2_lower_in"]) == float(label)}
+            assert gap == pytest.approx(
+                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
+            assert open_ms == pytest.approx(
+                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.0051)
+    table = _doc_table("Largest lower\ngap with no preload (0.001 in) / "
+                       "open time at 6 lb (ms):")
+    rows = _csv_rows("materials")
+    assert len(table) == 4
+    names = {"steel": "steel", "brass": "brass", "aluminium": "aluminium",
+             "beryllium copper": "beryllium-copper"}
+    for label, cells in table.items():
+        for separator, cell in zip(("steel", "brass", "beryllium-copper",
+                                    "aluminium"), cells):
+            gap, open_ms = (float(v) for v in cell.split("/"))
+            got = {float(r["preload_lb"]): r for r in rows
+                   if r["contact_material"] == names[label]
+                   and r["separator_material"] == separator}
+            assert gap == pytest.approx(
+                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
+            assert open_ms == pytest.approx(
+                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.051)
+
+
+def test_the_materials_study_runs_thorntons_law_where_simulate_has_it(
+        monkeypatch):
+    """The hook for issue 28 item 1's law: a simulate() that takes
+    ``contact`` and ``yield_pressure`` gets the Thornton rows, at the
+    lower of the two materials' yield pressures (a stand-in simulate
+    records what it is asked; the Hertz rows still run the real one)."""
+    from contactsep.chatter import simulate as real
+    asked = []
+
+    def simulate(design, contact="hertz", yield_pressure=None, **kw):
+        asked.append((contact, yield_pressure, kw["nu"]))
+        return real(design, **kw)
+
+    monkeypatch.setattr(mat, "simulate", simulate)
+    assert mat.thornton_available()
+    study = mat.materials(n_modes=2, contacts=("beryllium-copper",),
+                          separators=("aluminium",), preloads=(0.0,),
+                          workers=1)
+    assert list(study["law"]) == ["hertz", "thornton"]
+    becu, al = materials.material("becu"), materials.material("aluminium")
+    assert list(study["yield_pressure_psi"]) == [al.yield_pressure_psi] * 2
+    assert asked == [("hertz", None, becu.nu),
+                     ("thornton", 1.6 * al.yield_strength_psi, becu.nu)]
