@@ -468,13 +468,16 @@ class Packed:
     (one design's values contiguous), columns :data:`REAL_COLUMNS` and
     :data:`INT_COLUMNS`;
     ``options`` (4,) int32 codes of impact_velocity, lower_response,
-    lc_reading and release; ``shape`` the batch shape.
+    lc_reading and release; ``shape`` the batch shape; ``modes`` None
+    (the backends compute the thesis's modes) or the members' modes of
+    other beam physics (:class:`contactsep.model.given.GivenModes`).
     """
 
     real: np.ndarray
     ints: np.ndarray
     options: np.ndarray
     shape: tuple
+    modes: object = None
 
     @property
     def size(self) -> int:

@@ -11,12 +11,11 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
-from contactsep.model import energy, physics
+from contactsep.model import energy, given, physics
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
-    DesignError,
     Packed,
     outside_domain,
     pack,
@@ -207,15 +206,12 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
-    changed = physics.physics_changes(design)
-    if changed:
-        field, value = changed[0]
-        raise DesignError(
-            f"{field}: found {value!r}, but eq. 23 (evaluate, sweep) takes "
-            f"only the thesis's beams (Bernoulli-Euler, rigid ends, no "
-            f"added mass): its kernel computes their modes itself; "
-            f"contactsep chatter and contactsep modes take this design")
     packed = pack(design)
+    if physics.physics_changes(design):
+        # other beam physics than the thesis's: the members' modes from
+        # contactsep.beams, the same eq. 23 arithmetic (model/given.py)
+        packed = dataclasses.replace(
+            packed, modes=given.given_modes(design, packed))
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))
     shape = packed.shape
@@ -264,10 +260,14 @@ def _in_pieces(backend, packed: Packed) -> dict:
     while first < m:
         last = min(m, first + size)
         start = time.perf_counter()
+        piece = packed.ints[first:last, 3:]
+        modes = None if packed.modes is None else packed.modes.rows(
+            first, last, int(piece.max()))
         parts.append(output.interruptible(
             forked, backend.evaluate_packed, Packed(
                 real=packed.real[first:last], ints=packed.ints[first:last],
-                options=packed.options, shape=(last - first,))))
+                options=packed.options, shape=(last - first,),
+                modes=modes)))
         seconds = time.perf_counter() - start
         size = int(max(1, min(8 * size,
                               size * PIECE_S / max(seconds, 1e-6))))
