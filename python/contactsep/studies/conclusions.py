@@ -23,7 +23,6 @@ to 0.5).
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from contactsep.chatter import simulate
