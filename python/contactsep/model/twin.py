@@ -202,9 +202,11 @@ def evaluate_packed(packed: Packed) -> dict:
         code[given.failed & (code == status.OK)] = status.INVALID_INPUT
         # b_j = (k_jL)^2 given (model/given.py): kl = sqrt(b_j) only
         # where a closed form needs k_jL; the release uses b_j^2 itself
+        # rows without modes computed on ones, their results NaN below
         b_given = np.where(given.failed[:, None, None], 1.0, given.b)
+        x_given = np.where(given.failed[:, None, None], 1.0, given.values)
         kl1, kl2, kl3 = (np.sqrt(b_given[:, k]) for k in range(3))
-        x1v, x2v, x3v = (given.values[:, k] for k in range(3))
+        x1v, x2v, x3v = (x_given[:, k] for k in range(3))
     p1 = frequencies(kl1, consts[0], safe["L1"])
     p3 = frequencies(kl3, consts[2], safe["L3"])
     lc = safe["Lc"]
@@ -229,7 +231,7 @@ def evaluate_packed(packed: Packed) -> dict:
             flex[rows] = beams.static_flexibility(end, xi_load[rows])
         _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
     else:
-        flex, load_values = given.flex, given.values[:, 3]
+        flex, load_values = given.flex, x_given[:, 3]
     zero_flex = ~(flex > 0.0)
     code[zero_flex & (code == status.OK)] = status.INVALID_INPUT
     flex = np.where(zero_flex, 1.0, flex)
