@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -32,6 +33,7 @@ import contactsep
 from contactsep.beams import timoshenko
 from contactsep.model import compiled, evaluate, given, physics, twin
 from contactsep.model.design import pack
+from contactsep.model.energy import EnergyBoundWarning
 
 GRAVITY = 386.4        # in/s^2, the thesis's g (docs/model.md, Units)
 
@@ -236,3 +238,27 @@ def test_a_stiff_spring_is_the_rigid_support():
         assert float(getattr(stiff, key)) == pytest.approx(
             float(getattr(rigid, key)), rel=1e-7)
     assert abs(float(soft.v0) / float(rigid.v0) - 1.0) > 0.01
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_energy_bound_takes_the_springs_and_shear(name):
+    """The release's energy bound with the members' own flexibilities:
+    G1 at the tip is the test's closed-form cantilever (springs, shear);
+    the impulse form stays within the bound (no warning) at N = 4, 12."""
+    design = _general(FAMILY[name])
+    packed = pack(design)
+    modes = given.given_modes(design, packed)
+    L1, E1 = float(design.L1), float(design.E1)
+    area, inertia = float(design.b1 * design.h1), float(
+        design.b1 * design.h1**3 / 12.0)
+    kappa = 10.0 * 1.33 / (12.0 + 11.0 * 0.33)
+    tip = (1 / float(design.kt1) + L1**2 / float(design.kr1)
+           + L1**3 / (3 * E1 * inertia)
+           + L1 / (kappa * E1 / 2.66 * area))
+    assert float(modes.flex[0]) == pytest.approx(
+        tip * E1 * inertia / L1**3, rel=1e-10)
+    for n in (4, 12):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", EnergyBoundWarning)
+            result = evaluate(design.replace(n_modes=n))
+        assert int(result.status) == 0

@@ -221,7 +221,11 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     for key in _PER_MODE:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
-    energy.warn_if_beyond(design, fields["y3_max"], fields["status"])
+    shapes = None if packed.modes is None else tuple(
+        np.reshape(g, shape) for g in (packed.modes.flex,
+                                       packed.modes.flex3))
+    energy.warn_if_beyond(design, fields["y3_max"], fields["status"],
+                          shapes=shapes)
     return Evaluation(**fields)
 
 

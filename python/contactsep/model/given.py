@@ -56,19 +56,23 @@ class GivenModes:
     ``b`` (M, 3, n_max): b_j of members 1, 2, 3, NaN past a member's
     count; ``values`` (M, 4, n_max): X1j(x1), X2j(x2), X3j(x3) and X1j at
     the upper contact's load point, 0 past a count; ``flex`` (M,): the
-    upper contact's G(a); ``failed`` (M,): no modes (status 2).
+    upper contact's G(a); ``flex3`` (M,): the lower contact's G(x3) (for
+    the energy bound, :mod:`contactsep.model.energy`); ``failed`` (M,):
+    no modes (status 2).
     """
 
     b: np.ndarray
     values: np.ndarray
     flex: np.ndarray
+    flex3: np.ndarray
     failed: np.ndarray
 
-    def rows(self, first: int, last: int, n_max: int) -> "GivenModes":
+    def rows(self, first: int, last: int, n_max: int) -> GivenModes:
         """Designs first..last-1, modes 1..n_max."""
         return GivenModes(b=self.b[first:last, :, :n_max],
                           values=self.values[first:last, :, :n_max],
                           flex=self.flex[first:last],
+                          flex3=self.flex3[first:last],
                           failed=self.failed[first:last])
 
 
@@ -103,6 +107,7 @@ def given_modes(design, packed: Packed) -> GivenModes:
     b = np.full((m, 3, n_max), np.nan)
     values = np.zeros((m, 4, n_max))
     flex = np.full(m, np.nan)
+    flex3 = np.full(m, np.nan)
     failed = invalid_rows(packed.real, packed.ints) | outside_domain(
         packed.real, packed.ints)
     tip_release = (packed.options[3] == 0) & (packed.ints[:, 0] == 1)
@@ -133,9 +138,10 @@ def given_modes(design, packed: Packed) -> GivenModes:
                 spec = _member(design, member, row)
                 beam = spec.dimensionless()
                 bj, at = member_beams.dimensionless_modes(beam, n, xi)
-                if member == "1":
-                    g1 = float(member_beams.static_flexibility(
-                        beam, np.array(xi[1])))
+                if member != "2":
+                    # G at the upper's load point, the lower's contact
+                    shape = float(member_beams.static_flexibility(
+                        beam, np.array(xi[-1])))
             except (InputError, ValueError):
                 failed[rows] = True
                 continue
@@ -143,8 +149,11 @@ def given_modes(design, packed: Packed) -> GivenModes:
             values[rows, k, :n] = at[:, 0]
             if member == "1":
                 values[rows, 3, :n] = at[:, 1]
-                flex[rows] = g1
+                flex[rows] = shape
+            elif member == "3":
+                flex3[rows] = shape
     b[failed] = np.nan
     values[failed] = 0.0
-    flex[failed] = np.nan
-    return GivenModes(b=b, values=values, flex=flex, failed=failed)
+    flex[failed] = flex3[failed] = np.nan
+    return GivenModes(b=b, values=values, flex=flex, flex3=flex3,
+                      failed=failed)
