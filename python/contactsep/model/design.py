@@ -273,8 +273,9 @@ class Design:
         Where it sits (None: the contact point).
 
     The beam physics fields (contactsep.model.physics) hold one value
-    per Design, shared by a batch; eq. 23 (``evaluate``) refuses any but
-    the thesis's (Bernoulli-Euler, rigid ends, no mass).
+    per Design, shared by a batch; eq. 23 (``evaluate``) takes the
+    members' modes from contactsep.beams where they are not the thesis's
+    (Bernoulli-Euler, rigid ends, no mass; contactsep.model.given).
     """
 
     #: Upper contact length (in).
