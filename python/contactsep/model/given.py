@@ -137,7 +137,12 @@ def given_modes(design, packed: Packed) -> GivenModes:
             try:
                 spec = _member(design, member, row)
                 beam = spec.dimensionless()
-                bj, at = member_beams.dimensionless_modes(beam, n, xi)
+                # one point a call: the chatter models' keys, so that
+                # the cache serves both layers
+                at = [member_beams.dimensionless_modes(beam, n, [point])
+                      for point in xi]
+                bj = at[0][0]
+                at = np.concatenate([v for _, v in at], axis=1)
                 if member != "2":
                     # G at the upper's load point, the lower's contact
                     shape = float(member_beams.static_flexibility(
