@@ -35,6 +35,7 @@ import numpy as np
 
 from contactsep import beams
 from contactsep.beams import member as member_beams
+from contactsep.beams.member import THEORIES
 from contactsep.errors import InputError
 from contactsep.model.design import (
     REAL_COLUMNS,
@@ -98,6 +99,14 @@ def _member(design, m: str, row: dict) -> member_beams.MemberBeam:
         mass=mass, x_mass=None if x_mass is None else float(x_mass))
 
 
+def _classical(design, member: str) -> bool:
+    """Member ``member`` has the thesis's beam physics."""
+    return (getattr(design, "beam" + member) == THEORIES[0]
+            and getattr(design, "kr" + member) is None
+            and getattr(design, "kt" + member) is None
+            and not getattr(design, "mass" + member))
+
+
 def given_modes(design, packed: Packed) -> GivenModes:
     """The members' modes of every design of ``packed`` (the batch of
     ``design``, whose beam physics fields are scalars)."""
@@ -112,8 +121,14 @@ def given_modes(design, packed: Packed) -> GivenModes:
         packed.real, packed.ints)
     tip_release = (packed.options[3] == 0) & (packed.ints[:, 0] == 1)
     for k, member in enumerate("123"):
-        columns = [packed.real[:, REAL_COLUMNS.index(name)]
-                   for name in _MEMBER_COLUMNS[member]]
+        real = {name: packed.real[:, REAL_COLUMNS.index(name)]
+                for name in _MEMBER_COLUMNS[member]}
+        if _classical(design, member):
+            # the thesis's physics: the modes depend on the end, N and
+            # the contact point's xi only
+            columns = [real["x" + member] / real["L" + member]]
+        else:
+            columns = list(real.values())
         columns += [packed.ints[:, k], counts[:, k]]
         if member == "1":
             columns.append(tip_release)
@@ -125,15 +140,21 @@ def given_modes(design, packed: Packed) -> GivenModes:
         groups, inverse = np.unique(table[live], axis=0,
                                     return_inverse=True)
         inverse = np.ravel(inverse)
-        for g, key in enumerate(groups):
-            rows = live[inverse == g]
-            row = dict(zip(_MEMBER_COLUMNS[member], key[:6].tolist()))
-            row["end"] = key[6]
-            n = int(key[7])
+        # the rows of each group, without a pass over the batch a group
+        order = np.argsort(inverse, kind="stable")
+        sizes = np.bincount(inverse, minlength=len(groups))
+        stops = np.cumsum(sizes)
+        for g in range(len(groups)):
+            rows = live[order[stops[g] - sizes[g]:stops[g]]]
+            first = rows[0]
+            row = {name: float(value[first])
+                   for name, value in real.items()}
+            row["end"] = int(packed.ints[first, k])
+            n = int(counts[first, k])
             length = row["L" + member]
             xi = [row["x" + member] / length]
             if member == "1":
-                xi.append(1.0 if key[8] else xi[0])
+                xi.append(1.0 if tip_release[first] else xi[0])
             try:
                 spec = _member(design, member, row)
                 beam = spec.dimensionless()
