@@ -58,6 +58,28 @@ def test_given_closed_form_modes_are_the_kernels(name):
                                        err_msg=f"{name} {key}")
 
 
+@pytest.mark.parametrize("options", [
+    dict(Lc=3.6, lc_reading="listing"), dict(Lc=3.6, lc_reading="mass"),
+    dict(Lc=3.6, lc_reading="frequencies"),
+    dict(impact_velocity="listing", lower_response="as-printed"),
+    dict(release="contact", x1=15.0, end1="clamped-pinned")])
+def test_given_modes_take_every_option_as_the_kernel(options):
+    """L_c's readings, the listing's impact speed, eq. 13 as printed and
+    a release at the contact point through the given-modes path."""
+    design = FAMILY["thesis"].replace(n_modes=6, tau=0.02, **options)
+    packed = pack(design)
+    fast = compiled.evaluate_packed(packed)
+    with_modes = dataclasses.replace(
+        packed, modes=given.given_modes(design, packed))
+    for backend, rtol in ((compiled, 1e-13), (twin, 1e-12)):
+        out = backend.evaluate_packed(with_modes)
+        assert out["status"].tolist() == fast["status"].tolist() == [0]
+        for key in ("t1", "v_impact", "psi", "v0", "R", "y3_max", "M2",
+                    "p2"):
+            np.testing.assert_allclose(out[key], fast[key], rtol=rtol,
+                                       err_msg=f"{options} {key}")
+
+
 def _general(design):
     """The design with every member a Timoshenko beam on elastic
     supports, a point mass on each (the upper's off its contact point)."""
