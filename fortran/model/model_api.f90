@@ -6,9 +6,10 @@ module model_api
   use model_extremes, only: extremes, extremes_workspace
   use model_status, only: status_ok
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value
+  use model_given, only: evaluate_given_design
   implicit none
   private
-  public :: evaluate_batch, mode_values
+  public :: evaluate_batch, evaluate_batch_given, mode_values
 
 contains
 
@@ -99,6 +100,87 @@ contains
       end do
     end do
   end subroutine evaluate_batch
+
+  !> evaluate_batch for designs whose modes are given (model_given: a
+  !> Timoshenko beam, elastic supports, point masses); same outputs.
+  subroutine evaluate_batch_given(m, n_max, real_in, ints_in, options, &
+      b_in, values_in, flex_in, t1, v_impact, psi, v0, r, y3_max, t_max, &
+      y3_min, t_min, at_end, max_tied, min_tied, status, m1, m2, m3, p1, &
+      p2, p3, c3)
+    integer, intent(in) :: m, n_max
+    real(wp), intent(in) :: real_in(23, m)
+    integer, intent(in) :: ints_in(6, m)
+    integer, intent(in) :: options(4)
+    !> b_j of members 1..3; X1j(x1), X2j(x2), X3j(x3), X1j(load point);
+    !> the upper contact's static flexibility G(a) (model_given).
+    real(wp), intent(in) :: b_in(n_max, 3, m), values_in(n_max, 4, m)
+    real(wp), intent(in) :: flex_in(m)
+    real(wp), intent(out) :: t1(m), v_impact(m), psi(m), v0(m), r(m)
+    real(wp), intent(out) :: y3_max(m), t_max(m), y3_min(m), t_min(m)
+    real(wp), intent(out) :: m1(m), m2(m), m3(m)
+    integer, intent(out) :: at_end(m), max_tied(m), min_tied(m)
+    integer, intent(out) :: status(m)
+    real(wp), intent(out) :: p1(n_max, m), p2(n_max, m), p3(n_max, m)
+    real(wp), intent(out) :: c3(n_max, m)
+    integer, parameter :: chunk = 1024
+    type(design_result) :: res(chunk)
+    real(wp) :: tau(chunk)
+    integer :: n3(chunk), ints(6)
+    logical :: search(chunk), resolved(chunk), ends(chunk)
+    logical :: ties(chunk, 2)
+    type(extremes_workspace) :: ws
+    integer :: first, last, i, k
+
+    do first = 1, m, chunk
+      last = min(first + chunk - 1, m)
+      do i = first, last
+        k = i - first + 1
+        ints = ints_in(:, i)
+        if (any(ints(4:6) > n_max)) ints(4:6) = 0
+        call evaluate_given_design(real_in(:, i), ints, options, &
+            b_in(:, :, i), values_in(:, :, i), flex_in(i), res(k), &
+            p1(:, i), p2(:, i), p3(:, i), c3(:, i))
+        search(k) = res(k)%status == status_ok
+        n3(k) = ints(6)
+        tau(k) = real_in(22, i)
+      end do
+      k = last - first + 1
+      call extremes(c3(:, first:last), p3(:, first:last), n3(1:k), &
+          tau(1:k), search(1:k), ws, y3_max(first:last), &
+          t_max(first:last), y3_min(first:last), t_min(first:last), &
+          ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
+      do i = first, last
+        k = i - first + 1
+        if (search(k)) then
+          res(k)%y3_max = y3_max(i)
+          res(k)%t_max = t_max(i)
+          res(k)%y3_min = y3_min(i)
+          res(k)%t_min = t_min(i)
+          res(k)%at_end = ends(k)
+          res(k)%max_tied = ties(k, 1)
+          res(k)%min_tied = ties(k, 2)
+        end if
+        call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
+            p3(:, i), c3(:, i))
+        t1(i) = res(k)%t1
+        v_impact(i) = res(k)%v_impact
+        psi(i) = res(k)%psi
+        v0(i) = res(k)%v0
+        r(i) = res(k)%r
+        y3_max(i) = res(k)%y3_max
+        t_max(i) = res(k)%t_max
+        y3_min(i) = res(k)%y3_min
+        t_min(i) = res(k)%t_min
+        m1(i) = res(k)%m1
+        m2(i) = res(k)%m2
+        m3(i) = res(k)%m3
+        at_end(i) = merge(1, 0, res(k)%at_end)
+        max_tied(i) = merge(1, 0, res(k)%max_tied)
+        min_tied(i) = merge(1, 0, res(k)%min_tied)
+        status(i) = res(k)%status
+      end do
+    end do
+  end subroutine evaluate_batch_given
 
   !> X_j(xi) of end condition `end` for j = 1..n at points xi (for tests).
   subroutine mode_values(end, n, k, xi, kl, values)

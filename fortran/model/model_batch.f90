@@ -20,7 +20,8 @@ module model_batch
       lower_coefficients, mass_ratio
   implicit none
   private
-  public :: mode_tables, evaluate_design, finish_design, design_is_valid
+  public :: mode_tables, evaluate_design, finish_design, design_is_valid, &
+      clear
 
   !> Number of real columns of a design row.
   integer, parameter, public :: n_real = 23

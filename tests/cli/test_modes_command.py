@@ -103,10 +103,17 @@ def test_bad_input_is_one_line(capsys, argv, message):
     assert len(err.strip().splitlines()) == 1
 
 
-def test_evaluate_refuses_non_thesis_beams():
-    design = contactsep.thesis_design(kr2=1000.0)
-    with pytest.raises(contactsep.InputError, match="kr2: found 1000.0, but eq. 23"):
-        contactsep.evaluate(design)
+def test_evaluate_takes_the_members_modes():
+    """Eq. 23 with other beam physics (issue 27) uses the modes that
+    contactsep.modes prints, in both backends."""
+    design = contactsep.thesis_design(kr2=1000.0, beam3="timoshenko",
+                                      mass3=0.01)
+    for backend in ("compiled", "numpy"):
+        result = contactsep.evaluate(design, backend=backend)
+        assert int(result.status) == 0
+        for member, p in ((2, result.p2), (3, result.p3)):
+            np.testing.assert_allclose(
+                p, contactsep.modes(design, member).p_rad_s, rtol=1e-14)
 
 
 def test_separator_physical_is_the_fitted_supports(capsys):
@@ -127,8 +134,6 @@ def test_separator_physical_is_the_fitted_supports(capsys):
     ["study", "table2", "--separator", "physical"],
     ["sweep", "--mass3", "0.01", "--vary", "d=0.2:0.3:2"],
 ])
-def test_eq_23_commands_refuse_other_beams_in_one_line(capsys, argv):
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert err.startswith("contactsep: error:") and "eq. 23" in err
-    assert len(err.strip().splitlines()) == 1
+def test_eq_23_commands_take_other_beams(capsys, argv):
+    assert main(argv) == 0
+    assert capsys.readouterr().err == ""

@@ -133,6 +133,16 @@ class ModalModel:
 
 
 @functools.lru_cache(maxsize=256)
+def _general_eigenvalues(beam: timoshenko.Beam, n: int):
+    """b_j of a general beam (cached: the root search is the costly part
+    of its modes, and eq. 23 and the chatter models ask for the same
+    member's modes at different points)."""
+    b = timoshenko.eigenvalues(beam, n)
+    b.flags.writeable = False
+    return b
+
+
+@functools.lru_cache(maxsize=256)
 def _dimensionless_modes(beam: timoshenko.Beam, n: int, xi: tuple):
     """b_j and X_j(xi): the closed form for the thesis's physics, the
     general solution otherwise (cached, read-only)."""
@@ -140,7 +150,8 @@ def _dimensionless_modes(beam: timoshenko.Beam, n: int, xi: tuple):
         b = be.eigenvalues(beam.end, n)**2
         values = be.mode_shapes(beam.end, n, list(xi))
     else:
-        b, values, _ = timoshenko.modes(beam, n, list(xi))
+        b, values, _ = timoshenko.modes(beam, n, list(xi),
+                                        b=_general_eigenvalues(beam, n))
     b.flags.writeable = values.flags.writeable = False
     return b, values
 

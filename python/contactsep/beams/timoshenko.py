@@ -351,13 +351,14 @@ def _null_vectors(matrix):
     return np.linalg.svd(matrix)[2][:, -1, :]
 
 
-def modes(beam: Beam, n: int, xi=()):
+def modes(beam: Beam, n: int, xi=(), b=None):
     """b_j (n,), with X_j(xi) and Psi_j(xi) (n, len(xi)) normalised as
-    the module docstring says."""
+    the module docstring says; ``b``: the eigenvalues when already known
+    (``eigenvalues(beam, n)``, the costly part)."""
     xi = np.atleast_1d(np.asarray(xi, dtype=np.float64))
     if np.any(~np.isfinite(xi)) or np.any((xi < 0.0) | (xi > 1.0)):
         raise ValueError("xi must lie in [0, 1]")
-    b = eigenvalues(beam, n)
+    b = eigenvalues(beam, n) if b is None else np.array(b, dtype=float)
     nodes = _mesh(beam, float(b[-1]))
     matrix = _assemble(beam, nodes, b)
     node_states = _null_vectors(matrix).reshape(n, len(nodes), 4)

@@ -144,21 +144,11 @@ def _system(design, preload, law, static_correction=False
 
 def _single_impulse(design) -> dict:
     """The thesis's single-impulse answer (eq. 23, compiled model) as
-    printed and in the impulse form (psi/M3).  Eq. 23 takes only the
-    thesis's beams: for any other beam physics (issue 27) the figures
-    are NaN but the impact speed, taken from the upper contact's own
-    modes (the flores damping's reference speed)."""
+    printed and in the impulse form (psi/M3), with the members' own
+    beam physics (issue 27: eq. 23 takes their modes)."""
     from contactsep.model import evaluate
     from contactsep.model.energy import EnergyBoundWarning
-    from contactsep.model.physics import physics_changes
     from contactsep.model.status import explain
-    if physics_changes(design):
-        # eq. 23 takes only the thesis's beams: the impact speed from the
-        # upper contact's own modes, the rest not defined
-        return {"t1_s": math.nan,
-                "v_impact_in_s": _modal_impact_speed(design),
-                "psi_lb_s": math.nan, "v0_in_s": math.nan,
-                "y3_max_in": math.nan, "y3_max_impulse_form_in": math.nan}
     from contactsep.model.contact_points import lower_point_differs
     with warnings.catch_warnings():
         # both forms are reported, labelled; the as-printed one may
@@ -190,7 +180,7 @@ def _single_impulse(design) -> dict:
 
 
 def _modal_impact_speed(design) -> float:
-    """|dy1/dt| when the released upper contact's modal model (its beam
+    """(A second path, for tests: eq. 23 gives it too.)  |dy1/dt| when the released upper contact's modal model (its beam
     physics) first reaches the gap: y1 = sum X_j q_j cos p_j t sampled
     at 1/64 of its shortest period, the crossing bisected."""
     upper = system.members(design)[0]

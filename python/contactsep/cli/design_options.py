@@ -139,8 +139,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                             "(default); physical: the supports fitted to "
                             "Table II (study separator-fit: Timoshenko, "
                             "kr2 = 2.19e4 lb in/rad), unless --beam2/--kr2 "
-                            "say otherwise (chatter models only: eq. 23 "
-                            "refuses it)")
+                            "say otherwise")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "

@@ -18,10 +18,23 @@ def evaluate_packed(packed: Packed) -> dict:
         from contactsep.model import twin
         return twin.evaluate_packed(packed)
     n_max = int(packed.ints[:, 3:].max())
-    (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
-     max_tied, min_tied, status, m1, m2, m3, p1, p2, p3,
-     c3) = _KERNEL.evaluate_batch(max(n_max, 1), packed.real.T,
-                                  packed.ints.T, packed.options)
+    if packed.modes is None:
+        (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
+         max_tied, min_tied, status, m1, m2, m3, p1, p2, p3,
+         c3) = _KERNEL.evaluate_batch(max(n_max, 1), packed.real.T,
+                                      packed.ints.T, packed.options)
+    else:
+        # the members' modes given (contactsep.model.given); a design
+        # without them gets a count of 0, which the kernel refuses
+        modes = packed.modes.rows(0, packed.size, max(n_max, 1))
+        ints = np.where(modes.failed[:, None], 0, packed.ints).astype(
+            np.int32)
+        (t1, v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end,
+         max_tied, min_tied, status, m1, m2, m3, p1, p2, p3,
+         c3) = _KERNEL.evaluate_batch_given(
+             packed.real.T, ints.T, packed.options,
+             np.nan_to_num(modes.b).T, modes.values.T,
+             np.nan_to_num(modes.flex))
     return dict(t1=t1, v_impact=v_impact, psi=psi, v0=v0, R=r,
                 y3_max=y3_max, t_max=t_max, y3_min=y3_min, t_min=t_min,
                 at_window_end=at_end.astype(bool),

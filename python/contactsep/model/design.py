@@ -279,8 +279,9 @@ class Design:
         Where it sits (None: the contact point).
 
     The beam physics fields (contactsep.model.physics) hold one value
-    per Design, shared by a batch; eq. 23 (``evaluate``) refuses any but
-    the thesis's (Bernoulli-Euler, rigid ends, no mass).
+    per Design, shared by a batch; eq. 23 (``evaluate``) takes the
+    members' modes from contactsep.beams where they are not the thesis's
+    (Bernoulli-Euler, rigid ends, no mass; contactsep.model.given).
     """
 
     #: Upper contact length (in).
@@ -477,13 +478,16 @@ class Packed:
     (one design's values contiguous), columns :data:`REAL_COLUMNS` and
     :data:`INT_COLUMNS`;
     ``options`` (4,) int32 codes of impact_velocity, lower_response,
-    lc_reading and release; ``shape`` the batch shape.
+    lc_reading and release; ``shape`` the batch shape; ``modes`` None
+    (the backends compute the thesis's modes) or the members' modes of
+    other beam physics (:class:`contactsep.model.given.GivenModes`).
     """
 
     real: np.ndarray
     ints: np.ndarray
     options: np.ndarray
     shape: tuple
+    modes: object = None
 
     @property
     def size(self) -> int:

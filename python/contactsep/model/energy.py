@@ -46,11 +46,22 @@ def _flexibility(end, length, width, thick, modulus, xi):
     return shape * np.asarray(length) ** 3 / (np.asarray(modulus) * inertia)
 
 
-def y3_energy_bound(design) -> np.ndarray:
+def y3_energy_bound(design, shapes=None) -> np.ndarray:
     """The largest |y3| (in) at x3 that the release's strain energy
     allows (module doc): y_s sqrt(G3(x3) / G1(a)), for a design or a
-    batch (an array of the design's shape)."""
+    batch (an array of the design's shape).  ``shapes``: the members'
+    dimensionless flexibilities (G1(a), G3(x3)), arrays of the batch's
+    shape, where the beam physics is not the thesis's (shear, springs:
+    contactsep.model.given); None: the thesis's closed forms."""
     d = design
+    if shapes is not None:
+        g1, g3 = (np.asarray(g, dtype=float) * np.asarray(length) ** 3 / (
+            np.asarray(modulus) * np.asarray(width)
+            * np.asarray(thick) ** 3 / 12.0)
+            for g, length, width, thick, modulus in (
+                (shapes[0], d.L1, d.b1, d.h1, d.E1),
+                (shapes[1], d.L3, d.b3, d.h3, d.E3)))
+        return np.abs(np.asarray(d.ys, dtype=float)) * np.sqrt(g3 / g1)
     length1 = np.asarray(d.L1, dtype=float)
     x1 = length1 if d.x1 is None else np.asarray(d.x1, dtype=float)
     tip = (np.asarray(d.end1) == "clamped-free") & (d.release == "tip")
@@ -62,18 +73,21 @@ def y3_energy_bound(design) -> np.ndarray:
     return np.abs(np.asarray(d.ys, dtype=float)) * np.sqrt(g3 / g1)
 
 
-def exceeds_energy_bound(design, y3_max) -> np.ndarray:
+def exceeds_energy_bound(design, y3_max, shapes=None) -> np.ndarray:
     """Where ``y3_max`` (in) exceeds :func:`y3_energy_bound` (by more
-    than round-off, 1e-9 relative)."""
+    than round-off, 1e-9 relative); ``shapes`` as there."""
     with np.errstate(invalid="ignore"):
-        return np.asarray(y3_max) > y3_energy_bound(design) * (1.0 + 1e-9)
+        return np.asarray(y3_max) > y3_energy_bound(design, shapes) * (
+            1.0 + 1e-9)
 
 
-def warn_if_beyond(design, y3_max, status, stacklevel=3) -> None:
+def warn_if_beyond(design, y3_max, status, stacklevel=3,
+                   shapes=None) -> None:
     """One :class:`EnergyBoundWarning` when a design with status 0 has a
-    y3_max beyond :func:`y3_energy_bound` (a batch: how many)."""
+    y3_max beyond :func:`y3_energy_bound` (a batch: how many); ``shapes``
+    as there."""
     ok = np.asarray(status) == 0
-    beyond = exceeds_energy_bound(design, y3_max) & ok
+    beyond = exceeds_energy_bound(design, y3_max, shapes) & ok
     if not np.any(beyond):
         return
     form = np.asarray(design.lower_response).item() \
@@ -84,7 +98,8 @@ def warn_if_beyond(design, y3_max, status, stacklevel=3) -> None:
               "'impulse' is" if form == "as-printed" else ""))
     if np.ndim(beyond) == 0:
         message = (f"y3_max {float(y3_max):.4g} in exceeds "
-                   f"{float(y3_energy_bound(design)):.4g} in, {why}")
+                   f"{float(y3_energy_bound(design, shapes)):.4g} in, "
+                   f"{why}")
     else:
         message = (f"y3_max of {int(np.sum(beyond)):,} of {beyond.size:,} "
                    f"designs exceeds {why}")

@@ -11,13 +11,12 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
-from contactsep.model import energy, physics
+from contactsep.model import energy, given, physics
 from contactsep.model.contact_points import lower_point_differs
 from contactsep.model import status as status_codes
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
-    DesignError,
     Packed,
     outside_domain,
     pack,
@@ -208,14 +207,6 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     if not isinstance(design, Design):
         raise InputError(f"design: expected a contactsep.Design, found "
                          f"{type(design).__name__}")
-    changed = physics.physics_changes(design)
-    if changed:
-        field, value = changed[0]
-        raise DesignError(
-            f"{field}: found {value!r}, but eq. 23 (evaluate, sweep) takes "
-            f"only the thesis's beams (Bernoulli-Euler, rigid ends, no "
-            f"added mass): its kernel computes their modes itself; "
-            f"contactsep chatter and contactsep modes take this design")
     if lower_point_differs(design):
         raise DesignError(
             f"x2_lower: found {design.x2_lower!r}, but eq. 23 (evaluate, "
@@ -223,6 +214,11 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
             f"(its impulse passes through it); contactsep chatter takes "
             f"this design")
     packed = pack(design)
+    if physics.physics_changes(design):
+        # other beam physics than the thesis's: the members' modes from
+        # contactsep.beams, the same eq. 23 arithmetic (model/given.py)
+        packed = dataclasses.replace(
+            packed, modes=given.given_modes(design, packed))
     out = _refuse_outside_domain(packed, _in_pieces(_backend(backend),
                                                     packed))
     shape = packed.shape
@@ -232,7 +228,11 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     for key in _PER_MODE:
         value = np.asarray(out[key])
         fields[key] = value.reshape(shape + value.shape[1:])
-    energy.warn_if_beyond(design, fields["y3_max"], fields["status"])
+    shapes = None if packed.modes is None else tuple(
+        np.reshape(g, shape) for g in (packed.modes.flex,
+                                       packed.modes.flex3))
+    energy.warn_if_beyond(design, fields["y3_max"], fields["status"],
+                          shapes=shapes)
     return Evaluation(**fields)
 
 
@@ -271,10 +271,14 @@ def _in_pieces(backend, packed: Packed) -> dict:
     while first < m:
         last = min(m, first + size)
         start = time.perf_counter()
+        piece = packed.ints[first:last, 3:]
+        modes = None if packed.modes is None else packed.modes.rows(
+            first, last, int(piece.max()))
         parts.append(output.interruptible(
             forked, backend.evaluate_packed, Packed(
                 real=packed.real[first:last], ints=packed.ints[first:last],
-                options=packed.options, shape=(last - first,))))
+                options=packed.options, shape=(last - first,),
+                modes=modes)))
         seconds = time.perf_counter() - start
         size = int(max(1, min(8 * size,
                               size * PIECE_S / max(seconds, 1e-6))))

@@ -72,6 +72,15 @@ def release_amplitudes(ys, x_load_values, kl, flexibility):
     return np.where(np.isnan(kl), 0.0, amp)
 
 
+def release_amplitudes_b(ys, x_load_values, b, flexibility):
+    """release_amplitudes with the eigenvalues b_j = (k_jL)^2 given:
+    A_j = y_s X_j(a) / (b_j^2 G(a)) (the modal coefficients of the static
+    shape for any beam physics: docs/model.md)."""
+    with np.errstate(invalid="ignore"):
+        amp = ys[:, None] * x_load_values / (b**2 * flexibility[:, None])
+    return np.where(np.isnan(b), 0.0, amp)
+
+
 def _sum(c, p, t, func):
     """sum_j c_j func(p_j t) over live modes (p NaN -> term 0)."""
     with np.errstate(invalid="ignore"):
@@ -183,15 +192,31 @@ def evaluate_packed(packed: Packed) -> dict:
         masses.append(mass)
         consts.append(a)
         xi.append(safe["x" + i] / safe["L" + i])
-    kl1, x1v = mode_table(ends[0], xi[0], counts[0], n_max)
-    kl2, x2v = mode_table(ends[1], xi[1], counts[1], n_max)
-    kl3, x3v = mode_table(ends[2], xi[2], counts[2], n_max)
+    given = packed.modes
+    if given is None:
+        kl1, x1v = mode_table(ends[0], xi[0], counts[0], n_max)
+        kl2, x2v = mode_table(ends[1], xi[1], counts[1], n_max)
+        kl3, x3v = mode_table(ends[2], xi[2], counts[2], n_max)
+    else:
+        given = given.rows(0, m, n_max)
+        code[given.failed & (code == status.OK)] = status.INVALID_INPUT
+        # b_j = (k_jL)^2 given (model/given.py): kl = sqrt(b_j) only
+        # where a closed form needs k_jL; the release uses b_j^2 itself
+        # rows without modes computed on ones, their results NaN below
+        b_given = np.where(given.failed[:, None, None], 1.0, given.b)
+        x_given = np.where(given.failed[:, None, None], 1.0, given.values)
+        kl1, kl2, kl3 = (np.sqrt(b_given[:, k]) for k in range(3))
+        x1v, x2v, x3v = (x_given[:, k] for k in range(3))
     p1 = frequencies(kl1, consts[0], safe["L1"])
     p3 = frequencies(kl3, consts[2], safe["L3"])
     lc = safe["Lc"]
     has_lc = lc > 0.0
     l2_freq = np.where(has_lc & (lc_option in (1, 2)), lc, safe["L2"])
     p2 = frequencies(kl2, consts[1], l2_freq)
+    if given is not None:
+        p1, p2, p3 = (b_given[:, k] * (c / length**2)[:, None]
+                      for k, (c, length) in enumerate(zip(
+                          consts, (safe["L1"], l2_freq, safe["L3"]))))
     m1, m2, m3 = masses
     m2_psi = np.where(has_lc & (lc_option == 2), m2 * lc / safe["L2"], m2)
     m2_v0 = np.where(has_lc & (lc_option in (0, 2)), m2 * lc / safe["L2"],
@@ -199,15 +224,22 @@ def evaluate_packed(packed: Packed) -> dict:
 
     tip_release = (release_option == 0) & (ends[0] == 1)
     xi_load = np.where(tip_release, 1.0, xi[0])
-    flex = np.zeros(m)
-    for c, end in enumerate(beams.END_CONDITIONS, 1):
-        rows = ends[0] == c
-        flex[rows] = beams.static_flexibility(end, xi_load[rows])
-    _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
+    if given is None:
+        flex = np.zeros(m)
+        for c, end in enumerate(beams.END_CONDITIONS, 1):
+            rows = ends[0] == c
+            flex[rows] = beams.static_flexibility(end, xi_load[rows])
+        _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
+    else:
+        flex, load_values = given.flex, x_given[:, 3]
     zero_flex = ~(flex > 0.0)
     code[zero_flex & (code == status.OK)] = status.INVALID_INPUT
     flex = np.where(zero_flex, 1.0, flex)
-    amplitudes = release_amplitudes(safe["ys"], load_values, kl1, flex)
+    if given is None:
+        amplitudes = release_amplitudes(safe["ys"], load_values, kl1, flex)
+    else:
+        amplitudes = release_amplitudes_b(safe["ys"], load_values,
+                                          b_given[:, 0], flex)
     a_coef = amplitudes * x1v
     horizon = 2.0 * np.pi / p1[:, 0]
     t1, missed = first_impact(a_coef, p1, safe["gap"], horizon)

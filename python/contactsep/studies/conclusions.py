@@ -23,8 +23,6 @@ to 0.5).
 
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 import numpy as np
 
 from contactsep.chatter import simulate
@@ -87,21 +85,9 @@ def _values(name: str, base) -> np.ndarray:
 
 
 def _single_impulse(base, own: str, values, designs):
-    """Eq. 23 for the study's designs (y3_max, R); for beam physics eq.
-    23 does not take (issue 27: ``--separator physical``), y3_max is NaN
-    and R = (M2 / sum X2j^2)/(M3 / sum X3j^2) (eq. 24) from the members'
-    own modes."""
-    from contactsep.chatter.system import members
-    from contactsep.model.physics import physics_changes
-    if not physics_changes(base):
-        return evaluate_all(base.replace(**{own: values}), "compiled")
-    ratios = []
-    for design in designs:
-        _, separator, lower = members(design)
-        ratios.append((separator.mass / np.sum(separator.x**2))
-                      / (lower.mass / np.sum(lower.x**2)))
-    return SimpleNamespace(y3_max=np.full(len(designs), np.nan),
-                           R=np.array(ratios))
+    """Eq. 23 for the study's designs (y3_max, R), with the members' own
+    beam physics (issue 27: ``--separator physical``)."""
+    return evaluate_all(base.replace(**{own: values}), "compiled")
 
 
 def _columns(name: str, values, single, base) -> dict:
