@@ -12,11 +12,12 @@ import numpy as np
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model import energy, given, physics
-from contactsep.model.contact_points import lower_point_differs
 from contactsep.model import status as status_codes
+from contactsep.model.contact_points import lower_point_differs
 from contactsep.model.design import (
     REAL_COLUMNS,
     Design,
+    DesignError,
     Packed,
     outside_domain,
     pack,
