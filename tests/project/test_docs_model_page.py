@@ -14,12 +14,12 @@ import re
 
 import numpy as np
 import pytest
+from test_docs_pages import NUMBER, printed, quoted
 
 import contactsep
 from conftest import ROOT, THESIS_DECKS
 from contactsep.model import compiled
 from contactsep.model import design as design_module
-from test_docs_pages import NUMBER, printed, quoted
 
 pint = pytest.importorskip("pint")
 UNITS = pint.UnitRegistry()

@@ -11,9 +11,9 @@ import inspect
 import re
 
 import pytest
+from test_docs_pages import NUMBER, page, printed, quoted
 
 from contactsep.cli import main as cli_main
-from test_docs_pages import NUMBER, page, printed, quoted
 
 
 def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
