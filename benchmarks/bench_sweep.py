@@ -37,12 +37,12 @@ def main(save: bool = False, cpu: bool = False) -> None:
         for workers in counts:
             for output in outputs:
                 writers = {
-                    "no": [],
-                    "CSV": [runner.CsvWriter(os.path.join(tmp, "s.csv"),
-                                             spec)],
-                    "Parquet": [runner.ParquetWriter(
+                    "no": list,
+                    "CSV": lambda: [runner.CsvWriter(
+                        os.path.join(tmp, "s.csv"), spec)],
+                    "Parquet": lambda: [runner.ParquetWriter(
                         os.path.join(tmp, "s.parquet"), spec)],
-                }[output]
+                }[output]()
                 start = clock()
                 runner.run_sweep(spec, writers=writers, threshold=0.12,
                                  workers=workers, progress=False)
