@@ -182,3 +182,58 @@ def test_the_memory_target_is_the_run():
                             r"`legacy` ([\d.]+)x;")
     assert (replay, legacy) == (ratios["replay"], ratios["legacy"])
     assert max(float(replay), float(legacy)) <= 3
+
+
+def test_the_constants_the_page_states_are_the_codes():
+    """The chunk sizing, Dask's window, the modes limit, the model's
+    build flags and search chunk: what the page says in words is what
+    the code uses (a changed constant fails here until the page says
+    it)."""
+    import importlib
+    import inspect
+
+    from contactsep.model import design
+    from contactsep.studies import chunks, runner, sweep
+    target, first, growth, piece = quoted(
+        r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
+        r"of work each, the first ([\d,]+) designs at N = 4, growing at "
+        r"most (\d+)-fold a chunk\) and the model evaluates a chunk in "
+        r"pieces of about ([\d.]+) s")
+    assert float(target) == chunks.TARGET_CHUNK_S
+    assert int(first.replace(",", "")) == chunks.FIRST_CHUNK_COST // 4
+    assert f"min(self.limit, {growth} * self.next" in \
+        inspect.getsource(chunks.Chunks.record)
+    assert float(piece) == importlib.import_module(
+        "contactsep.model.evaluate").PIECE_S
+    cap, after = quoted(r"At N = 4 the chunks reach the ([\d,]+) cap after "
+                        r"(\w+);")
+    assert int(cap.replace(",", "")) == sweep.CHUNK_SIZE
+    size, count = chunks.FIRST_CHUNK_COST // 4, 0
+    while size < sweep.CHUNK_SIZE:    # each chunk at most 8x the last
+        size, count = min(int(growth) * size, sweep.CHUNK_SIZE), count + 1
+    assert {"two": 2, "three": 3, "four": 4}[after] == count
+    a_worker, smallest = quoted(r"now at least (\d+) a worker of what is "
+                                r"left, down to ([\d.]+) s a chunk")
+    assert (int(a_worker), float(smallest)) == (chunks.CHUNKS_PER_WORKER,
+                                                chunks.MIN_CHUNK_S)
+    quoted(r"now twice the cluster's threads, plus 2\)")
+    assert "2 * bounds.workers + 2" in inspect.getsource(runner)
+    (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "
+                     r"\(`model.design.MAX_MODES`\)")
+    assert int(most.replace(",", "")) == design.MAX_MODES
+    (flags,) = quoted(r"The model is built with ([-\w, ]+ and -flto)")
+    meson = (ROOT / "fortran" / "model" / "meson.build").read_text()
+    args = re.search(r"model_fortran_args = \[([^\]]+)\]", meson).group(1)
+    assert re.split(r", | and ", flags) == re.findall(r"'([^']+)'", args)
+    (chunk,) = quoted(r"the extremes' search works on chunks of ([\d,]+) "
+                      r"designs")
+    api = (ROOT / "fortran" / "model" / "model_api.f90").read_text()
+    assert f"integer, parameter :: chunk = {chunk.replace(',', '')}" in api
+
+
+def test_the_status_4_limits_are_model_mds():
+    """'N = 10⁴ and τ = 10⁸ s give status 4': docs/model.md's limits
+    (tests/project/test_docs_pages.py runs them, slow)."""
+    n, tau = quoted(r"N = (10\S+) and τ = (10\S+) s give status 4")
+    model = " ".join((ROOT / "docs" / "model.md").read_text().split())
+    assert f"τ = {tau} s gives status 4, and so does N = {n}" in model
