@@ -237,3 +237,24 @@ def test_the_status_4_limits_are_model_mds():
     n, tau = quoted(r"N = (10\S+) and τ = (10\S+) s give status 4")
     model = " ".join((ROOT / "docs" / "model.md").read_text().split())
     assert f"τ = {tau} s gives status 4, and so does N = {n}" in model
+
+
+def test_the_sweeps_prose_is_the_run():
+    seconds = {}
+    for line in result_lines("bench_sweep"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 5 and cells[0] == "1":
+            seconds[cells[1]] = float(cells[2])
+    csv, parquet = quoted(r"A CSV row costs ([\d.]+) µs \(the CSV run's "
+                          r"time over the summary's, a row\); Parquet "
+                          r"([\d.]+) µs\.")
+    designs = 1e6
+    assert f"{(seconds['CSV'] - seconds['no']) / designs * 1e6:.1f}" == csv
+    assert f"{(seconds['Parquet'] - seconds['no']) / designs * 1e6:.1f}" \
+        == parquet
+    assert quoted(r"took ~3 µs a row then \(([\d.]+) µs in the current "
+                  r"run above\)") == (csv,)
+    assert quoted(r"the parent formats every row \(([\d.]+) µs a row in "
+                  r"the current run\); Parquet \(`--parquet`\) costs half "
+                  r"that \(([\d.]+) µs\)") == (csv, parquet)
+    assert round(float(csv) / float(parquet)) == 2            # "half"
