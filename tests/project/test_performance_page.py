@@ -258,3 +258,42 @@ def test_the_sweeps_prose_is_the_run():
                   r"the current run\); Parquet \(`--parquet`\) costs half "
                   r"that \(([\d.]+) µs\)") == (csv, parquet)
     assert round(float(csv) / float(parquet)) == 2            # "half"
+
+
+def test_the_chatter_sweep_prose_is_the_run():
+    from contactsep.studies.stats import wilson_interval
+    rows, designs = {}, None
+    for line in result_lines("bench_chatter_sweep"):
+        found = re.match(r"\| run \(([\d,]+) designs", line)
+        if found:
+            designs = int(found.group(1).replace(",", ""))
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 4 and \
+                re.fullmatch(r"[\d.]+", cells[1]):
+            rows[cells[0].split(",")[0].split(" (")[0]] = float(cells[2])
+    free = rows["no preload: simulate() one by one"]
+    free_sweep = rows["no preload: sweep"]
+    pressed = rows["preload 20 lb: simulate() one by one"]
+    pressed_sweep = rows["preload 20 lb: sweep"]
+    free_cost, pressed_cost = quoted(
+        r"the difference to the one-by-one rows: ([+-][\d.]+) % a design "
+        r"without a preload, ([+-][\d.]+) % with it")
+    assert f"{100 * (free_sweep / free - 1):+.1f}" == free_cost
+    assert f"{100 * (pressed_sweep / pressed - 1):+.1f}" == pressed_cost
+    (more,) = quoted(r"costs (\d+)x more a design")
+    assert f"{pressed / free:.0f}" == more
+    (minutes,) = quoted(r"1,000 such designs are about (\d+) min of CPU "
+                        r"time")
+    assert f"{pressed * 1000 / 1e3 / 60:.0f}" == minutes
+    per, total = quoted(r"([\d.]+) ms a design of CPU time is (\d+) s for "
+                        r"1,000 designs on one core")
+    assert float(per) == free_sweep and f"{free_sweep:.0f}" == total
+    assert 1000 * free_sweep / 1e3 / 2 < 60          # the 60 s target
+    count, low, high = quoted(r"every one of the (\d+) preloaded designs "
+                              r"opens \(p_open 1; 95 % Wilson interval "
+                              r"\[([\d.]+), (\d)\]")
+    assert int(count) == designs
+    assert "preload 20 lb: sweep, 1 worker(s), progress bar (p_open 1)" in \
+        " ".join(result_lines("bench_chatter_sweep"))
+    interval = wilson_interval(designs, designs)
+    assert (f"{interval[0]:.3f}", f"{interval[1]:g}") == (low, high)
