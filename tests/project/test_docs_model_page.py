@@ -123,3 +123,34 @@ def test_the_extremes_tests_are_as_described():
     written = re.search(r"parametrize\(\"tau\", \[([\d., ]+)\]\)",
                         source).group(1)
     assert listed == [float(t) for t in written.split(",")]
+
+
+def test_the_beam_and_energy_tests_are_as_described():
+    """'Romberg from 16, 32, 64 elements ... for four end conditions',
+    '30-digit mpmath', 'at N = 4 and 32 ... modal sums at N = 400': the
+    tests' own meshes, precision and parameters."""
+    from contactsep import beams
+    tests = ROOT / "tests"
+    coarse, middle, fine, ends = quoted(
+        "model.md", r"Romberg from (\d+), (\d+), (\d+) elements: first three "
+        r"modes to [\d.e-]+, six to [\d.e-]+, for (\w+) end conditions")
+    fe_beam = (tests / "shared" / "fe_beam.py").read_text()
+    assert f"def converged(end, count, elements={coarse}," in fe_beam
+    assert "for k in range(3)" in fe_beam              # n, 2n and 4n
+    assert [int(middle), int(fine)] == [2 * int(coarse), 4 * int(coarse)]
+    timoshenko = (tests / "shared" / "test_beams_timoshenko.py").read_text()
+    assert "@pytest.mark.parametrize(\"end\", beams.END_CONDITIONS)\n" \
+        "def test_frequencies_match_a_converged_finite_element_beam" in \
+        timoshenko
+    assert {"four": 4}[ends] == len(beams.END_CONDITIONS)
+    (digits,) = quoted("model.md", r"frequency equation in (\d+)-digit "
+                       r"mpmath")
+    assert f"mpmath.mp.dps = {digits}" in timoshenko
+    low, high, big = quoted("model.md", r"default never does on the family "
+                            r"at N = (\d+) and (\d+), and the bound's "
+                            r"flexibilities against the modal sums at "
+                            r"N = (\d+)\.")
+    numerics = (tests / "chatter" / "test_numerics.py").read_text()
+    assert f"@pytest.mark.parametrize(\"n\", [{low}, {high}])\n" \
+        "def test_the_default_lower_response_stays_within" in numerics
+    assert f"design.replace(n_modes={big})" in numerics
