@@ -154,3 +154,12 @@ def test_the_beam_and_energy_tests_are_as_described():
     assert f"@pytest.mark.parametrize(\"n\", [{low}, {high}])\n" \
         "def test_the_default_lower_response_stays_within" in numerics
     assert f"design.replace(n_modes={big})" in numerics
+
+
+def test_the_extremum_references_grid():
+    """'a grid of 1/40 of the shortest period': tests/extremum_reference.py's
+    POINTS_PER_PERIOD."""
+    (points,) = quoted("model.md", r"sign changes of y3' on a grid of "
+                       r"1/(\d+) of the shortest period")
+    source = (ROOT / "tests" / "extremum_reference.py").read_text()
+    assert f"\nPOINTS_PER_PERIOD = {points}\n" in source
