@@ -80,3 +80,58 @@ def test_the_newton_band_claim_is_chatter_mds():
     assert re.search(rf"The default 5e-8 s is within {within} % for every "
                      rf"thesis separator", chatter)
     assert re.search(rf"uniform within ±{re.escape(band)} %", chatter)
+
+
+def _first_mode_share(n_modes):
+    """Conclusion 8's first-mode share over its x3/L3 grid, from eq. 23's
+    c3_j (the study's formula, without its costly maxima count)."""
+    import numpy as np
+
+    from contactsep.model import evaluate, thesis_design
+    from contactsep.studies import mode_share
+    base = thesis_design(n_modes=n_modes)
+    c3 = np.nan_to_num(evaluate(base.replace(
+        x3=mode_share.RATIOS * float(base.L3))).c3)
+    return c3[:, 0] ** 2 / np.sum(c3 ** 2, axis=1)
+
+
+def test_conclusion_8s_share_converges_from_the_quoted_n():
+    """'converged to 1e-4 from N = 16 on': against N = 256, relative, and
+    not yet at half that N."""
+    import numpy as np
+    (first,) = quoted("studies.md", r"The share is converged to 1e-4 from "
+                      r"N = (\d+) on \(N = 32 against 64\)")
+    limit = _first_mode_share(256)
+
+    def off(n):
+        return float(np.max(np.abs(_first_mode_share(n) / limit - 1)))
+
+    assert all(off(n) < 1e-4 for n in (int(first), 2 * int(first), 64))
+    assert off(int(first) // 2) > 1e-4
+
+
+@pytest.mark.slow
+def test_conclusion_8s_counts_at_one_and_twenty_percent(monkeypatch):
+    """'at 1 % prominence the count at x3/L3 = 0.5 grows 56, 153, 290,
+    361 at N = 8, 16, 32, 64'; at 20 %, x3/L3 = 0.67: 1 and 2 at N = 32
+    and 64 (the study itself at each N; N = 64 takes minutes)."""
+    import numpy as np
+
+    from contactsep.studies import mode_share
+    claims = quoted("studies.md", r"at 1 % prominence the count at x3/L3 = "
+                    r"0.5 grows (\d+), (\d+), (\d+), (\d+) at N = 8, 16, 32, "
+                    r"64\); at 20 % prominence")
+    steps = quoted("studies.md", r"between N = 32 and 64 \(x3/L3 = 0.67: "
+                   r"(\d+) and (\d+)\)")
+    at = {r: int(np.argmin(np.abs(mode_share.RATIOS - r)))
+          for r in (0.5, 0.67)}
+    assert mode_share.PROMINENCE == 0.2
+    counts = {}
+    for prominence in (0.01, 0.2):
+        monkeypatch.setattr(mode_share, "PROMINENCE", prominence)
+        for n in (8, 16, 32, 64) if prominence == 0.01 else (32, 64):
+            counts[prominence, n] = mode_share.conclusion8(
+                n_modes=n)["n_maxima"]
+    assert [str(counts[0.01, n][at[0.5]]) for n in (8, 16, 32, 64)] == \
+        list(claims)
+    assert [str(counts[0.2, n][at[0.67]]) for n in (32, 64)] == list(steps)
