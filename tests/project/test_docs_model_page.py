@@ -163,3 +163,17 @@ def test_the_extremum_references_grid():
                        r"1/(\d+) of the shortest period")
     source = (ROOT / "tests" / "extremum_reference.py").read_text()
     assert f"\nPOINTS_PER_PERIOD = {points}\n" in source
+
+
+def test_the_mode_functions_test_is_as_described():
+    """'tested against 150-digit mpmath to N = 50': test_beams_general.py."""
+    digits, most = quoted("model.md", r"accurate to a few ulps for any j "
+                          r"\(tested against (\d+)-digit mpmath to N = "
+                          r"(\d+)\)")
+    source = (ROOT / "tests" / "shared" / "test_beams_general.py") \
+        .read_text()
+    assert f"with mpmath.workdps({digits}):" in source
+    js = re.search(r"parametrize\(\"j\", \[([\d, ]+)\]\)\n"
+                   r"def test_eigenvalue_and_mode_against_mpmath",
+                   source).group(1)
+    assert max(int(j) for j in js.split(",")) == int(most)
