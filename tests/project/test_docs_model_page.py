@@ -177,3 +177,15 @@ def test_the_mode_functions_test_is_as_described():
                    r"def test_eigenvalue_and_mode_against_mpmath",
                    source).group(1)
     assert max(int(j) for j in js.split(",")) == int(most)
+
+
+def test_the_evaluate_pieces_are_the_codes():
+    """'pieces of about 0.5 s ... (N ≥ 200 or τ ≥ 1 s)': evaluate's
+    PIECE_S, COSTLY_MODES and COSTLY_TAU_S."""
+    evaluate = importlib.import_module("contactsep.model.evaluate")
+    piece, modes, tau = quoted("model.md", r"`evaluate` runs a large batch "
+                               r"in pieces of about ([\d.]+) s of compiled "
+                               r"work .*? \(N ≥ (\d+) or τ ≥ ([\d.]+) s\)")
+    assert float(piece) == evaluate.PIECE_S
+    assert int(modes) == evaluate.COSTLY_MODES
+    assert float(tau) == evaluate.COSTLY_TAU_S
