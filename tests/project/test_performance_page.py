@@ -297,3 +297,18 @@ def test_the_chatter_sweep_prose_is_the_run():
         " ".join(result_lines("bench_chatter_sweep"))
     interval = wilson_interval(designs, designs)
     assert (f"{interval[0]:.3f}", f"{interval[1]:g}") == (low, high)
+
+
+def test_the_contact_dynamics_counts_are_the_codes():
+    """'one fused loop over the 48 modes' (three members of N = 16),
+    '-fopenmp-simd', '64 steps kept': the chatter build and the stepper's
+    parameter."""
+    (modes,) = quoted(r"Each step is one fused loop over the (\d+) modes")
+    assert int(modes) == 3 * 16
+    (kept,) = quoted(r"the largest-gap searches wait for the end of the "
+                     r"run \((\d+) steps kept\)")
+    state = (ROOT / "fortran" / "chatter" / "adaptive_state.f90").read_text()
+    assert f"integer, parameter :: max_waiting = {kept}" in state
+    quoted(r"compiled with `-fopenmp-simd`")
+    build = (ROOT / "fortran" / "chatter" / "meson.build").read_text()
+    assert "'-fopenmp-simd'" in build
