@@ -312,3 +312,22 @@ def test_the_contact_dynamics_counts_are_the_codes():
     quoted(r"compiled with `-fopenmp-simd`")
     build = (ROOT / "fortran" / "chatter" / "meson.build").read_text()
     assert "'-fopenmp-simd'" in build
+
+
+def test_the_samples_cost_a_flight_step_each():
+    """'The 60,000 samples cost one flight step each (the default row
+    against the summary-only one)': simulate's default samples, and the
+    two rows' flight steps differ by that many, to within 5 %."""
+    import importlib
+    simulate_module = importlib.import_module("contactsep.chatter.simulate")
+    rows = table("bench_chatter")
+    (samples,) = quoted(r"The ([\d,]+) samples cost one flight step each")
+    samples = int(samples.replace(",", ""))
+    assert samples == simulate_module.DEFAULT_SAMPLES
+
+    def flight(row):
+        return int(re.search(r"flight_steps (\d+)", row[2]).group(1))
+
+    extra = flight(rows["hertz N=16 (default)"]) - \
+        flight(rows["hertz N=16, summary only"])
+    assert abs(extra / samples - 1) < 0.05
