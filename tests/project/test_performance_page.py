@@ -182,3 +182,152 @@ def test_the_memory_target_is_the_run():
                             r"`legacy` ([\d.]+)x;")
     assert (replay, legacy) == (ratios["replay"], ratios["legacy"])
     assert max(float(replay), float(legacy)) <= 3
+
+
+def test_the_constants_the_page_states_are_the_codes():
+    """The chunk sizing, Dask's window, the modes limit, the model's
+    build flags and search chunk: what the page says in words is what
+    the code uses (a changed constant fails here until the page says
+    it)."""
+    import importlib
+    import inspect
+
+    from contactsep.model import design
+    from contactsep.studies import chunks, runner, sweep
+    target, first, growth, piece = quoted(
+        r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
+        r"of work each, the first ([\d,]+) designs at N = 4, growing at "
+        r"most (\d+)-fold a chunk\) and the model evaluates a chunk in "
+        r"pieces of about ([\d.]+) s")
+    assert float(target) == chunks.TARGET_CHUNK_S
+    assert int(first.replace(",", "")) == chunks.FIRST_CHUNK_COST // 4
+    assert f"min(self.limit, {growth} * self.next" in \
+        inspect.getsource(chunks.Chunks.record)
+    assert float(piece) == importlib.import_module(
+        "contactsep.model.evaluate").PIECE_S
+    cap, after = quoted(r"At N = 4 the chunks reach the ([\d,]+) cap after "
+                        r"(\w+);")
+    assert int(cap.replace(",", "")) == sweep.CHUNK_SIZE
+    size, count = chunks.FIRST_CHUNK_COST // 4, 0
+    while size < sweep.CHUNK_SIZE:    # each chunk at most 8x the last
+        size, count = min(int(growth) * size, sweep.CHUNK_SIZE), count + 1
+    assert {"two": 2, "three": 3, "four": 4}[after] == count
+    a_worker, smallest = quoted(r"now at least (\d+) a worker of what is "
+                                r"left, down to ([\d.]+) s a chunk")
+    assert (int(a_worker), float(smallest)) == (chunks.CHUNKS_PER_WORKER,
+                                                chunks.MIN_CHUNK_S)
+    quoted(r"now twice the cluster's threads, plus 2\)")
+    assert "2 * bounds.workers + 2" in inspect.getsource(runner)
+    (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "
+                     r"\(`model.design.MAX_MODES`\)")
+    assert int(most.replace(",", "")) == design.MAX_MODES
+    (flags,) = quoted(r"The model is built with ([-\w, ]+ and -flto)")
+    meson = (ROOT / "fortran" / "model" / "meson.build").read_text()
+    args = re.search(r"model_fortran_args = \[([^\]]+)\]", meson).group(1)
+    assert re.split(r", | and ", flags) == re.findall(r"'([^']+)'", args)
+    (chunk,) = quoted(r"the extremes' search works on chunks of ([\d,]+) "
+                      r"designs")
+    api = (ROOT / "fortran" / "model" / "model_api.f90").read_text()
+    assert f"integer, parameter :: chunk = {chunk.replace(',', '')}" in api
+
+
+def test_the_status_4_limits_are_model_mds():
+    """'N = 10⁴ and τ = 10⁸ s give status 4': docs/model.md's limits
+    (tests/project/test_docs_pages.py runs them, slow)."""
+    n, tau = quoted(r"N = (10\S+) and τ = (10\S+) s give status 4")
+    model = " ".join((ROOT / "docs" / "model.md").read_text().split())
+    assert f"τ = {tau} s gives status 4, and so does N = {n}" in model
+
+
+def test_the_sweeps_prose_is_the_run():
+    seconds = {}
+    for line in result_lines("bench_sweep"):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 5 and cells[0] == "1":
+            seconds[cells[1]] = float(cells[2])
+    csv, parquet = quoted(r"A CSV row costs ([\d.]+) µs \(the CSV run's "
+                          r"time over the summary's, a row\); Parquet "
+                          r"([\d.]+) µs\.")
+    designs = 1e6
+    assert f"{(seconds['CSV'] - seconds['no']) / designs * 1e6:.1f}" == csv
+    assert f"{(seconds['Parquet'] - seconds['no']) / designs * 1e6:.1f}" \
+        == parquet
+    assert quoted(r"took ~3 µs a row then \(([\d.]+) µs in the current "
+                  r"run above\)") == (csv,)
+    assert quoted(r"the parent formats every row \(([\d.]+) µs a row in "
+                  r"the current run\); Parquet \(`--parquet`\) costs half "
+                  r"that \(([\d.]+) µs\)") == (csv, parquet)
+    assert round(float(csv) / float(parquet)) == 2            # "half"
+
+
+def test_the_chatter_sweep_prose_is_the_run():
+    from contactsep.studies.stats import wilson_interval
+    rows, designs = {}, None
+    for line in result_lines("bench_chatter_sweep"):
+        found = re.match(r"\| run \(([\d,]+) designs", line)
+        if found:
+            designs = int(found.group(1).replace(",", ""))
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("|") and len(cells) == 4 and \
+                re.fullmatch(r"[\d.]+", cells[1]):
+            rows[cells[0].split(",")[0].split(" (")[0]] = float(cells[2])
+    free = rows["no preload: simulate() one by one"]
+    free_sweep = rows["no preload: sweep"]
+    pressed = rows["preload 20 lb: simulate() one by one"]
+    pressed_sweep = rows["preload 20 lb: sweep"]
+    free_cost, pressed_cost = quoted(
+        r"the difference to the one-by-one rows: ([+-][\d.]+) % a design "
+        r"without a preload, ([+-][\d.]+) % with it")
+    assert f"{100 * (free_sweep / free - 1):+.1f}" == free_cost
+    assert f"{100 * (pressed_sweep / pressed - 1):+.1f}" == pressed_cost
+    (more,) = quoted(r"costs (\d+)x more a design")
+    assert f"{pressed / free:.0f}" == more
+    (minutes,) = quoted(r"1,000 such designs are about (\d+) min of CPU "
+                        r"time")
+    assert f"{pressed * 1000 / 1e3 / 60:.0f}" == minutes
+    per, total = quoted(r"([\d.]+) ms a design of CPU time is (\d+) s for "
+                        r"1,000 designs on one core")
+    assert float(per) == free_sweep and f"{free_sweep:.0f}" == total
+    assert 1000 * free_sweep / 1e3 / 2 < 60          # the 60 s target
+    count, low, high = quoted(r"every one of the (\d+) preloaded designs "
+                              r"opens \(p_open 1; 95 % Wilson interval "
+                              r"\[([\d.]+), (\d)\]")
+    assert int(count) == designs
+    assert "preload 20 lb: sweep, 1 worker(s), progress bar (p_open 1)" in \
+        " ".join(result_lines("bench_chatter_sweep"))
+    interval = wilson_interval(designs, designs)
+    assert (f"{interval[0]:.3f}", f"{interval[1]:g}") == (low, high)
+
+
+def test_the_contact_dynamics_counts_are_the_codes():
+    """'one fused loop over the 48 modes' (three members of N = 16),
+    '-fopenmp-simd', '64 steps kept': the chatter build and the stepper's
+    parameter."""
+    (modes,) = quoted(r"Each step is one fused loop over the (\d+) modes")
+    assert int(modes) == 3 * 16
+    (kept,) = quoted(r"the largest-gap searches wait for the end of the "
+                     r"run \((\d+) steps kept\)")
+    state = (ROOT / "fortran" / "chatter" / "adaptive_state.f90").read_text()
+    assert f"integer, parameter :: max_waiting = {kept}" in state
+    quoted(r"compiled with `-fopenmp-simd`")
+    build = (ROOT / "fortran" / "chatter" / "meson.build").read_text()
+    assert "'-fopenmp-simd'" in build
+
+
+def test_the_samples_cost_a_flight_step_each():
+    """'The 60,000 samples cost one flight step each (the default row
+    against the summary-only one)': simulate's default samples, and the
+    two rows' flight steps differ by that many, to within 5 %."""
+    import importlib
+    simulate_module = importlib.import_module("contactsep.chatter.simulate")
+    rows = table("bench_chatter")
+    (samples,) = quoted(r"The ([\d,]+) samples cost one flight step each")
+    samples = int(samples.replace(",", ""))
+    assert samples == simulate_module.DEFAULT_SAMPLES
+
+    def flight(row):
+        return int(re.search(r"flight_steps (\d+)", row[2]).group(1))
+
+    extra = flight(rows["hertz N=16 (default)"]) - \
+        flight(rows["hertz N=16, summary only"])
+    assert abs(extra / samples - 1) < 0.05

@@ -214,7 +214,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
 
 #: Beyond these a bare number was probably typed in another unit system:
 #: no metal is softer than 1e5 psi (lead: 2e6) or denser than 1 lb/in^3
-#: (osmium: 0.815), and a contact spring is not 40 in long.
+#: (osmium: 0.816), and a contact spring is not 40 in long.
 SOFTEST_PSI = 1e5
 DENSEST_LB_IN3 = 1.0
 LONGEST_IN = 40.0

@@ -1,0 +1,191 @@
+"""docs/model.md's remaining numbers (issue 30, item 8), beside
+test_docs_pages.py: the domain table's limits and what they are in
+other units (published material constants, pint), the round-off of a
+mode near a clamp (mpmath), the deck's alpha sensitivity (the restored
+reference), and the counts of tests the page describes (read from the
+tests themselves).  Each number is found by the sentence that quotes
+it; a reworded sentence fails."""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import re
+
+import numpy as np
+import pytest
+from test_docs_pages import NUMBER, printed, quoted
+
+import contactsep
+from conftest import ROOT, THESIS_DECKS
+from contactsep.model import compiled
+from contactsep.model import design as design_module
+
+pint = pytest.importorskip("pint")
+UNITS = pint.UnitRegistry()
+
+
+def test_the_domain_tables_limits_are_the_codes():
+    size = quoted("model.md", r"\| lengths, widths, thicknesses `L`, `b`, "
+                  r"`h` \| ([\d.e+-]+) to ([\d.e+-]+) in \| ([\d.]+) µm to "
+                  r"(\d+) ft:")
+    assert (float(size[0]), float(size[1])) == design_module.SIZE_RANGE
+    micro = (design_module.SIZE_RANGE[0] * UNITS.inch).to("um").magnitude
+    feet = (design_module.SIZE_RANGE[1] * UNITS.inch).to("ft").magnitude
+    assert f"{micro:.2g}" == size[2] and f"{round(feet, -1):.0f}" == size[3]
+    density = quoted("model.md", r"\| densities `gamma` \| ([\d.e+-]+) to "
+                     r"([\d.e+-]+) lb/in³ \| aerogel to (\d+) times osmium; "
+                     r"aluminium's (\d+) lb/ft³ typed as lb/in³ is refused")
+    low, high = design_module.DENSITY_RANGE
+    assert (float(density[0]), float(density[1])) == (low, high)
+    # osmium 22.59 g/cm^3, aluminium 2.70 g/cm^3 (CRC Handbook)
+    osmium = (22.59 * UNITS("g/cm^3")).to("lb/in^3").magnitude
+    assert f"{high / osmium:.0f}" == density[2]
+    aluminium = (2.70 * UNITS("g/cm^3")).to("lb/ft^3").magnitude
+    assert f"{round(aluminium, -1):.0f}" == density[3] and float(density[3]) > high
+    modulus = quoted("model.md", r"\| moduli `E` \| ([\d.e+-]+) to "
+                     r"([\d.e+-]+) psi \| the softest rubber to (\d+) times "
+                     r"diamond")
+    assert (float(modulus[0]), float(modulus[1])) == \
+        design_module.MODULUS_RANGE
+    # diamond's Young's modulus: 1050-1220 GPa in the literature
+    top = (design_module.MODULUS_RANGE[1] * UNITS.psi).to("GPa").magnitude
+    assert top / 1220 <= float(modulus[2]) <= top / 1050
+    (ys,) = quoted("model.md", r"\| `ys` \| ([\d.e+-]+) L1 ≤ \\\|ys\\\| ≤ L1")
+    assert (float(ys), 1.0) == design_module.DEFLECTION_RANGE
+    (clear,) = quoted("model.md", r"at least ([\d.]+) L from a clamped end")
+    assert float(clear) == design_module.SUPPORT_CLEARANCE
+
+
+def test_a_mode_near_a_clamp_against_mpmath():
+    """'3e-11 at the limit, measured against mpmath': the compiled
+    mode values at SUPPORT_CLEARANCE from each clamped end (every end
+    condition with a clamp, N = 32) against 120-digit mpmath."""
+    pytest.importorskip("mpmath")
+    spec = importlib.util.spec_from_file_location(
+        "mpmath_modes", ROOT / "tests" / "model" /
+        "test_model_compiled_cases.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    _mp_modes = module._mp_modes      # 120-digit roots and mode values
+    (claim,) = quoted("model.md", rf"1e-16/\(x/L\)² relative round-off "
+                      rf"\({NUMBER} at the limit, measured against mpmath\)")
+    clear = design_module.SUPPORT_CLEARANCE
+    worst = 0.0
+    for end in (1, 2, 3):             # clamped-free, -clamped, -pinned
+        xi = [clear, 1.0 - clear] if end == 2 else [clear]
+        _, want = _mp_modes(end, 32, xi)
+        _, got = compiled.mode_values(end, 32, xi)
+        worst = max(worst, float(np.max(np.abs(got - want) / np.abs(want))))
+    assert printed(worst, claim), (worst, claim)
+    assert worst < 1e-16 / clear**2        # the page's estimate bounds it
+
+
+def test_the_decks_alpha_moves_a3():
+    """'A_3 moves by ~4e-5 for a 5e-10 change of alpha_3': the restored
+    reference's closed form on a thesis deck, alpha_3 moved by 5e-10."""
+    from contactsep.restored import reference
+    moved, change = quoted("model.md", rf"A_3 moves by ~{NUMBER} for a "
+                           rf"{NUMBER} change of alpha_3")
+    ds = contactsep.replay(THESIS_DECKS[0], precision="double")[0].inputs
+    before = reference.initial_amplitudes(ds, "closed-form")[2]
+    alpha = np.array(ds.alpha, dtype=np.float64)
+    alpha[2] += float(change)
+    after = reference.initial_amplitudes(
+        dataclasses.replace(ds, alpha=type(ds.alpha)(alpha) if
+                            isinstance(ds.alpha, tuple) else alpha),
+        "closed-form")[2]
+    assert printed(abs(after / before - 1), moved)
+
+
+def test_the_extremes_tests_are_as_described():
+    """The counts docs/model.md gives of tests/model/test_model_extremes.py
+    are that file's."""
+    source = (ROOT / "tests" / "model" / "test_model_extremes.py") \
+        .read_text()
+    default, slow = quoted("model.md", r"within 1e-12 S on (\d+) random "
+                           r"designs in the default run and (\d+) in the "
+                           r"slow set")
+    assert f"random_cases({default}, seed=1" in source
+    assert re.search(rf"@pytest.mark.slow\s+def \w+\(\):\s+\"\"\"[^\"]*"
+                     rf"\"\"\"\s+design = random_cases\({slow}, ", source)
+    low, high = quoted("model.md", r"every end condition, contact points, "
+                       r"lengths, thicknesses, materials, N (\d+)–(\d+), τ "
+                       r"up to 1 s\)")
+    assert low == "1" and f"math.log({high}.49)" in source
+    assert "tau = np.exp(u(math.log(1e-3), 0.0))" in source   # to 1 s
+    n_low, n_high, taus = quoted("model.md", r"on the thesis design for "
+                                 r"N = (\d+)–(\d+) and τ = ([\d., and]+) s,")
+    ns = re.search(r"parametrize\(\"n\", \[([\d, ]+)\]\)", source).group(1)
+    ns = [int(n) for n in ns.split(",")]
+    assert (min(ns), max(ns)) == (int(n_low), int(n_high))
+    listed = [float(t) for t in re.split(r", | and ", taus.strip())]
+    written = re.search(r"parametrize\(\"tau\", \[([\d., ]+)\]\)",
+                        source).group(1)
+    assert listed == [float(t) for t in written.split(",")]
+
+
+def test_the_beam_and_energy_tests_are_as_described():
+    """'Romberg from 16, 32, 64 elements ... for four end conditions',
+    '30-digit mpmath', 'at N = 4 and 32 ... modal sums at N = 400': the
+    tests' own meshes, precision and parameters."""
+    from contactsep import beams
+    tests = ROOT / "tests"
+    coarse, middle, fine, ends = quoted(
+        "model.md", r"Romberg from (\d+), (\d+), (\d+) elements: first three "
+        r"modes to [\d.e-]+, six to [\d.e-]+, for (\w+) end conditions")
+    fe_beam = (tests / "shared" / "fe_beam.py").read_text()
+    assert f"def converged(end, count, elements={coarse}," in fe_beam
+    assert "for k in range(3)" in fe_beam              # n, 2n and 4n
+    assert [int(middle), int(fine)] == [2 * int(coarse), 4 * int(coarse)]
+    timoshenko = (tests / "shared" / "test_beams_timoshenko.py").read_text()
+    assert "@pytest.mark.parametrize(\"end\", beams.END_CONDITIONS)\n" \
+        "def test_frequencies_match_a_converged_finite_element_beam" in \
+        timoshenko
+    assert {"four": 4}[ends] == len(beams.END_CONDITIONS)
+    (digits,) = quoted("model.md", r"frequency equation in (\d+)-digit "
+                       r"mpmath")
+    assert f"mpmath.mp.dps = {digits}" in timoshenko
+    low, high, big = quoted("model.md", r"default never does on the family "
+                            r"at N = (\d+) and (\d+), and the bound's "
+                            r"flexibilities against the modal sums at "
+                            r"N = (\d+)\.")
+    numerics = (tests / "chatter" / "test_numerics.py").read_text()
+    assert f"@pytest.mark.parametrize(\"n\", [{low}, {high}])\n" \
+        "def test_the_default_lower_response_stays_within" in numerics
+    assert f"design.replace(n_modes={big})" in numerics
+
+
+def test_the_extremum_references_grid():
+    """'a grid of 1/40 of the shortest period': tests/extremum_reference.py's
+    POINTS_PER_PERIOD."""
+    (points,) = quoted("model.md", r"sign changes of y3' on a grid of "
+                       r"1/(\d+) of the shortest period")
+    source = (ROOT / "tests" / "extremum_reference.py").read_text()
+    assert f"\nPOINTS_PER_PERIOD = {points}\n" in source
+
+
+def test_the_mode_functions_test_is_as_described():
+    """'tested against 150-digit mpmath to N = 50': test_beams_general.py."""
+    digits, most = quoted("model.md", r"accurate to a few ulps for any j "
+                          r"\(tested against (\d+)-digit mpmath to N = "
+                          r"(\d+)\)")
+    source = (ROOT / "tests" / "shared" / "test_beams_general.py") \
+        .read_text()
+    assert f"with mpmath.workdps({digits}):" in source
+    js = re.search(r"parametrize\(\"j\", \[([\d, ]+)\]\)\n"
+                   r"def test_eigenvalue_and_mode_against_mpmath",
+                   source).group(1)
+    assert max(int(j) for j in js.split(",")) == int(most)
+
+
+def test_the_evaluate_pieces_are_the_codes():
+    """'pieces of about 0.5 s ... (N ≥ 200 or τ ≥ 1 s)': evaluate's
+    PIECE_S, COSTLY_MODES and COSTLY_TAU_S."""
+    evaluate = importlib.import_module("contactsep.model.evaluate")
+    piece, modes, tau = quoted("model.md", r"`evaluate` runs a large batch "
+                               r"in pieces of about ([\d.]+) s of compiled "
+                               r"work .*? \(N ≥ (\d+) or τ ≥ ([\d.]+) s\)")
+    assert float(piece) == evaluate.PIECE_S
+    assert int(modes) == evaluate.COSTLY_MODES
+    assert float(tau) == evaluate.COSTLY_TAU_S

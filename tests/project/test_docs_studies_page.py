@@ -1,0 +1,137 @@
+"""docs/studies.md's remaining numbers (issue 30, item 8), beside
+test_docs_pages.py: the bytes a resumable sweep keeps a design, the
+failed-designs message of the page's command, the Dask chunking's
+constants, osmium's density, and the Newton band claim's source.  Each
+number is found by the sentence that quotes it; a reworded sentence
+fails."""
+
+from __future__ import annotations
+
+import inspect
+import re
+
+import pytest
+from test_docs_pages import NUMBER, page, printed, quoted
+
+from contactsep.cli import main as cli_main
+
+
+def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
+                                                         monkeypatch):
+    """'~44 bytes a design for an eq23 sweep of one varied field': the
+    chunk files of such a sweep, kept (the store's removal at the end
+    switched off), over its designs."""
+    from contactsep.studies import resume
+    (claim,) = quoted("studies.md", r"in binary \(~(\d+) bytes a design "
+                      r"for an eq23 sweep of one varied field\)")
+    monkeypatch.setattr(resume.ChunkStore, "remove", lambda self: None)
+    out = tmp_path / "out.csv"
+    designs = 50_000
+    assert cli_main(["sweep", "--vary", f"d=0.1:1:{designs}", "--csv",
+                     str(out), "--resume", "--progress", "never"]) == 0
+    chunks = list((tmp_path / ".out.csv.resume").glob("*.npz"))
+    assert chunks
+    per_design = sum(c.stat().st_size for c in chunks) / designs
+    assert printed(per_design, claim), per_design
+
+
+def test_the_failed_designs_message_is_the_commands(capsys):
+    """The one-line warning the page quotes is what its command prints."""
+    sample, samples, failed, total, invalid = quoted(
+        "studies.md", r"named in one line \(`--sample '([^']+)' --samples "
+        r"(\d+)`: `contactsep: warning: ([\d,]+) of ([\d,]+) designs failed "
+        r"\(([\d,]+) invalid input\); ...`\)")
+    assert cli_main(["sweep", "--sample", sample, "--samples", samples,
+                     "--progress", "never"]) == 0
+    err = capsys.readouterr().err
+    assert (f"contactsep: warning: {failed} of {total} designs failed "
+            f"({invalid} invalid input); ") in err, err
+
+
+def test_the_dask_chunking_is_the_codes():
+    from contactsep.studies import chunks, runner
+    a_worker, smallest = quoted(
+        "studies.md", r"every worker gets at least (\d+) of what is left "
+        r"\(down to ([\d.]+) s of work a chunk\)")
+    assert int(a_worker) == chunks.CHUNKS_PER_WORKER
+    assert float(smallest) == chunks.MIN_CHUNK_S
+    quoted("studies.md", r"twice as many chunks as the cluster has "
+           r"threads, plus two, are in flight")
+    assert "2 * bounds.workers + 2" in inspect.getsource(runner)
+
+
+def test_osmiums_density():
+    """'osmium is 0.816' lb/in^3: 22.59 g/cm^3 (CRC Handbook)."""
+    pint = pytest.importorskip("pint")
+    (claim,) = quoted("studies.md", rf"osmium is {NUMBER}\)")
+    value = (22.59 * pint.UnitRegistry()("g/cm^3")).to("lb/in^3").magnitude
+    assert printed(value, claim), value
+
+
+def test_the_newton_band_claim_is_chatter_mds():
+    """studies.md quotes docs/chatter.md's tolerance-band convergence
+    (whose table is benchmarks/chatter_convergence.py band's run): the
+    same 1 % at the default step and the same ±0.5 % band."""
+    within, band = quoted("studies.md", r"converged to (\d+) % at the "
+                          r"default step for L2 within ±([\d.]+) %: "
+                          r"docs/chatter.md, \"The Newton open time over a "
+                          r"tolerance band\"")
+    chatter = page("chatter.md")
+    assert re.search(rf"The default 5e-8 s is within {within} % for every "
+                     rf"thesis separator", chatter)
+    assert re.search(rf"uniform within ±{re.escape(band)} %", chatter)
+
+
+def _first_mode_share(n_modes):
+    """Conclusion 8's first-mode share over its x3/L3 grid, from eq. 23's
+    c3_j (the study's formula, without its costly maxima count)."""
+    import numpy as np
+
+    from contactsep.model import evaluate, thesis_design
+    from contactsep.studies import mode_share
+    base = thesis_design(n_modes=n_modes)
+    c3 = np.nan_to_num(evaluate(base.replace(
+        x3=mode_share.RATIOS * float(base.L3))).c3)
+    return c3[:, 0] ** 2 / np.sum(c3 ** 2, axis=1)
+
+
+def test_conclusion_8s_share_converges_from_the_quoted_n():
+    """'converged to 1e-4 from N = 16 on': against N = 256, relative, and
+    not yet at half that N."""
+    import numpy as np
+    (first,) = quoted("studies.md", r"The share is converged to 1e-4 from "
+                      r"N = (\d+) on \(N = 32 against 64\)")
+    limit = _first_mode_share(256)
+
+    def off(n):
+        return float(np.max(np.abs(_first_mode_share(n) / limit - 1)))
+
+    assert all(off(n) < 1e-4 for n in (int(first), 2 * int(first), 64))
+    assert off(int(first) // 2) > 1e-4
+
+
+@pytest.mark.slow
+def test_conclusion_8s_counts_at_one_and_twenty_percent(monkeypatch):
+    """'at 1 % prominence the count at x3/L3 = 0.5 grows 56, 153, 290,
+    361 at N = 8, 16, 32, 64'; at 20 %, x3/L3 = 0.67: 1 and 2 at N = 32
+    and 64 (the study itself at each N; N = 64 takes minutes)."""
+    import numpy as np
+
+    from contactsep.studies import mode_share
+    claims = quoted("studies.md", r"at 1 % prominence the count at x3/L3 = "
+                    r"0.5 grows (\d+), (\d+), (\d+), (\d+) at N = 8, 16, 32, "
+                    r"64\); at 20 % prominence")
+    steps = quoted("studies.md", r"between N = 32 and 64 \(x3/L3 = 0.67: "
+                   r"(\d+) and (\d+)\)")
+    at = {r: int(np.argmin(np.abs(mode_share.RATIOS - r)))
+          for r in (0.5, 0.67)}
+    assert mode_share.PROMINENCE == 0.2
+    counts = {}
+    for prominence in (0.01, 0.2):
+        monkeypatch.setattr(mode_share, "PROMINENCE", prominence)
+        for n in (8, 16, 32, 64) if prominence == 0.01 else (32, 64):
+            counts[prominence, n] = mode_share.conclusion8(
+                n_modes=n)["n_maxima"]
+    assert [str(counts[0.01, n][at[0.5]]) for n in (8, 16, 32, 64)] == \
+        list(claims)
+    assert [str(counts[0.2, n][at[0.67]]) for n in (32, 64)] == list(steps)
