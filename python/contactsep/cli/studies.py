@@ -162,8 +162,15 @@ def register(commands: argparse._SubParsersAction) -> None:
         "varied or sampled)")
     for name, metavar, default in (("preload", "LB", "lb; default 0"),
                                    ("min_open", "S", "s; default 1e-05"),
-                                   ("damping", "{none,flores}",
+                                   ("damping",
+                                    "{none,flores,hunt-crossley}",
                                     "default none"),
+                                   ("alpha", "S_PER_IN", "s/in; with "
+                                    "--damping hunt-crossley"),
+                                   ("contact", "{hertz,thornton}",
+                                    "default hertz"),
+                                   ("yield_pressure", "PSI", "psi; with "
+                                    "--contact thornton"),
                                    ("dt", "S", "s; default: each "
                                     "design's own; varied, not sampled"),
                                    ("t_end", "S", "s; default: each "
@@ -422,6 +429,9 @@ def _settings(args: argparse.Namespace) -> dict:
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
+             "alpha": (args.alpha, "--alpha"),
+             "contact": (args.contact, "--contact"),
+             "yield_pressure": (args.yield_pressure, "--yield-pressure"),
              "dt": (args.dt, "--dt"),
              "t_end": (args.t_end, "--t-end"),
              "static_correction": (args.static_correction,
