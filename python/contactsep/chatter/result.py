@@ -129,6 +129,10 @@ class ChatterResult:
     #: (the contacts' stored energy at the end); ``energy_ratio`` +
     #: dissipated / initial = 1 to the stepper's energy error.
     energy_book: dict = field(default_factory=dict)
+    #: Hertz runs: the stacked modal state at the window's end, ``q``
+    #: and ``v`` (upper contact's modes, separator's, lower contact's;
+    #: not in the JSON).
+    end_state: dict = field(default_factory=dict)
 
     def __repr__(self) -> str:
         first = ("never" if math.isnan(self.first_circuit_open_s)

@@ -517,6 +517,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, status=status, dt_source=dt_source,
         energy_book=laws.energy_book(run, stack, members(design)),
+        end_state={"q": run.book["q"], "v": run.book["v"]}
+        if run.book else {},
         numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
                   choice.omega, "p_max_rad_s": choice.p_max,
                   "contact_force_bound_lb": choice.force_lb,

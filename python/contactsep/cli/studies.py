@@ -57,7 +57,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="Evaluate one of the thesis's studies on the general "
                     "model and print it as a labelled table. NAME is one "
                     f"of {', '.join(STUDIES)}, chatter, preload, "
-                    "conclusion3, conclusion5, conclusion6, conclusion7, "
+                    "conclusion3, conclusion4, conclusion5, conclusion6, "
+                    "conclusion7, "
                     "or all (every study of eq. 23; with --out). "
                     "Design options change the thesis rig the study starts "
                     "from; a study refuses those it sets itself (fig5 its "
@@ -70,7 +71,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "conclusions (restitution, separator thickness, "
                     "separator mass, contact point) for circuit opening "
                     f"(each: default --model hertz, --n-modes "
-                    f"{PRELOAD_MODES}). separator-fit (a minute) fits "
+                    f"{PRELOAD_MODES}). conclusion4 (10 s) reads the "
+                    "apparent coefficient of restitution of three contact "
+                    "laws against impact velocity and separator "
+                    "thickness (--alpha, --yield-pressure, "
+                    "--reading-time). separator-fit (a minute) fits "
                     "Timoshenko separators with elastic clamps and a "
                     "sensor mass to Table II (no design options).",
         **examples("contactsep study fig6 --n-modes 16 --restitution 0.5 "
@@ -97,6 +102,18 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="preload only: the Hertz contact's damping "
                             "(default none: elastic; flores: calibrated "
                             "to e)")
+    study.add_argument("--alpha", type=finite("s/in"), default=None,
+                       metavar="S_PER_IN",
+                       help="conclusion4 only: Hunt-Crossley's constant "
+                            "(default 0.0676 s/in)")
+    study.add_argument("--yield-pressure", type=finite("psi"), default=None,
+                       metavar="PSI",
+                       help="conclusion4 only: Thornton's yield pressure "
+                            "(default 45000 psi)")
+    study.add_argument("--reading-time", type=finite("s"), default=None,
+                       metavar="S",
+                       help="conclusion4 only: when e_apparent is read "
+                            "after the first impact (default 0.02 s)")
     study.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
                        help=f"preload and conclusionN only: local "
@@ -246,6 +263,17 @@ def _compute(name: str, args, overrides: dict):
     if name != "preload" and args.damping:
         raise InputError(f"--damping is study preload's option, not "
                          f"study {name}'s (conclusion3 uses flores)")
+    own_options = {"--alpha": args.alpha,
+                   "--yield-pressure": args.yield_pressure,
+                   "--reading-time": args.reading_time}
+    if name != "conclusion4" and any(v is not None
+                                     for v in own_options.values()):
+        given = ", ".join(k for k, v in own_options.items()
+                          if v is not None)
+        raise InputError(f"{given}: options of study conclusion4, not "
+                         f"study {name}'s")
+    if name == "conclusion4":
+        return _conclusion4(args, overrides)
     if name in searches:
         return _search_study(name, args, overrides)
     if name == "separator-fit":
@@ -268,6 +296,27 @@ def _compute(name: str, args, overrides: dict):
         with _bar(args, 3 * len(THICKNESSES) * len(MODES)) as bar:
             return chatter_table(progress=bar)
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
+
+
+def _conclusion4(args, overrides: dict):
+    """study conclusion4: e_apparent of three contact laws."""
+    from contactsep.studies import restitution
+    overrides = dict(overrides)
+    n_modes = overrides.pop("n_modes", restitution.MODES)
+    if overrides or args.backend:
+        raise InputError("study conclusion4 takes no design options but "
+                         "--n-modes: it runs the thesis rig over its "
+                         "separators and release heights")
+    settings = {"alpha": args.alpha, "yield_pressure": args.yield_pressure,
+                "reading_time": args.reading_time}
+    settings = {k: v for k, v in settings.items() if v is not None}
+    try:
+        with _bar(args, 3 * restitution.ROWS) as bar:
+            return restitution.conclusion4(n_modes=n_modes, progress=bar,
+                                           **settings)
+    except ValueError as error:
+        name, _, rest = str(error).partition(":")
+        raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
 
 
 def _search_study(name: str, args, overrides: dict):
@@ -354,10 +403,10 @@ def run_study(args: argparse.Namespace) -> int:
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS)
     if args.name not in (*STUDIES, "chatter", "separator-fit", *searches,
-                         "all"):
+                         "conclusion4", "all"):
         raise InputError(f"study {args.name!r}: expected one of "
                          f"{', '.join(STUDIES)}, chatter, separator-fit, "
-                         f"{', '.join(searches)} or all")
+                         f"{', '.join(searches)}, conclusion4 or all")
     if args.name == "all" and (not args.out or args.csv or args.png):
         raise InputError("study all writes with --out DIR (not --csv "
                          "or --png)")
