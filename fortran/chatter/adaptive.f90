@@ -337,7 +337,7 @@ contains
     run%series = any(cmat /= 0.0_wp)
     if (.not. run%series) return
     stiff = run%stiffness
-    call series_forces(run%k, stiff, cmat, run%gap, force)
+    call series_forces(run%k, stiff, cmat, run%gap, force, run%law%linear)
     ! the forces at the start (a preload's): sampled_gaps's, and the
     ! physical gaps are the largest so far
     run%force(:) = force

@@ -75,11 +75,11 @@ contains
     total = run%e_modal
     if (run%series) then
       total = total + series_energy(run%k, run%stiffness, run%cmat, &
-          run%gap)
+          run%gap, run%law%linear)
       return
     end if
     do j = 1, run%k
-      if (run%law%plastic) then
+      if (run%law%plastic .or. run%law%linear) then
         total = total + law_energy(run%law, j, -run%gap(j))
       else if (run%gap(j) < 0.0_wp) then
         total = total + 0.4_wp * run%stiffness * run%gap(j)**2 &

@@ -161,7 +161,8 @@ contains
               * dot_product(run%ht(:, j), run%v), 0.0_wp)
         end do
       end if
-      call series_forces(run%k, stiff, run%cmat, run%gap, run%force)
+      call series_forces(run%k, stiff, run%cmat, run%gap, run%force, &
+          run%law%linear)
       return
     end if
     do j = 1, run%k
@@ -185,7 +186,8 @@ contains
 
     if (run%series) then
       stiff = run%stiffness
-      call series_forces(run%k, stiff, run%cmat, run%gap, force)
+      call series_forces(run%k, stiff, run%cmat, run%gap, force, &
+          run%law%linear)
     else
       do j = 1, run%k
         force(j) = law_elastic_force(run%law, j, -run%gap(j))

@@ -92,7 +92,7 @@ contains
   !> radius R (in)) and the energy book: the final state q_end, v_end,
   !> and book = dissipated energy, the contacts' stored energy (in lb).
   subroutine run_hertz_book(n, k, m, p, h, g0, cmat, q0, v0, stiffness, &
-      chi, pressure, e_star, radius, dt, steps, stride, samples, &
+      chi, pressure, e_star, radius, line, dt, steps, stride, samples, &
       energy_bound, t_out, g_out, e_out, p_out, first, q_end, v_end, &
       book, status)
     !f2py threadsafe
@@ -100,6 +100,8 @@ contains
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
     real(wp), intent(in) :: cmat(k, k)
     real(wp), intent(in) :: stiffness, chi, pressure, e_star, radius
+    !> 1: a line contact (cylindrical button, F = k delta), 0: a sphere.
+    integer, intent(in) :: line
     real(wp), intent(in) :: dt, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), p_out(k, samples)
@@ -109,7 +111,8 @@ contains
 
     q_end = q0
     v_end = v0
-    call law_setup(law, stiffness, chi, pressure, e_star, radius)
+    call law_setup(law, stiffness, chi, pressure, e_star, radius, &
+        line /= 0)
     call hertz(n, k, m, p, h, g0, cmat, q_end, v_end, law, dt, steps, &
         stride, samples, t_out, g_out, e_out, p_out, first, energy_bound, &
         status, book)
@@ -147,7 +150,7 @@ contains
   !> run_hertz_adaptive with every law of the Hertz family and the
   !> energy book (as run_hertz_book).
   subroutine run_hertz_adaptive_book(n, k, m, p, h, g0, cmat, q0, v0, &
-      stiffness, chi, pressure, e_star, radius, dt, steps, stride, &
+      stiffness, chi, pressure, e_star, radius, line, dt, steps, stride, &
       samples, threshold, n_moving, energy_bound, max_cross, t_out, &
       g_out, e_out, first, crossings, n_cross, gap_max, counts, q_end, &
       v_end, book, status)
@@ -157,6 +160,8 @@ contains
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
     real(wp), intent(in) :: cmat(k, k)
     real(wp), intent(in) :: stiffness, chi, pressure, e_star, radius
+    !> 1: a line contact (cylindrical button, F = k delta), 0: a sphere.
+    integer, intent(in) :: line
     real(wp), intent(in) :: dt, threshold, energy_bound
     real(wp), intent(out) :: t_out(samples), g_out(k, samples)
     real(wp), intent(out) :: e_out(samples), first(2)
@@ -167,7 +172,8 @@ contains
 
     q_end = q0
     v_end = v0
-    call law_setup(law, stiffness, chi, pressure, e_star, radius)
+    call law_setup(law, stiffness, chi, pressure, e_star, radius, &
+        line /= 0)
     call adaptive(law_hertz, n, k, m, p, h, g0, cmat, q_end, v_end, &
         stiffness, chi, 0.0_wp, dt, steps, stride, samples, threshold, &
         n_moving, energy_bound, max_cross, t_out, g_out, e_out, first, &

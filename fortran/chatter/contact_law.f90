@@ -13,6 +13,9 @@
 !>   offset delta_p = delta_m - a_m^2 / R_p: F_e = (4/3) E* sqrt(R_p)
 !>   (delta - delta_p)^{3/2}, 0 below delta_p.
 !>
+!> * a cylindrical button (line contact): F_e = k delta, k = (pi/4) E* L
+!>   (law%linear; elastic only).
+!>
 !> Either takes the damping factor of Hunt and Crossley (and Flores's
 !> calibration of it): F = max(F_e (1 + chi delta'), 0).  The elastic
 !> part stores (2/5) F_e (delta - delta_p) (the curve it unloads on);
@@ -35,6 +38,8 @@ module chatter_contact_law
   type :: contact_law
     !> Hertz constant k (lb/in^1.5) and damping chi (s/in).
     real(wp) :: stiffness = 0.0_wp, chi = 0.0_wp
+    !> A line contact (cylindrical button): F_e = k delta (k in lb/in).
+    logical :: linear = .false.
     !> Thornton: effective modulus E* (psi), radius R (in), yield
     !> pressure p_y (psi), and what follows from them.
     logical :: plastic = .false.
@@ -53,13 +58,18 @@ contains
 
   !> A law: Hertz constant k, damping chi; yield pressure p_y > 0 makes
   !> it Thornton's with E* and R (k must be (4/3) E* sqrt(R)).
-  pure subroutine law_setup(law, stiffness, chi, pressure, e_star, radius)
+  pure subroutine law_setup(law, stiffness, chi, pressure, e_star, &
+      radius, linear)
     type(contact_law), intent(out) :: law
     real(wp), intent(in) :: stiffness, chi, pressure, e_star, radius
+    !> A line contact (F_e = k delta); not with a yield pressure.
+    logical, intent(in), optional :: linear
     real(wp) :: contact_radius
 
     law%stiffness = stiffness
     law%chi = chi
+    if (present(linear)) law%linear = linear
+    if (law%linear) return
     law%plastic = pressure > 0.0_wp
     if (.not. law%plastic) return
     law%e_star = e_star
@@ -77,7 +87,9 @@ contains
     real(wp), intent(in) :: depth
     real(wp) :: force
 
-    if (.not. law%plastic .or. depth <= law%yield_depth) then
+    if (law%linear) then
+      force = law%stiffness * depth
+    else if (.not. law%plastic .or. depth <= law%yield_depth) then
       force = law%stiffness * depth * sqrt(depth)
     else
       force = law%yield_force + law%slope * (depth - law%yield_depth)
@@ -127,6 +139,10 @@ contains
 
     total = 0.0_wp
     if (.not. depth > 0.0_wp) return
+    if (law%linear) then
+      total = 0.5_wp * law%stiffness * depth**2
+      return
+    end if
     if (.not. law%plastic) then
       ! Hertz's (2/5) k delta^{5/2}, as the steppers always wrote it
       total = 0.4_wp * law%stiffness * depth**2.5_wp

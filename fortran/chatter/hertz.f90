@@ -42,8 +42,9 @@ contains
   !> chatter_hertz_series): Flores's factor max(1 - chi u, 0), u = h v
   !> the rate of the modal gap, scales each element's stiffness.
   pure subroutine series_contact_forces(n, k, stiffness, chi, cmat, gap, &
-      ht, v, force)
+      ht, v, force, linear)
     integer, intent(in) :: n, k
+    logical, intent(in) :: linear
     real(wp), intent(in) :: stiffness, chi, cmat(k, k), gap(k), ht(n, k)
     real(wp), intent(in) :: v(n)
     real(wp), intent(out) :: force(k)
@@ -61,7 +62,7 @@ contains
             * dot_product(ht(:, i), v), 0.0_wp)
       end do
     end if
-    call series_forces(k, stiff, cmat, gap, force)
+    call series_forces(k, stiff, cmat, gap, force, linear)
   end subroutine series_contact_forces
 
   !> Integrate `steps` steps of dt; sample every `stride` steps.
@@ -194,7 +195,7 @@ contains
 
       if (series) then
         call series_contact_forces(n, k, law%stiffness, law%chi, cmat, &
-            gap, ht, v, f)
+            gap, ht, v, f, law%linear)
       else
         call contact_forces(n, k, law, gap, ht, v, f)
       end if
@@ -209,7 +210,7 @@ contains
 
       if (series) then
         stiff = law%stiffness
-        call series_forces(k, stiff, cmat, gap, f)
+        call series_forces(k, stiff, cmat, gap, f, law%linear)
       else
         do j = 1, k
           f(j) = law_elastic_force(law, j, -gap(j))
@@ -261,7 +262,7 @@ contains
       g = gaps()
       if (series) then
         total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
-            + series_energy(k, law%stiffness, cmat, g)
+            + series_energy(k, law%stiffness, cmat, g, law%linear)
       else
         total = 0.5_wp * sum(m * (v**2 + (p * q)**2))
         do j = 1, k

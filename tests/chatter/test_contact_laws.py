@@ -44,7 +44,8 @@ def free_mass_rebound(law: HertzLaw, how: str, speed=SPEED, mass=MASS,
     h, g0, c = np.ones((1, 1)), np.zeros(1), np.zeros((1, 1))
     q0, v0 = np.array([1e-7]), np.array([-speed])
     steps = int(round(t_end / dt))
-    args = (law.k, law.chi, law.yield_pressure, law.e_star, law.radius)
+    args = (law.k, law.chi, law.yield_pressure, law.e_star, law.radius,
+            int(law.linear))
     if how == "fixed":
         t, g, e, _, _, q, v, book, status = api().run_hertz_book(
             m, p, h, g0, c, q0, v0, *args, dt, steps, steps, 2, 1e300)
@@ -238,3 +239,70 @@ def test_a_law_that_cannot_run_is_refused_in_one_line(kwargs, name):
         simulate(contactsep.thesis_design(n_modes=4), t_end=0.03, **kwargs)
     assert str(caught.value).startswith(f"{name}:")
     assert "\n" not in str(caught.value)
+
+
+def test_a_cylindrical_button_is_a_linear_spring_on_a_free_mass():
+    # F = k delta: the contact is half a period of sqrt(k/m); at a
+    # quarter of it the mass stops at delta = V sqrt(m/k), and it leaves
+    # at V (the first episode's impulse 2 m V)
+    law = HertzLaw.for_materials(E, NU, RADIUS, button="cylinder")
+    assert law.k == pytest.approx(math.pi / 4.0 * law.e_star * 2 * RADIUS)
+    omega = math.sqrt(law.k / MASS)
+    gap0, dt = 1e-7, 1e-10
+    touch = gap0 / SPEED
+    m, p = np.array([MASS]), np.array([1e-3])
+    h, g0, c = np.ones((1, 1)), np.zeros(1), np.zeros((1, 1))
+    q0, v0 = np.array([gap0]), np.array([-SPEED])
+    args = (law.k, 0.0, 0.0, law.e_star, law.radius, 1)
+    steps = int(round((touch + 0.5 * math.pi / omega) / dt))
+    *_, q, v, book, status = api().run_hertz_book(
+        m, p, h, g0, c, q0, v0, *args, dt, steps, steps, 2, 1e300)
+    assert status == 0
+    assert -q[0] == pytest.approx(SPEED / omega, rel=1e-4)
+    assert abs(v[0]) < 1e-3 * SPEED
+    steps = int(round((touch + 2.0 * math.pi / omega) / dt))
+    _, _, e, _, first, q, v, book, status = api().run_hertz_book(
+        m, p, h, g0, c, q0, v0, *args, dt, steps, steps, 2, 1e300)
+    assert v[0] == pytest.approx(SPEED, rel=1e-8)
+    assert first[1] == pytest.approx(2.0 * MASS * SPEED, rel=1e-4)
+    assert abs((e[-1] + book[0]) / e[0] - 1.0) < 1e-9
+
+
+def test_the_cylinder_runs_in_both_steppers_and_the_twin():
+    import contactsep
+    design = contactsep.thesis_design(n_modes=4)
+    runs = [simulate(design, button="cylinder", t_end=0.025, dt=2e-8,
+                     stepper=stepper, backend=backend, preload=0.2,
+                     single_impulse=False)
+            for stepper, backend in (("adaptive", "compiled"),
+                                     ("fixed", "compiled"))]
+    for r in runs:
+        assert r.status == 0 and abs(r.energy_ratio - 1.0) < 1e-6
+    assert runs[0].first_impulse_lb_s == pytest.approx(
+        runs[1].first_impulse_lb_s, rel=1e-6)
+    # the twin, plain and with the series correction's linear elements
+    from contactsep.chatter import runners
+    from contactsep.chatter.simulate import _system
+    law = HertzLaw.for_materials(float(design.E1), button="cylinder")
+    for correct in (False, True):
+        system = _system(design, 0.2, law, correct)
+        a = runners.hertz_fixed(system, law, 2e-8, 2000, 100, 1e-6)
+        b = runners.hertz_fixed(system, law, 2e-8, 2000, 100, 1e-6,
+                                backend="numpy")
+        assert np.allclose(a.gaps, b.gaps, rtol=0, atol=1e-12)
+        assert a.book["end"] == pytest.approx(b.book["end"], rel=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"button": "cone"}, "button"),
+    ({"button_length": 0.5}, "button_length"),
+    ({"button": "cylinder", "button_length": -1.0}, "button_length"),
+    ({"button": "cylinder", "contact": "thornton", "yield_pressure": 4e4,
+      "static_correction": False}, "button"),
+    ({"model": "newton", "button": "cylinder"}, "button"),
+])
+def test_a_button_that_cannot_run_is_refused_in_one_line(kwargs, name):
+    import contactsep
+    with pytest.raises(ChatterError) as caught:
+        simulate(contactsep.thesis_design(n_modes=4), t_end=0.03, **kwargs)
+    assert str(caught.value).startswith(f"{name}:")

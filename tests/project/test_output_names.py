@@ -36,7 +36,7 @@ DIMENSIONLESS = {
     "end1", "end2", "end3", "impact_velocity", "lower_response",
     "lc_reading", "release", "data_set", "title", "event", "curve",
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
-    "contact", "law", "e_apparent",
+    "contact", "law", "e_apparent", "button",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
     "verify_n_modes", "verify_status"}
 #: Structures: lists of [start, end] intervals (s) or confidence

@@ -47,15 +47,24 @@ class HertzLaw:
     yield_pressure: float = 0.0
     e_star: float = 0.0
     radius: float = 0.0
+    #: A line contact (a cylindrical button): F_e = k delta with k =
+    #: (pi/4) E* L (lb/in), L the cylinder's length.
+    linear: bool = False
 
     @classmethod
     def for_materials(cls, modulus, nu=0.33, radius=0.125, *, e=None,
-                      v_ref=None, alpha=None, yield_pressure=None):
+                      v_ref=None, alpha=None, yield_pressure=None,
+                      button="sphere", length=None):
         """k from the materials; chi from e and V_ref when both given
         (Flores), or alpha (Hunt-Crossley, s/in); Thornton's law with a
-        yield pressure (psi)."""
+        yield pressure (psi); a cylindrical ``button`` of ``length`` (in;
+        default its diameter 2R) a line contact."""
         e_star = modulus / (2.0 * (1.0 - nu**2))
         k = 4.0 / 3.0 * e_star * np.sqrt(radius)
+        linear = button == "cylinder"
+        if linear:
+            k = math.pi / 4.0 * e_star * (2.0 * radius if length is None
+                                          else length)
         chi = 0.0
         if e is not None and v_ref is not None:
             if not 0.0 < e <= 1.0 or not v_ref > 0.0:
@@ -65,8 +74,14 @@ class HertzLaw:
         if alpha is not None:
             chi = float(alpha)
         pressure = 0.0 if yield_pressure is None else float(yield_pressure)
-        return cls(k=k, chi=chi, yield_pressure=pressure,
-                   e_star=float(e_star), radius=float(radius))
+        return cls(k=float(k), chi=chi, yield_pressure=pressure,
+                   e_star=float(e_star), radius=float(radius),
+                   linear=linear)
+
+    @property
+    def exponent(self) -> float:
+        """n of F_e = k delta^n: 3/2 (sphere), 1 (cylinder)."""
+        return 1.0 if self.linear else 1.5
 
     @property
     def plastic(self) -> bool:
@@ -86,6 +101,8 @@ class HertzLaw:
         """The loading force (lb) at a new largest penetration (in)."""
         if depth <= 0.0:
             return 0.0
+        if self.linear:
+            return self.k * depth
         yield_depth = self.yield_depth
         if depth <= yield_depth:
             return self.k * depth**1.5
@@ -97,6 +114,8 @@ class HertzLaw:
         ``force`` (lb): the preloaded contact's static depth."""
         if force <= 0.0:
             return 0.0
+        if self.linear:
+            return force / self.k
         yield_depth = self.yield_depth
         if force <= self.k * yield_depth**1.5:
             return (force / self.k) ** (2.0 / 3.0)
@@ -107,12 +126,16 @@ class HertzLaw:
         """Contact force (lb) for gaps (in) and their rates (in/s) of the
         elastic law (Thornton's needs its memory: ContactMemory)."""
         delta = np.maximum(-gap, 0.0)
-        force = self.k * delta**1.5 * (1.0 + self.chi * (-gap_rate))
+        force = self.k * delta**self.exponent * (1.0 + self.chi
+                                                 * (-gap_rate))
         return np.where(delta > 0.0, np.maximum(force, 0.0), 0.0)
 
     def energy(self, gap):
-        """Elastic energy (2/5) k delta^{5/2} (in lb) of the elastic law."""
+        """Elastic energy k delta^{n+1} / (n + 1) (in lb) of the elastic
+        law ((2/5) k delta^{5/2} for a sphere)."""
         delta = np.maximum(-gap, 0.0)
+        if self.linear:
+            return 0.5 * self.k * delta**2
         return 0.4 * self.k * delta**2.5
 
 
@@ -177,7 +200,7 @@ class ContactMemory:
         if not depth > 0.0:
             return 0.0
         if not self.law.plastic:
-            return 0.4 * self.law.k * depth**2.5
+            return float(self.law.energy(-depth))
         offset = self.offset[c] if self.depth_max[c] > \
             self.law.yield_depth else 0.0
         return 0.4 * self.elastic_force(c, depth) * max(depth - offset,
@@ -212,7 +235,7 @@ def element_depth(a: float, b: float) -> float:
     return depth
 
 
-def series_forces(stiff, c_matrix, gap) -> np.ndarray:
+def series_forces(stiff, c_matrix, gap, linear=False) -> np.ndarray:
     """Forces (lb) of Hertz elements (stiffnesses ``stiff``, lb/in^1.5; 0:
     no force) in series with the flexibilities ``c_matrix`` (in/lb) at
     modal gaps ``gap`` (in): the minimiser over lambda >= 0 of
@@ -231,7 +254,11 @@ def series_forces(stiff, c_matrix, gap) -> np.ndarray:
             for j in range(k):
                 if j != i:
                     a -= float(c_matrix[i][j]) * force[j]
-            if a > 0.0 and stiff[i] > 0.0:
+            if a > 0.0 and stiff[i] > 0.0 and linear:
+                # a linear element (cylindrical button): a / (1 + c s)
+                force[i] = stiff[i] * a / (1.0 + float(c_matrix[i][i])
+                                           * stiff[i])
+            elif a > 0.0 and stiff[i] > 0.0:
                 depth = element_depth(a, float(c_matrix[i][i]) * stiff[i])
                 force[i] = stiff[i] * depth * math.sqrt(depth)
             else:
@@ -242,11 +269,14 @@ def series_forces(stiff, c_matrix, gap) -> np.ndarray:
     return np.array(force)
 
 
-def series_energy(stiffness: float, c_matrix, gap) -> float:
+def series_energy(stiffness: float, c_matrix, gap, linear=False) -> float:
     """The contacts' elastic energy (in lb) with the series springs:
-    sum (2/5) k delta^{5/2} + lambda^T C lambda / 2, undamped forces."""
-    force = series_forces([stiffness] * len(gap), c_matrix, gap)
+    sum (2/5) k delta^{5/2} (linear: k delta^2 / 2) + lambda^T C lambda
+    / 2, undamped forces."""
+    force = series_forces([stiffness] * len(gap), c_matrix, gap, linear)
     total = 0.5 * float(force @ (np.asarray(c_matrix) @ force))
+    if linear:
+        return total + 0.5 * float(force @ force) / stiffness
     for f in force:
         if f > 0.0:
             total += 0.4 * f * (f / stiffness) ** (2.0 / 3.0)

@@ -11,6 +11,8 @@ import numpy as np
 from contactsep.errors import InputError
 
 DAMPINGS = ("none", "flores", "hunt-crossley")
+#: Contact buttons: a sphere on a flat, a cylinder across it.
+BUTTONS = ("sphere", "cylinder")
 #: The Hertz family's elastic parts.
 CONTACTS = ("hertz", "thornton")
 
@@ -76,6 +78,32 @@ def check_law(model, damping, alpha, contact, yield_pressure,
                            "static_correction=False (--static-correction "
                            "off)")
     return alpha, yield_pressure
+
+
+def check_button(model, button, length, contact):
+    """Refuse a button that cannot run, in one line naming the
+    argument; returns the cylinder's length as a float (or None)."""
+    from contactsep.model.design import SIZE_RANGE
+    if button not in BUTTONS:
+        raise ChatterError(f"button: found {button!r}, expected one of "
+                           f"{', '.join(BUTTONS)}")
+    if button == "cylinder" and model != "hertz":
+        raise ChatterError(f"button: a cylinder is a Hertz-family law; "
+                           f"model {model} takes sphere")
+    if button == "cylinder" and contact == "thornton":
+        raise ChatterError("button: thornton's law is a sphere's (give "
+                           "button sphere)")
+    if length is None:
+        return None
+    length = real("button_length", length, "in")
+    if button != "cylinder":
+        raise ChatterError(f"button_length: found {length!r}, expected "
+                           f"none without button cylinder")
+    low, high = SIZE_RANGE
+    if not low <= length <= high:
+        raise ChatterError(f"button_length: found {length!r}, expected "
+                           f"{low:g} to {high:g} in")
+    return length
 
 
 def energy_book(run, stack, parts) -> dict:

@@ -95,11 +95,14 @@ def largest_speed(upper) -> float:
     return float(np.sum(np.abs(upper.x * upper.q0 * upper.p)))
 
 
-def design_step(members, hertz_k=None, preload=0.0) -> StepChoice:
+def design_step(members, hertz_k=None, preload=0.0,
+                linear=False) -> StepChoice:
     """The step (s) for the stacked members (upper, separator, lower):
     :data:`STEP_SAFETY` of 2/omega with omega bounded as in the module
     doc.  ``hertz_k`` (lb/in^1.5) is the Hertz constant; None (Newton's
-    rigid law) bounds omega by the modes alone."""
+    rigid law) bounds omega by the modes alone; with ``linear`` (a
+    cylindrical button) it is a linear spring's k (lb/in), the
+    stiffness itself."""
     upper, sep, lower = members
     p_max = float(max(m.p.max() for m in members))
     force = stiffness = 0.0
@@ -109,9 +112,14 @@ def design_step(members, hertz_k=None, preload=0.0) -> StepChoice:
         first = upper.x[0]**2 / upper.mass + sep.x[0]**2 / sep.mass
         mass = 1.0 / first
         speed = largest_speed(upper)
-        depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
-        force = hertz_k * depth**1.5 + float(preload)
-        stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0 / 3.0)
+        if linear:
+            force = math.sqrt(mass * hertz_k) * speed + float(preload)
+            stiffness = hertz_k
+        else:
+            depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
+            force = hertz_k * depth**1.5 + float(preload)
+            stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0
+                                                                 / 3.0)
     trace = (_mobility(upper) + 2.0 * _mobility(sep) + _mobility(lower))
     omega = math.sqrt(p_max**2 + stiffness * trace)
     dt = STEP_SAFETY * 2.0 / omega

@@ -122,6 +122,9 @@ class ChatterResult:
     contact: str = "hertz"
     alpha_s_per_in: float | None = None
     yield_pressure_psi: float | None = None
+    #: The contact button ("sphere" or "cylinder") and its radius (in).
+    button: str = "sphere"
+    button_radius_in: float = 0.125
     #: The Hertz family's energy book (in lb; empty for Newton and
     #: appE): ``energy_initial_lbin``, ``energy_dissipated_contact_lbin``,
     #: ``energy_member1_lbin`` .. ``energy_member3_lbin`` (the vibration
@@ -156,6 +159,8 @@ class ChatterResult:
                 "contact": self.contact,
                 "alpha_s_per_in": self.alpha_s_per_in,
                 "yield_pressure_psi": self.yield_pressure_psi,
+                "button": self.button,
+                "button_radius_in": self.button_radius_in,
                 "stepper": self.stepper,
                 "static_correction": self.static_correction,
                 "open_threshold_in": self.open_threshold_in,

@@ -137,7 +137,7 @@ def _energy_bound(system, law=None) -> float:
     if law is not None:
         gap0 = s.h @ s.q0 + s.g0
         if np.any(s.c != 0.0):
-            energy0 += series_energy(law.k, s.c, gap0)
+            energy0 += series_energy(law.k, s.c, gap0, law.linear)
         else:
             memory = ContactMemory(law, len(gap0))
             for j, gap in enumerate(gap0):
@@ -219,8 +219,9 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     (t, g, energy, first, crossings, n_cross, gap_max, counts, q, v, book,
      status) = _with_room(lambda room: _api().run_hertz_adaptive_book(
          s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi,
-         law.yield_pressure, law.e_star, law.radius, dt, steps, stride,
-         samples, threshold, s.n_upper, bound, room), steps * s.m.size)
+         law.yield_pressure, law.e_star, law.radius, int(law.linear), dt,
+         steps, stride, samples, threshold, s.n_upper, bound, room),
+        steps * s.m.size)
     status = _checked(status)
     t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
@@ -306,8 +307,8 @@ def hertz_fixed(system, law, dt, steps, stride, threshold,
         t, g, energy, _, first, q, v, book, status = _stoppable(
             steps * s.m.size, lambda: _api().run_hertz_book(
                 s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi,
-                law.yield_pressure, law.e_star, law.radius, dt, steps,
-                stride, samples, bound))
+                law.yield_pressure, law.e_star, law.radius,
+                int(law.linear), dt, steps, stride, samples, bound))
         g = g.T
         book = _book(s, q, v, (book[0], book[1]))
     run = _from_samples(t, g, energy, first, threshold, steps * dt,

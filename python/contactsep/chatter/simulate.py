@@ -56,6 +56,7 @@ FORKED_WORK = 3e8
 FORKED_APPE_MODES = 48
 DAMPINGS = laws.DAMPINGS
 CONTACTS = laws.CONTACTS
+BUTTONS = laws.BUTTONS
 STEPPERS = ("adaptive", "fixed")
 #: The thesis rig's converged steps (docs/chatter.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
@@ -299,7 +300,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
              samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive",
              single_impulse=True, verify=False,
              static_correction=True, alpha=None, contact="hertz",
-             yield_pressure=None) -> ChatterResult:
+             yield_pressure=None, button="sphere",
+             button_length=None) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
     Parameters
@@ -372,6 +374,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         docs/chatter.md, "Contact laws").
     yield_pressure : float, optional
         Thornton's limiting contact pressure p_y (psi).
+    button : {"sphere", "cylinder"}
+        The contact button: a sphere of ``button_radius`` on a flat
+        (Hertz, k = (4/3) E* sqrt(R)), or a cylinder of that radius
+        across the flat (a line contact, F = (pi/4) E* L delta).
+    button_length : float, optional
+        The cylinder's length L (in; default its diameter).
 
     Returns
     -------
@@ -411,6 +419,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     alpha, yield_pressure = laws.check_law(model, damping, alpha, contact,
                                            yield_pressure,
                                            static_correction)
+    button_length = laws.check_button(model, button, button_length,
+                                      contact)
     if not isinstance(verify, (bool, np.bool_)):
         raise ChatterError(f"verify: found {verify!r}, expected True or "
                            f"False")
@@ -435,7 +445,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                     min_open_s=float(min_open), design=design,
                     single_impulse=single, t_end_source=t_end_source,
                     static_correction=static_correction, contact=contact,
-                    alpha_s_per_in=alpha, yield_pressure_psi=yield_pressure)
+                    alpha_s_per_in=alpha, yield_pressure_psi=yield_pressure,
+                    button=button, button_radius_in=float(button_radius))
     if model == "appE":
         if dt is not None:
             raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
@@ -452,10 +463,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
                                      alpha=alpha,
                                      yield_pressure=yield_pressure,
+                                     button=button, length=button_length,
                                      **flores)
     stack = _system(design, preload, law, static_correction)
     choice = numerics.design_step(members(design),
-                                  None if law is None else law.k, preload)
+                                  None if law is None else law.k, preload,
+                                  law is not None and law.linear)
     dt_source = "given" if dt is not None else "design"
     dt = choice.dt if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
@@ -532,7 +545,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
             preload=preload, nu=nu, button_radius=button_radius,
             backend=backend, samples=samples, theta=theta, stepper=stepper,
             single_impulse=False, static_correction=static_correction,
-            alpha=alpha, contact=contact, yield_pressure=yield_pressure))
+            alpha=alpha, contact=contact, yield_pressure=yield_pressure,
+            button=button, button_length=button_length))
     return result
 
 
@@ -568,10 +582,11 @@ def _verified(result, design, model, damping, settings) -> ChatterResult:
                            f"more than {MAX_MODES} modes")
     finer = design.replace(n_modes=n)
     law = None if model != "hertz" else HertzLaw.for_materials(
-        float(design.E1), settings["nu"], settings["button_radius"])
+        float(design.E1), settings["nu"], settings["button_radius"],
+        button=settings["button"], length=settings["button_length"])
     step = min(result.dt / 2.0, numerics.design_step(
         members(finer), None if law is None else law.k,
-        settings["preload"]).dt)
+        settings["preload"], law is not None and law.linear).dt)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnconvergedWarning)
         check = simulate(finer, model=model, damping=damping, dt=step,

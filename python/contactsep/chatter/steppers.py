@@ -120,7 +120,7 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
     def stored(q):
         gap = h_matrix @ q + g0
         if series:
-            return series_energy(law.k, c_matrix, gap)
+            return series_energy(law.k, c_matrix, gap, law.linear)
         return sum(memory.energy(j, -float(g)) for j, g in enumerate(gap))
 
     def energy(q, v):
@@ -132,7 +132,7 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
         if chi != 0.0 and np.any(gap < 0.0):
             stiff = [law.k * max(1.0 - chi * float(r), 0.0)
                      for r in h_matrix @ v]
-        return series_forces(stiff, c_matrix, gap)
+        return series_forces(stiff, c_matrix, gap, law.linear)
 
     def forces(gap, v, chi):
         if series:

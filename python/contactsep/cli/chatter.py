@@ -111,6 +111,16 @@ def register(commands: argparse._SubParsersAction) -> None:
                            help="contact button radius of the Hertz "
                                 f"constant (in; default "
                                 f"{DEFAULT_BUTTON_RADIUS:g})")
+    run_group.add_argument("--button", choices=("sphere", "cylinder"),
+                           default="sphere",
+                           help="contact button: sphere on a flat (Hertz, "
+                                "default) or cylinder across it (line "
+                                "contact, force proportional to the "
+                                "penetration; docs/chatter.md)")
+    run_group.add_argument("--button-length", type=finite("in"),
+                           default=None, metavar="IN",
+                           help="cylinder button's length (in; default "
+                                "its diameter)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--progress", choices=("auto", "always",
                                                   "never"), default="auto",
@@ -165,7 +175,8 @@ def run(args: argparse.Namespace) -> int:
                 button_radius=args.button_radius,
                 static_correction=args.static_correction == "on",
                 verify=args.verify, alpha=args.alpha, contact=args.contact,
-                yield_pressure=args.yield_pressure)
+                yield_pressure=args.yield_pressure, button=args.button,
+                button_length=args.button_length)
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
@@ -234,7 +245,7 @@ def refuse_blown_up(result) -> None:
 #: simulate()'s arguments that are options of the command.
 _OPTIONS = ("dt", "t_end", "preload", "open_threshold", "min_open", "nu",
             "button_radius", "verify", "alpha", "contact", "yield_pressure",
-            "static_correction")
+            "static_correction", "button", "button_length")
 
 
 def _g(value, digits=6) -> str:

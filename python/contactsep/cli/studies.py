@@ -75,7 +75,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "apparent coefficient of restitution of three contact "
                     "laws against impact velocity and separator "
                     "thickness (--alpha, --yield-pressure, "
-                    "--reading-time). separator-fit (a minute) fits "
+                    "--reading-time). buttons (minutes) finds the open "
+                    "time and smallest preload of spherical and "
+                    "cylindrical buttons of three radii. separator-fit "
+                    "(a minute) fits "
                     "Timoshenko separators with elastic clamps and a "
                     "sensor mass to Table II (no design options).",
         **examples("contactsep study fig6 --n-modes 16 --restitution 0.5 "
@@ -257,7 +260,7 @@ def _compute(name: str, args, overrides: dict):
     if name == "preload":
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
     searches = ("preload", *CONCLUSIONS)
-    if name not in searches and (args.model or args.workers):
+    if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
     if name != "preload" and args.damping:
@@ -274,6 +277,8 @@ def _compute(name: str, args, overrides: dict):
                          f"study {name}'s")
     if name == "conclusion4":
         return _conclusion4(args, overrides)
+    if name == "buttons":
+        return _buttons(args, overrides)
     if name in searches:
         return _search_study(name, args, overrides)
     if name == "separator-fit":
@@ -317,6 +322,21 @@ def _conclusion4(args, overrides: dict):
     except ValueError as error:
         name, _, rest = str(error).partition(":")
         raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
+
+
+def _buttons(args, overrides: dict):
+    """study buttons: open time and smallest preload against the
+    button's shape and radius."""
+    from contactsep.studies import buttons
+    overrides = dict(overrides)
+    n_modes = overrides.pop("n_modes", buttons.MODES)
+    if overrides or args.backend or args.model:
+        raise InputError("study buttons takes no design options but "
+                         "--n-modes (and --workers): it runs the thesis "
+                         "rig with each button")
+    with _bar(args, None) as bar:
+        return buttons.buttons(n_modes=n_modes, workers=args.workers,
+                               progress=bar)
 
 
 def _search_study(name: str, args, overrides: dict):
@@ -403,10 +423,11 @@ def run_study(args: argparse.Namespace) -> int:
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS)
     if args.name not in (*STUDIES, "chatter", "separator-fit", *searches,
-                         "conclusion4", "all"):
+                         "conclusion4", "buttons", "all"):
         raise InputError(f"study {args.name!r}: expected one of "
                          f"{', '.join(STUDIES)}, chatter, separator-fit, "
-                         f"{', '.join(searches)}, conclusion4 or all")
+                         f"{', '.join(searches)}, conclusion4, buttons or "
+                         f"all")
     if args.name == "all" and (not args.out or args.csv or args.png):
         raise InputError("study all writes with --out DIR (not --csv "
                          "or --png)")
