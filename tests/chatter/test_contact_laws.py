@@ -306,3 +306,15 @@ def test_a_button_that_cannot_run_is_refused_in_one_line(kwargs, name):
     with pytest.raises(ChatterError) as caught:
         simulate(contactsep.thesis_design(n_modes=4), t_end=0.03, **kwargs)
     assert str(caught.value).startswith(f"{name}:")
+
+
+@pytest.mark.parametrize("target", [0.95, 0.9, 0.6])
+def test_flores_rebounds_near_its_e_and_exactly_as_its_ode(target):
+    # Flores's chi = 8 (1 - e) / (5 e V) is Hunt-Crossley's law with
+    # alpha = chi: the closed form is exact; e itself is Flores's
+    # approximation (good near e = 1: 0.947 for 0.95, 0.577 for 0.6)
+    law = HertzLaw.for_materials(E, NU, RADIUS, e=target, v_ref=SPEED)
+    e, closure = free_mass_rebound(law, "adaptive")
+    assert e == pytest.approx(hunt_crossley_e(law.chi, SPEED), abs=1e-8)
+    assert e == pytest.approx(target, abs=0.25 * (1.0 - target))
+    assert abs(closure) < 1e-8
