@@ -285,7 +285,6 @@ def summary_text(result, listed: int | None = 10) -> str:
             ("first impulse", result.first_impulse_lb_s, "lb s"),
             ("max lower gap", result.max_lower_gap_in, "in"),
             ("energy end / start", result.energy_ratio, ""),
-            *_book_rows(result.energy_book),
             ("status", f"{result.status} ("
              f"{_STATUS_WORDS.get(result.status, 'see contactsep.chatter.status')})"
              if result.model != "appE" else "0 (ok)", ""),
@@ -329,20 +328,6 @@ def summary_text(result, listed: int | None = 10) -> str:
         lines.append(f"  ... {len(openings) - listed} more (--events all, "
                      f"or --csv / --json)")
     return "\n".join(lines) + "\n"
-
-
-def _book_rows(book: dict) -> list[tuple]:
-    """The energy book's rows (Hertz family; none for Newton, appE)."""
-    if not book:
-        return []
-    start = book["energy_initial_lbin"]
-    return [("energy at the start", start, "in lb"),
-            ("dissipated in the contacts", book[
-                "energy_dissipated_contact_lbin"], "in lb"),
-            *((f"left in member {i}", book[f"energy_member{i}_lbin"],
-               "in lb") for i in (1, 2, 3)),
-            ("stored in the contacts", book["energy_contact_lbin"],
-             "in lb")]
 
 
 def _design_parts(design) -> list[str]:
