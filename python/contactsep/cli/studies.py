@@ -107,8 +107,9 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "to e)")
     study.add_argument("--alpha", type=finite("s/in"), default=None,
                        metavar="S_PER_IN",
-                       help="conclusion4 only: Hunt-Crossley's constant "
-                            "(default 0.0676 s/in)")
+                       help="conclusion4 (default 0.0676 s/in) and "
+                            "preload with --damping hunt-crossley: "
+                            "Hunt-Crossley's constant")
     study.add_argument("--yield-pressure", type=finite("psi"), default=None,
                        metavar="PSI",
                        help="conclusion4 only: Thornton's yield pressure "
@@ -269,6 +270,10 @@ def _compute(name: str, args, overrides: dict):
     own_options = {"--alpha": args.alpha,
                    "--yield-pressure": args.yield_pressure,
                    "--reading-time": args.reading_time}
+    if name == "preload":
+        # the preload chart takes Hunt-Crossley's constant with its
+        # --damping hunt-crossley
+        own_options.pop("--alpha")
     if name != "conclusion4" and any(v is not None
                                      for v in own_options.values()):
         given = ", ".join(k for k, v in own_options.items()
@@ -355,9 +360,11 @@ def _search_study(name: str, args, overrides: dict):
     try:
         with _bar(args, None) as bar:
             if name == "preload":
+                extra = {} if args.alpha is None else {
+                    "settings": {"alpha": args.alpha}}
                 return preload_chart(**options,
                                      damping=args.damping or "none",
-                                     progress=bar, **overrides)
+                                     progress=bar, **extra, **overrides)
             return conclusion(name, **options, progress=bar, **overrides)
     except SearchError as error:
         # the study names its arguments; the command, its options
