@@ -63,6 +63,7 @@ module chatter_adaptive
   use chatter_adaptive_gap_max, only: search_waiting
   use chatter_adaptive_laws, only: hertz_step, newton_step
   use chatter_hertz_series, only: series_forces
+  use chatter_contact_law, only: contact_law, law_setup, law_plastic_work
   implicit none
   private
   public :: adaptive, law_hertz, law_newton
@@ -76,7 +77,7 @@ contains
   subroutine adaptive(law, n, k, m, p, h, g0, cmat, q, v, stiffness, &
       chi, restitution, dt, steps, stride, samples, threshold, n_moving, &
       energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
-      n_cross, gap_max, counts, status)
+      n_cross, gap_max, counts, status, contact, book)
     !> law_hertz or law_newton.
     integer, intent(in) :: law
     !> Modes (all members stacked) and contacts (1 or 2).
@@ -120,8 +121,14 @@ contains
     !> status_interrupted (chatter_stop's flag, read every
     !> stop_check_every passes of the loop).
     integer, intent(out) :: status
+    !> Hertz: the whole force law (chatter_contact_law; without it,
+    !> Hertz's with stiffness and chi), and the energy book: dissipated
+    !> energy, the contacts' stored energy at the end (in lb).
+    type(contact_law), intent(in), optional :: contact
+    real(wp), intent(out), optional :: book(2)
 
     type(adaptive_run) :: run
+    real(wp) :: e_end
     real(wp) :: span, safe
     integer :: step, i_next, level, c, sample, units, passes
 
@@ -132,6 +139,8 @@ contains
     call start(run, n, k, m, p, h, g0, q, v, stiffness, chi, &
         restitution, dt, steps, stride, threshold, n_moving, &
         energy_bound, max_cross)
+    call law_setup(run%law, stiffness, chi, 0.0_wp, 0.0_wp, 0.0_wp)
+    if (present(contact)) run%law = contact
     if (law == law_hertz) call correct(run, cmat)
     run%crossings => crossings
     sample = 1
@@ -215,6 +224,12 @@ contains
       if (run%status /= status_ok) exit
     end do
     call search_waiting(run)
+    if (present(book)) then
+      run%e_fresh = .false.
+      call energy(run, e_end)
+      book(1) = run%damped_work + law_plastic_work(run%law, k)
+      book(2) = e_end - run%e_modal
+    end if
     q = run%q
     v = run%v
     first = run%first
@@ -322,7 +337,7 @@ contains
     run%series = any(cmat /= 0.0_wp)
     if (.not. run%series) return
     stiff = run%stiffness
-    call series_forces(run%k, stiff, cmat, run%gap, force)
+    call series_forces(run%k, stiff, cmat, run%gap, force, run%law%linear)
     ! the forces at the start (a preload's): sampled_gaps's, and the
     ! physical gaps are the largest so far
     run%force(:) = force

@@ -9,6 +9,7 @@ module chatter_adaptive_flow
   use contactsep_kinds, only: wp
   use chatter_adaptive_state, only: adaptive_run
   use chatter_hertz_series, only: series_energy
+  use chatter_contact_law, only: law_energy
   implicit none
   private
   public :: table, flow, gaps, energy, amplitude_bounds, chord
@@ -74,12 +75,16 @@ contains
     total = run%e_modal
     if (run%series) then
       total = total + series_energy(run%k, run%stiffness, run%cmat, &
-          run%gap)
+          run%gap, run%law%linear)
       return
     end if
     do j = 1, run%k
-      if (run%gap(j) < 0.0_wp) total = total + 0.4_wp * run%stiffness &
-          * run%gap(j)**2 * sqrt(-run%gap(j))
+      if (run%law%plastic .or. run%law%linear) then
+        total = total + law_energy(run%law, j, -run%gap(j))
+      else if (run%gap(j) < 0.0_wp) then
+        total = total + 0.4_wp * run%stiffness * run%gap(j)**2 &
+            * sqrt(-run%gap(j))
+      end if
     end do
   end subroutine energy
 

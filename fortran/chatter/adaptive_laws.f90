@@ -12,6 +12,8 @@ module chatter_adaptive_laws
   use chatter_adaptive_flow, only: flow
   use chatter_adaptive_crossings, only: watch_fixed, watch_grid
   use chatter_hertz_series, only: series_forces
+  use chatter_contact_law, only: law_force, law_elastic_force, &
+      law_remember
   implicit none
   private
   public :: hertz_step, newton_step
@@ -137,11 +139,12 @@ contains
     run%rate_fresh = .true.
   end subroutine newton_step
 
-  !> F = k delta^{3/2} (1 + chi delta'), F >= 0, as chatter_hertz, of
-  !> the current gaps, into run%force.
+  !> F = F_e (1 + chi delta'), F >= 0, as chatter_hertz, of the
+  !> current gaps, into run%force; the law remembers the penetrations
+  !> (chatter_contact_law).
   subroutine contact_forces(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: depth, stiff(run%k)
+    real(wp) :: stiff(run%k)
     integer :: j
 
     if (run%series) then
@@ -158,31 +161,67 @@ contains
               * dot_product(run%ht(:, j), run%v), 0.0_wp)
         end do
       end if
-      call series_forces(run%k, stiff, run%cmat, run%gap, run%force)
+      call series_forces(run%k, stiff, run%cmat, run%gap, run%force, &
+          run%law%linear)
       return
     end if
     do j = 1, run%k
       if (run%gap(j) < 0.0_wp) then
-        depth = -run%gap(j)
-        run%force(j) = run%stiffness * depth * sqrt(depth)
-        if (run%chi /= 0.0_wp) run%force(j) = max(run%force(j) &
-            * (1.0_wp - run%chi * dot_product(run%ht(:, j), run%v)), &
-            0.0_wp)
+        call law_remember(run%law, j, -run%gap(j))
+        run%force(j) = law_force(run%law, j, -run%gap(j), &
+            dot_product(run%ht(:, j), run%v))
       else
         run%force(j) = 0.0_wp
       end if
     end do
   end subroutine contact_forces
 
-  !> Half a step's kick of the Hertz forces in run%force.
-  subroutine kick(run)
-    type(adaptive_run), intent(inout) :: run
+  !> The undamped forces at the current gaps (the damping's part of a
+  !> force is the rest).
+  subroutine elastic_forces(run, force)
+    type(adaptive_run), intent(in) :: run
+    real(wp), intent(out) :: force(run%k)
+    real(wp) :: stiff(run%k)
     integer :: j
 
+    if (run%series) then
+      stiff = run%stiffness
+      call series_forces(run%k, stiff, run%cmat, run%gap, force, &
+          run%law%linear)
+    else
+      do j = 1, run%k
+        force(j) = law_elastic_force(run%law, j, -run%gap(j))
+      end do
+    end if
+  end subroutine elastic_forces
+
+  !> Half a step's kick of the Hertz forces in run%force; with damping,
+  !> its work (as chatter_hertz's kick: the exact change of kinetic
+  !> energy, its damping part) into run%damped_work.
+  subroutine kick(run)
+    type(adaptive_run), intent(inout) :: run
+    real(wp) :: before(run%k), elastic(run%k)
+    logical :: damped
+    integer :: j
+
+    damped = run%chi /= 0.0_wp .and. any(run%gap < 0.0_wp)
+    if (damped) then
+      call elastic_forces(run, elastic)
+      do j = 1, run%k
+        before(j) = dot_product(run%ht(:, j), run%v)
+      end do
+    end if
     do j = 1, run%k
       if (run%force(j) /= 0.0_wp) call axpy(run%n, run%force(j), &
           run%half_kick(:, j), run%v)
     end do
+    if (damped) then
+      do j = 1, run%k
+        run%damped_work = run%damped_work - 0.25_wp * run%dt &
+            * (run%force(j) - elastic(j)) * (before(j) &
+            + dot_product(run%ht(:, j), run%v))
+      end do
+    end if
   end subroutine kick
 
   !> y += alpha x.

@@ -7,6 +7,7 @@
 module chatter_adaptive_state
   use contactsep_kinds, only: wp
   use chatter_status, only: status_ok
+  use chatter_contact_law, only: contact_law
   implicit none
   private
   public :: adaptive_run
@@ -40,6 +41,11 @@ module chatter_adaptive_state
     !> Hertz constant (lb/in^1.5), damping chi (s/in), Newton's
     !> coefficient of restitution, step dt (s), open threshold (in).
     real(wp) :: stiffness = 0.0_wp, chi = 0.0_wp, restitution = 0.0_wp
+    !> The Hertz family's force law and its memory (chatter_contact_law;
+    !> the driver sets it from stiffness and chi, or takes it whole),
+    !> and the damping's work so far (in lb).
+    type(contact_law) :: law
+    real(wp) :: damped_work = 0.0_wp
     real(wp) :: dt = 0.0_wp, threshold = 0.0_wp
     !> The energy's hard bound (in lb): a fixed step past it stops the
     !> run (status_energy_bound), as every bound above assumes it.

@@ -3,6 +3,7 @@ module chatter_api
   use contactsep_kinds, only: wp
   use chatter_moreau_jean, only: moreau_jean
   use chatter_hertz, only: hertz
+  use chatter_contact_law, only: contact_law, law_setup
   use chatter_adaptive, only: adaptive, law_hertz, law_newton
   use chatter_event_driven, only: rigid_stop, jacobi_eigen
   use chatter_status, only: status_ok, status_no_eigenbasis
@@ -10,6 +11,7 @@ module chatter_api
   implicit none
   private
   public :: run_moreau_jean, run_hertz, run_hertz_adaptive
+  public :: run_hertz_book, run_hertz_adaptive_book
   public :: run_newton_adaptive, run_rigid_stop
   public :: symmetric_eigen, request_stop, clear_stop
 
@@ -74,14 +76,47 @@ contains
     !> First episode of contact 1: time, impulse (-1: none).
     real(wp), intent(out) :: first(2)
     integer, intent(out) :: status
-    real(wp) :: q(n), v(n)
+    real(wp) :: q(n), v(n), book(2)
+    type(contact_law) :: law
 
     q = q0
     v = v0
-    call hertz(n, k, m, p, h, g0, cmat, q, v, stiffness, chi, dt, steps, &
+    call law_setup(law, stiffness, chi, 0.0_wp, 0.0_wp, 0.0_wp)
+    call hertz(n, k, m, p, h, g0, cmat, q, v, law, dt, steps, &
         stride, samples, t_out, g_out, e_out, p_out, first, energy_bound, &
-        status)
+        status, book)
   end subroutine run_hertz
+
+  !> run_hertz with every law of the Hertz family (chatter_contact_law:
+  !> yield pressure p_y > 0 is Thornton's, with E* (psi) and the button
+  !> radius R (in)) and the energy book: the final state q_end, v_end,
+  !> and book = dissipated energy, the contacts' stored energy (in lb).
+  subroutine run_hertz_book(n, k, m, p, h, g0, cmat, q0, v0, stiffness, &
+      chi, pressure, e_star, radius, line, dt, steps, stride, samples, &
+      energy_bound, t_out, g_out, e_out, p_out, first, q_end, v_end, &
+      book, status)
+    !f2py threadsafe
+    integer, intent(in) :: n, k, steps, stride, samples
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: cmat(k, k)
+    real(wp), intent(in) :: stiffness, chi, pressure, e_star, radius
+    !> 1: a line contact (cylindrical button, F = k delta), 0: a sphere.
+    integer, intent(in) :: line
+    real(wp), intent(in) :: dt, energy_bound
+    real(wp), intent(out) :: t_out(samples), g_out(k, samples)
+    real(wp), intent(out) :: e_out(samples), p_out(k, samples)
+    real(wp), intent(out) :: first(2), q_end(n), v_end(n), book(2)
+    integer, intent(out) :: status
+    type(contact_law) :: law
+
+    q_end = q0
+    v_end = v0
+    call law_setup(law, stiffness, chi, pressure, e_star, radius, &
+        line /= 0)
+    call hertz(n, k, m, p, h, g0, cmat, q_end, v_end, law, dt, steps, &
+        stride, samples, t_out, g_out, e_out, p_out, first, energy_bound, &
+        status, book)
+  end subroutine run_hertz_book
 
   !> Hertz, adaptive (see chatter_adaptive); q0, v0 are copied.
   !> crossings(:, i) = time, +c / -c (contact c opens / closes);
@@ -111,6 +146,39 @@ contains
         energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
         n_cross, gap_max, counts, status)
   end subroutine run_hertz_adaptive
+
+  !> run_hertz_adaptive with every law of the Hertz family and the
+  !> energy book (as run_hertz_book).
+  subroutine run_hertz_adaptive_book(n, k, m, p, h, g0, cmat, q0, v0, &
+      stiffness, chi, pressure, e_star, radius, line, dt, steps, stride, &
+      samples, threshold, n_moving, energy_bound, max_cross, t_out, &
+      g_out, e_out, first, crossings, n_cross, gap_max, counts, q_end, &
+      v_end, book, status)
+    !f2py threadsafe
+    integer, intent(in) :: n, k, steps, stride, samples, n_moving
+    integer, intent(in) :: max_cross
+    real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
+    real(wp), intent(in) :: cmat(k, k)
+    real(wp), intent(in) :: stiffness, chi, pressure, e_star, radius
+    !> 1: a line contact (cylindrical button, F = k delta), 0: a sphere.
+    integer, intent(in) :: line
+    real(wp), intent(in) :: dt, threshold, energy_bound
+    real(wp), intent(out) :: t_out(samples), g_out(k, samples)
+    real(wp), intent(out) :: e_out(samples), first(2)
+    real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
+    integer, intent(out) :: n_cross, counts(3), status
+    real(wp), intent(out) :: q_end(n), v_end(n), book(2)
+    type(contact_law) :: law
+
+    q_end = q0
+    v_end = v0
+    call law_setup(law, stiffness, chi, pressure, e_star, radius, &
+        line /= 0)
+    call adaptive(law_hertz, n, k, m, p, h, g0, cmat, q_end, v_end, &
+        stiffness, chi, 0.0_wp, dt, steps, stride, samples, threshold, &
+        n_moving, energy_bound, max_cross, t_out, g_out, e_out, first, &
+        crossings, n_cross, gap_max, counts, status, law, book)
+  end subroutine run_hertz_adaptive_book
 
   !> Newton's law, adaptive (see chatter_adaptive): arguments and
   !> results as run_hertz_adaptive, with the restitution e instead of

@@ -11,27 +11,27 @@ module chatter_hertz
       status_interrupted
   use chatter_stop, only: stop_requested, stop_check_every
   use chatter_hertz_series, only: series_forces, series_energy
+  use chatter_contact_law, only: contact_law, law_force, law_energy, &
+      law_elastic_force, law_remember, law_plastic_work
   implicit none
   private
   public :: hertz
 
 contains
 
-  !> F = k delta^{3/2} (1 + chi delta'), F >= 0, delta = -gap; the
-  !> contact's rate h v is formed only where a contact is closed.
-  pure subroutine contact_forces(n, k, stiffness, chi, gap, ht, v, force)
+  !> F = F_e (1 + chi delta'), F >= 0, delta = -gap, F_e the law's
+  !> elastic force (chatter_contact_law); the contact's rate h v is
+  !> formed only where a contact is closed.
+  pure subroutine contact_forces(n, k, law, gap, ht, v, force)
     integer, intent(in) :: n, k
-    real(wp), intent(in) :: stiffness, chi, gap(k), ht(n, k), v(n)
+    type(contact_law), intent(in) :: law
+    real(wp), intent(in) :: gap(k), ht(n, k), v(n)
     real(wp), intent(out) :: force(k)
-    real(wp) :: depth
     integer :: i
 
     do i = 1, k
       if (gap(i) < 0.0_wp) then
-        depth = -gap(i)
-        force(i) = stiffness * depth * sqrt(depth)
-        if (chi /= 0.0_wp) force(i) = max(force(i) &
-            * (1.0_wp - chi * dot_product(ht(:, i), v)), 0.0_wp)
+        force(i) = law_force(law, i, -gap(i), dot_product(ht(:, i), v))
       else
         force(i) = 0.0_wp
       end if
@@ -42,8 +42,9 @@ contains
   !> chatter_hertz_series): Flores's factor max(1 - chi u, 0), u = h v
   !> the rate of the modal gap, scales each element's stiffness.
   pure subroutine series_contact_forces(n, k, stiffness, chi, cmat, gap, &
-      ht, v, force)
+      ht, v, force, linear)
     integer, intent(in) :: n, k
+    logical, intent(in) :: linear
     real(wp), intent(in) :: stiffness, chi, cmat(k, k), gap(k), ht(n, k)
     real(wp), intent(in) :: v(n)
     real(wp), intent(out) :: force(k)
@@ -61,7 +62,7 @@ contains
             * dot_product(ht(:, i), v), 0.0_wp)
       end do
     end if
-    call series_forces(k, stiff, cmat, gap, force)
+    call series_forces(k, stiff, cmat, gap, force, linear)
   end subroutine series_contact_forces
 
   !> Integrate `steps` steps of dt; sample every `stride` steps.
@@ -73,15 +74,21 @@ contains
   !> when the energy at a sample or a stop check exceeds energy_bound
   !> (or is not a number), and with status_interrupted when
   !> chatter_stop's flag is set; the samples not reached keep t = -1.
-  subroutine hertz(n, k, m, p, h, g0, cmat, q, v, stiffness, chi, &
+  !> The energy book: dissipated = the damping's work (each kick's
+  !> exact change of kinetic energy, its damping part) and the plastic
+  !> work (chatter_contact_law); stored = the contacts' elastic energy
+  !> at the end.
+  subroutine hertz(n, k, m, p, h, g0, cmat, q, v, law, &
       dt, steps, stride, samples, t_out, g_out, e_out, p_out, first, &
-      energy_bound, status)
+      energy_bound, status, book)
     integer, intent(in) :: n, k
     !> cmat: the series flexibilities (in/lb; 0: the plain truncation).
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), cmat(k, k)
     real(wp), intent(inout) :: q(n), v(n)
-    !> Hertz constant k (lb/in^1.5) and damping chi (s/in).
-    real(wp), intent(in) :: stiffness, chi, dt
+    !> The force law (Hertz constant, damping chi, Thornton's yield)
+    !> and its memory.
+    type(contact_law), intent(inout) :: law
+    real(wp), intent(in) :: dt
     integer, intent(in) :: steps, stride, samples
     !> Sampled times, gaps (with the correction, the physical gaps
     !> g + C lambda), energy (with the contacts'), and impulses
@@ -94,8 +101,10 @@ contains
     !> The energy's hard bound (in lb) and how the run ended.
     real(wp), intent(in) :: energy_bound
     integer, intent(out) :: status
+    !> Dissipated energy and the contacts' stored energy (in lb).
+    real(wp), intent(out) :: book(2)
     real(wp) :: c(n), sine_over_p(n), p_sine(n), ht(n, k), half_kick(n, k)
-    real(wp) :: force(k), gap(k), qn(n)
+    real(wp) :: force(k), gap(k), qn(n), damped_work
     integer :: step, i, sample, episode
     logical :: series
 
@@ -107,6 +116,7 @@ contains
       half_kick(:, i) = 0.5_wp * dt * ht(:, i) / m
     end do
     series = any(cmat /= 0.0_wp)
+    damped_work = 0.0_wp
     p_out = 0.0_wp
     first = -1.0_wp
     episode = 0
@@ -116,6 +126,7 @@ contains
     e_out = 0.0_wp
     t_out(1) = 0.0_wp
     gap = gaps()
+    call remember()
     g_out(:, 1) = gap
     if (series) then
       call forces(force)
@@ -144,6 +155,7 @@ contains
       v = v * c - q * p_sine
       q = qn
       gap = gaps()
+      call remember()
       call forces(force)
       call kick(v)
       if (mod(step, stride) == 0) then
@@ -164,19 +176,47 @@ contains
     end do
     if (status == status_ok .and. .not. energy() <= energy_bound) &
         status = status_energy_bound
+    book(1) = damped_work + law_plastic_work(law, k)
+    book(2) = energy() - 0.5_wp * sum(m * (v**2 + (p * q)**2))
 
   contains
+
+    !> The law's memory of the current penetrations.
+    subroutine remember()
+      integer :: j
+
+      do j = 1, k
+        if (gap(j) < 0.0_wp) call law_remember(law, j, -gap(j))
+      end do
+    end subroutine remember
 
     pure subroutine forces(f)
       real(wp), intent(out) :: f(k)
 
       if (series) then
-        call series_contact_forces(n, k, stiffness, chi, cmat, gap, ht, &
-            v, f)
+        call series_contact_forces(n, k, law%stiffness, law%chi, cmat, &
+            gap, ht, v, f, law%linear)
       else
-        call contact_forces(n, k, stiffness, chi, gap, ht, v, f)
+        call contact_forces(n, k, law, gap, ht, v, f)
       end if
     end subroutine forces
+
+    !> The undamped forces at the current gaps (the damping's part of a
+    !> force is the rest).
+    pure subroutine elastic_forces(f)
+      real(wp), intent(out) :: f(k)
+      real(wp) :: stiff(k)
+      integer :: j
+
+      if (series) then
+        stiff = law%stiffness
+        call series_forces(k, stiff, cmat, gap, f, law%linear)
+      else
+        do j = 1, k
+          f(j) = law_elastic_force(law, j, -gap(j))
+        end do
+      end if
+    end subroutine elastic_forces
 
     pure function gaps() result(g)
       real(wp) :: g(k)
@@ -187,26 +227,47 @@ contains
       end do
     end function gaps
 
-    pure subroutine kick(velocity)
+    !> Half a step's kick of the forces; with damping, its work: the
+    !> kick changes the kinetic energy by exactly sum_j J_j (u_j before
+    !> + u_j after) / 2 (J_j = force_j dt / 2, u_j = h_j v), of which
+    !> the damping's part J_j - J_j elastic is dissipated (also where
+    !> the factor clips a penetrating contact's force to 0).
+    subroutine kick(velocity)
       real(wp), intent(inout) :: velocity(n)
+      real(wp) :: before(k), elastic(k)
       integer :: j
 
+      if (law%chi /= 0.0_wp .and. any(gap < 0.0_wp)) then
+        call elastic_forces(elastic)
+        do j = 1, k
+          before(j) = dot_product(ht(:, j), velocity)
+        end do
+      end if
       do j = 1, k
         if (force(j) /= 0.0_wp) velocity = velocity &
             + half_kick(:, j) * force(j)
       end do
+      if (law%chi /= 0.0_wp .and. any(gap < 0.0_wp)) then
+        do j = 1, k
+          damped_work = damped_work - 0.25_wp * dt * (force(j) &
+              - elastic(j)) * (before(j) + dot_product(ht(:, j), velocity))
+        end do
+      end if
     end subroutine kick
 
     pure function energy() result(total)
       real(wp) :: total, g(k)
+      integer :: j
 
       g = gaps()
       if (series) then
         total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
-            + series_energy(k, stiffness, cmat, g)
+            + series_energy(k, law%stiffness, cmat, g, law%linear)
       else
-        total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
-            + 0.4_wp * stiffness * sum(max(-g, 0.0_wp)**2.5_wp)
+        total = 0.5_wp * sum(m * (v**2 + (p * q)**2))
+        do j = 1, k
+          total = total + law_energy(law, j, -g(j))
+        end do
       end if
     end function energy
 

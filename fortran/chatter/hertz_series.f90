@@ -59,12 +59,19 @@ contains
   !> modal gaps g (in): exact minimisation of Phi over each lambda_i in
   !> turn (coordinate descent; each step the root of one element) until
   !> a sweep changes no force by more than 4 ulps.
-  pure subroutine series_forces(k, stiff, cmat, g, force)
+  !> With ``linear`` the elements are linear springs (F = s delta, a
+  !> cylindrical button): each root is a / (1 + c_ii s).
+  pure subroutine series_forces(k, stiff, cmat, g, force, linear)
     integer, intent(in) :: k
     real(wp), intent(in) :: stiff(k), cmat(k, k), g(k)
     real(wp), intent(out) :: force(k)
+    logical, intent(in), optional :: linear
     real(wp) :: a, depth, old(k)
     integer :: sweep, i, j
+    logical :: line
+
+    line = .false.
+    if (present(linear)) line = linear
 
     force = 0.0_wp
     if (all(g >= 0.0_wp)) return
@@ -75,7 +82,9 @@ contains
         do j = 1, k
           if (j /= i) a = a - cmat(i, j) * force(j)
         end do
-        if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
+        if (a > 0.0_wp .and. stiff(i) > 0.0_wp .and. line) then
+          force(i) = stiff(i) * a / (1.0_wp + cmat(i, i) * stiff(i))
+        else if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
           depth = element_depth(a, cmat(i, i) * stiff(i))
           force(i) = stiff(i) * depth * sqrt(depth)
         else
@@ -90,15 +99,23 @@ contains
   !> V(g): the contacts' elastic energy (in lb), the Hertz elements'
   !> (2/5) k delta^{5/2} = (2/5) lambda delta and the series springs'
   !> lambda^T C lambda / 2, with the undamped forces of the gaps g.
-  pure function series_energy(k, stiffness, cmat, g) result(total)
+  !> With ``linear``: linear elements, (1/2) lambda delta each.
+  pure function series_energy(k, stiffness, cmat, g, linear) result(total)
     integer, intent(in) :: k
     real(wp), intent(in) :: stiffness, cmat(k, k), g(k)
+    logical, intent(in), optional :: linear
     real(wp) :: total, force(k), stiff(k), depth
     integer :: i
 
     stiff = stiffness
-    call series_forces(k, stiff, cmat, g, force)
+    call series_forces(k, stiff, cmat, g, force, linear)
     total = 0.5_wp * dot_product(force, matmul(cmat, force))
+    if (present(linear)) then
+      if (linear) then
+        total = total + 0.5_wp * sum(force**2) / stiffness
+        return
+      end if
+    end if
     do i = 1, k
       if (force(i) > 0.0_wp) then
         depth = (force(i) / stiffness)**(2.0_wp / 3.0_wp)

@@ -25,7 +25,7 @@ from contactsep.model import Design, evaluate, names
 ROOT = Path(__file__).resolve().parents[2]
 #: The table (docs/studies.md, "Names and units").
 SUFFIX = re.compile(r"^[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
-                    r"cps|lb_s2_in|in_lb|lb_per_in|lb_in_rad|hz|pct)$")
+                    r"cps|lb_s2_in|in_lb|lbin|s_per_in|lb_per_in|lb_in_rad|hz|pct)$")
 DIMENSIONLESS = {
     "e", "R", "r", "N", "n_modes", "energy_ratio", "relative_difference",
     "p_exceed", "p_open", "status", "n", "n_failed", "n_open", "n_events",
@@ -36,6 +36,7 @@ DIMENSIONLESS = {
     "end1", "end2", "end3", "impact_velocity", "lower_response",
     "lc_reading", "release", "data_set", "title", "event", "curve",
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
+    "contact", "law", "e_apparent", "button",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
     "verify_n_modes", "verify_status", "contact_material",
     "separator_material", "law"}

@@ -97,11 +97,14 @@ def largest_speed(upper) -> float:
     return float(np.sum(np.abs(upper.x * upper.q0 * upper.p)))
 
 
-def design_step(members, hertz_k=None, preload=0.0) -> StepChoice:
+def design_step(members, hertz_k=None, preload=0.0,
+                linear=False) -> StepChoice:
     """The step (s) for the stacked members (upper, separator, lower):
     :data:`STEP_SAFETY` of 2/omega with omega bounded as in the module
     doc.  ``hertz_k`` (lb/in^1.5) is the Hertz constant; None (Newton's
-    rigid law) bounds omega by the modes alone."""
+    rigid law) bounds omega by the modes alone; with ``linear`` (a
+    cylindrical button) it is a linear spring's k (lb/in), the
+    stiffness itself."""
     upper, sep, lower = members
     p_max = float(max(m.p.max() for m in members))
     force = stiffness = 0.0
@@ -111,9 +114,14 @@ def design_step(members, hertz_k=None, preload=0.0) -> StepChoice:
         first = upper.x[0]**2 / upper.mass + sep.x[0]**2 / sep.mass
         mass = 1.0 / first
         speed = largest_speed(upper)
-        depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
-        force = hertz_k * depth**1.5 + float(preload)
-        stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0 / 3.0)
+        if linear:
+            force = math.sqrt(mass * hertz_k) * speed + float(preload)
+            stiffness = hertz_k
+        else:
+            depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
+            force = hertz_k * depth**1.5 + float(preload)
+            stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0
+                                                                 / 3.0)
     # the separator at each contact's point (x2, x2_lower; at one point
     # the sum is 2 mobility exactly)
     trace = (_mobility(upper) + (_mobility(sep) + _mobility(
@@ -184,11 +192,16 @@ class CheckedRun:
     converged: bool
     damped: bool
     dt_source: str
+    #: Whether the energy book had to close too (checked_run's book).
+    book: bool = False
 
     def message(self) -> str:
         """The one-line warning of an unconverged run."""
         rule = ("a damped run must not gain energy" if self.damped
                 else "an elastic run must keep it within 1e-6")
+        if self.book:
+            rule += (", and its energy book (end + dissipated) must close "
+                     "within 1e-6")
         return (f"unconverged: energy end/start {self.ratio:.10g} at dt "
                 f"{self.dt:.3g} s ({self.dt_source}"
                 + (f", halved {self.halvings} times" if self.halvings
@@ -200,21 +213,32 @@ class CheckedRun:
 
 
 def checked_run(run_at, dt: float, dt_source: str, damped: bool,
-                least: float) -> CheckedRun:
+                least: float, book: bool = False) -> CheckedRun:
     """Run ``run_at(dt) -> (step, run)`` and check its energy; a step the
     design chose (``dt_source`` "design") that fails is halved, at most
     :data:`MAX_HALVINGS` times and never below ``least`` (the work
-    budget's smallest step); a given one is run once."""
+    budget's smallest step); a given one is run once.  With ``book``
+    (the Hunt-Crossley and Thornton laws) a damped run's energy book
+    must close too: |ratio + dissipated / start - 1| <= ENERGY_TOLERANCE
+    (``run.book``, the dissipation the stepper summed)."""
     halvings = 0
     while True:
         step, run = run_at(dt)
-        ratio = float(run.energy[-1] / run.energy[0])
+        # the energy at the end: the book's where the stepper kept one
+        # (the last sample may fall a few steps before the end)
+        end = run.book["end"] if getattr(run, "book", None) else \
+            run.energy[-1]
+        ratio = float(end / run.energy[0])
         converged = energy_converged(ratio, damped)
+        if book and converged and run.book:
+            converged = energy_converged(ratio + run.book["dissipated"]
+                                         / float(run.energy[0]), False)
         if converged or dt_source != "design" or \
                 halvings == MAX_HALVINGS or dt / 2.0 < least:
             return CheckedRun(run=run, dt=step, ratio=ratio,
                               halvings=halvings, converged=converged,
-                              damped=damped, dt_source=dt_source)
+                              damped=damped, dt_source=dt_source,
+                              book=book)
         dt, halvings = dt / 2.0, halvings + 1
 
 

@@ -116,6 +116,26 @@ class ChatterResult:
     #: longest_open_change, n_events_change) and the rerun's dt, N and
     #: status (verify_dt_s, verify_n_modes, verify_status); empty without.
     changes: dict = field(default_factory=dict)
+    #: The contact law (docs/chatter.md, "Contact laws"): its elastic
+    #: part ("hertz" or "thornton"), Hunt-Crossley's constant (s/in) and
+    #: Thornton's yield pressure (psi), None where not used.
+    contact: str = "hertz"
+    alpha_s_per_in: float | None = None
+    yield_pressure_psi: float | None = None
+    #: The contact button ("sphere" or "cylinder") and its radius (in).
+    button: str = "sphere"
+    button_radius_in: float = 0.125
+    #: The Hertz family's energy book (in lb; empty for Newton and
+    #: appE): ``energy_initial_lbin``, ``energy_dissipated_contact_lbin``,
+    #: ``energy_member1_lbin`` .. ``energy_member3_lbin`` (the vibration
+    #: energy left in each member's modes) and ``energy_contact_lbin``
+    #: (the contacts' stored energy at the end); ``energy_ratio`` +
+    #: dissipated / initial = 1 to the stepper's energy error.
+    energy_book: dict = field(default_factory=dict)
+    #: Hertz runs: the stacked modal state at the window's end, ``q``
+    #: and ``v`` (upper contact's modes, separator's, lower contact's;
+    #: not in the JSON).
+    end_state: dict = field(default_factory=dict)
 
     def __repr__(self) -> str:
         first = ("never" if math.isnan(self.first_circuit_open_s)
@@ -136,6 +156,11 @@ class ChatterResult:
                 "dt_source": self.dt_source,
                 "t_end_source": self.t_end_source,
                 "preload_lb": self.preload_lb, "damping": self.damping,
+                "contact": self.contact,
+                "alpha_s_per_in": self.alpha_s_per_in,
+                "yield_pressure_psi": self.yield_pressure_psi,
+                "button": self.button,
+                "button_radius_in": self.button_radius_in,
                 "stepper": self.stepper,
                 "static_correction": self.static_correction,
                 "open_threshold_in": self.open_threshold_in,
@@ -148,6 +173,7 @@ class ChatterResult:
             "first_impact_s": self.first_impact_s,
             "first_impulse_lb_s": self.first_impulse_lb_s,
             "energy_ratio": self.energy_ratio,
+            **self.energy_book,
             "status": self.status,
             **self.changes,
             "max_lower_gap_in": self.max_lower_gap_in,

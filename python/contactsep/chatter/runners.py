@@ -4,6 +4,7 @@ contact's open intervals, the largest lower gap, the first impact)."""
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import math
 import threading
@@ -14,7 +15,7 @@ import numpy as np
 from contactsep import output
 from contactsep.chatter import circuit
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import series_energy
+from contactsep.chatter.contacts import ContactMemory, series_energy
 from contactsep.errors import InputError
 
 #: First size of the crossing tables; a run that fills one is repeated
@@ -122,6 +123,10 @@ class Run:
     #: energy passed ENERGY_MARGIN times the start's; the samples not
     #: reached are NaN)
     status: int = chatter_status.OK
+    #: The Hertz family's energy book: final ``q``, ``v``, the
+    #: ``dissipated`` energy and the contacts' ``stored`` one (in lb);
+    #: empty for Newton.
+    book: dict = field(default_factory=dict)
 
 
 def _energy_bound(system, law=None) -> float:
@@ -131,8 +136,13 @@ def _energy_bound(system, law=None) -> float:
     energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
     if law is not None:
         gap0 = s.h @ s.q0 + s.g0
-        energy0 += series_energy(law.k, s.c, gap0) if np.any(s.c != 0.0) \
-            else np.sum(law.energy(gap0))
+        if np.any(s.c != 0.0):
+            energy0 += series_energy(law.k, s.c, gap0, law.linear)
+        else:
+            memory = ContactMemory(law, len(gap0))
+            for j, gap in enumerate(gap0):
+                memory.remember(j, -float(gap))
+                energy0 += memory.energy(j, -float(gap))
     return ENERGY_MARGIN * float(energy0)
 
 
@@ -206,18 +216,27 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     samples = steps // stride + 1
     gap0 = s.h @ s.q0 + s.g0
     bound = _energy_bound(s, law)
-    t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
-        _with_room(lambda room: _api().run_hertz_adaptive(
-            s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi, dt, steps,
-            stride, samples, threshold, s.n_upper, bound, room),
-            steps * s.m.size)
+    (t, g, energy, first, crossings, n_cross, gap_max, counts, q, v, book,
+     status) = _with_room(lambda room: _api().run_hertz_adaptive_book(
+         s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi,
+         law.yield_pressure, law.e_star, law.radius, int(law.linear), dt,
+         steps, stride, samples, threshold, s.n_upper, bound, room),
+        steps * s.m.size)
     status = _checked(status)
     t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work=_work(counts), status=status)
+               first=_first(first), work=_work(counts), status=status,
+               book=_book(s, q, v, book))
+
+
+def _book(system, q, v, book) -> dict:
+    """The stepper's energy book, with the energy at the end (in lb)."""
+    modal = 0.5 * float(np.sum(system.m * (v**2 + (system.p * q)**2)))
+    return {"q": q, "v": v, "dissipated": float(book[0]),
+            "stored": float(book[1]), "end": modal + float(book[1])}
 
 
 def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
@@ -278,19 +297,24 @@ def hertz_fixed(system, law, dt, steps, stride, threshold,
     status = chatter_status.OK
     if backend == "numpy":
         from contactsep.chatter import steppers
-        t, g, energy, _, first = steppers.hertz(
+        t, g, energy, _, first, book = steppers.hertz(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, law=law, dt=dt, steps=steps,
-            stride=stride, c_matrix=s.c)
+            stride=stride, c_matrix=s.c, book=True)
+        book = _book(s, book["q"], book["v"], (book["dissipated"],
+                                               book["stored"]))
     else:
         samples = steps // stride + 1
-        t, g, energy, _, first, status = _stoppable(
-            steps * s.m.size, lambda: _api().run_hertz(
-                s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi, dt,
-                steps, stride, samples, energy_bound=bound))
+        t, g, energy, _, first, q, v, book, status = _stoppable(
+            steps * s.m.size, lambda: _api().run_hertz_book(
+                s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi,
+                law.yield_pressure, law.e_star, law.radius,
+                int(law.linear), dt, steps, stride, samples, bound))
         g = g.T
-    return _from_samples(t, g, energy, first, threshold, steps * dt,
-                         {"fixed_steps": steps},
-                         _checked(status, bound, energy, t))
+        book = _book(s, q, v, (book[0], book[1]))
+    run = _from_samples(t, g, energy, first, threshold, steps * dt,
+                        {"fixed_steps": steps},
+                        _checked(status, bound, energy, t))
+    return dataclasses.replace(run, book=book)
 
 
 def moreau_jean_numpy(system, e, dt, theta, steps, stride,

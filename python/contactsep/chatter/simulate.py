@@ -23,13 +23,14 @@ import warnings
 import numpy as np
 
 from contactsep import output
-from contactsep.chatter import circuit, numerics, runners, system
+from contactsep.chatter import circuit, laws, numerics, runners, system
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import ContactsepWarning
 from contactsep.model.design import SIZE_RANGE
 
 MODELS = ("appE", "newton", "hertz")
@@ -53,7 +54,9 @@ MAX_SAMPLES = 4_000_000
 #: SIGTERM stop it at once instead of after the compiled call returns.
 FORKED_WORK = 3e8
 FORKED_APPE_MODES = 48
-DAMPINGS = ("none", "flores")
+DAMPINGS = laws.DAMPINGS
+CONTACTS = laws.CONTACTS
+BUTTONS = laws.BUTTONS
 STEPPERS = ("adaptive", "fixed")
 #: The thesis rig's converged steps (docs/chatter.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
@@ -71,10 +74,6 @@ DEFAULT_BUTTON_RADIUS = 0.125
 
 #: A dt more than this many times the default is far from converged.
 COARSE_DT = 10.0
-
-
-class ChatterError(InputError):
-    """A simulation setting the chatter layer refuses."""
 
 
 class CoarseStepWarning(UserWarning):
@@ -129,7 +128,7 @@ def _system(design, preload, law, static_correction=False
                            f"{most:.6g} lb (it would bend the separator or "
                            f"the lower contact by more than its length)")
     if preload > 0.0:
-        depth = 0.0 if law is None else (preload / law.k) ** (2.0 / 3.0)
+        depth = 0.0 if law is None else law.depth_at(preload)
         q_sep, q_low, g0 = system.preload_state(sep, lower, preload, depth,
                                                 correct)
         n1, n2 = upper.p.size, sep.p.size
@@ -203,20 +202,8 @@ def _modal_impact_speed(design) -> float:
     return float(abs(np.sum(amplitude * upper.p * np.sin(upper.p * hi))))
 
 
-def _real(name: str, value, unit: str) -> float:
-    """A real number for argument ``name`` (never a bool, None or a
-    string), or a ChatterError naming it."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(
-            value, (int, float, np.integer, np.floating)):
-        raise ChatterError(f"{name}: found {value!r}, expected a number"
-                           + (f" ({unit})" if unit else ""))
-    try:
-        return float(value)
-    except OverflowError:
-        from contactsep.errors import shown
-        raise ChatterError(f"{name}: found {shown(value)}, expected a "
-                           f"finite number" + (f" ({unit})" if unit else "")
-                           ) from None
+#: A real number for an argument, or a ChatterError naming it.
+_real = laws.real
 
 
 def _check(design, model, damping, backend, preload, samples, theta, nu,
@@ -312,7 +299,9 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
              button_radius=DEFAULT_BUTTON_RADIUS, backend="compiled",
              samples=DEFAULT_SAMPLES, theta=0.5, stepper="adaptive",
              single_impulse=True, verify=False,
-             static_correction=True) -> ChatterResult:
+             static_correction=True, alpha=None, contact="hertz",
+             yield_pressure=None, button="sphere",
+             button_length=None) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
     Parameters
@@ -324,9 +313,11 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     model : {"hertz", "newton", "appE"}
         Hertz contact (the default), Newton's impact law (both: the three
         beams), or Appendix E's rigid separator (module docstring).
-    damping : {"none", "flores"}
-        Hertz contact damping (Flores, calibrated to the design's e);
-        the elastic Hertz law does not use ``e``.
+    damping : {"none", "flores", "hunt-crossley"}
+        Hertz contact damping: Flores (calibrated to the design's e and
+        its own impact speed), or Hunt-Crossley with the material
+        constant ``alpha`` (never calibrated: e emerges); the elastic
+        Hertz law does not use ``e``.
     dt : float, optional
         Time step (s); by default the design's own
         (:func:`contactsep.chatter.numerics.design_step`), rounded so
@@ -373,6 +364,23 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         Newton's rigid law cannot take a series compliance: for it (and
         appE) the option changes nothing.
 
+    alpha : float, optional
+        Hunt-Crossley's constant (s/in): F = k delta^{3/2} (1 + alpha
+        delta'); only with ``damping="hunt-crossley"``.
+    contact : {"hertz", "thornton"}
+        The elastic part of the law: Hertz, or Thornton's (1997)
+        elastic-perfectly-plastic sphere on a flat (needs
+        ``yield_pressure`` and ``static_correction=False``;
+        docs/chatter.md, "Contact laws").
+    yield_pressure : float, optional
+        Thornton's limiting contact pressure p_y (psi).
+    button : {"sphere", "cylinder"}
+        The contact button: a sphere of ``button_radius`` on a flat
+        (Hertz, k = (4/3) E* sqrt(R)), or a cylinder of that radius
+        across the flat (a line contact, F = (pi/4) E* L delta).
+    button_length : float, optional
+        The cylinder's length L (in; default its diameter).
+
     Returns
     -------
     ChatterResult
@@ -408,6 +416,11 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     static_correction = bool(static_correction) and model == "hertz"
     _check(design, model, damping, backend, preload, samples, theta, nu,
            button_radius, t_end, open_threshold, min_open, stepper)
+    alpha, yield_pressure = laws.check_law(model, damping, alpha, contact,
+                                           yield_pressure,
+                                           static_correction)
+    button_length = laws.check_button(model, button, button_length,
+                                      contact)
     if not isinstance(verify, (bool, np.bool_)):
         raise ChatterError(f"verify: found {verify!r}, expected True or "
                            f"False")
@@ -431,7 +444,9 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                     open_threshold_in=float(open_threshold),
                     min_open_s=float(min_open), design=design,
                     single_impulse=single, t_end_source=t_end_source,
-                    static_correction=static_correction)
+                    static_correction=static_correction, contact=contact,
+                    alpha_s_per_in=alpha, yield_pressure_psi=yield_pressure,
+                    button=button, button_radius_in=float(button_radius))
     if model == "appE":
         if dt is not None:
             raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
@@ -446,10 +461,14 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
             single or _single_impulse(design))["v_impact_in_s"]) \
             if damping == "flores" else {}
         law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
+                                     alpha=alpha,
+                                     yield_pressure=yield_pressure,
+                                     button=button, length=button_length,
                                      **flores)
     stack = _system(design, preload, law, static_correction)
     choice = numerics.design_step(members(design),
-                                  None if law is None else law.k, preload)
+                                  None if law is None else law.k, preload,
+                                  law is not None and law.linear)
     dt_source = "given" if dt is not None else "design"
     dt = choice.dt if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
@@ -478,7 +497,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                       f"design's step {choice.dt:.3g} s: the answers may be "
                       f"far from converged (docs/chatter.md)",
                       CoarseStepWarning, stacklevel=2)
-    damped = (model == "hertz" and damping == "flores") or (
+    damped = (model == "hertz" and (damping != "none"
+                                    or contact != "hertz")) or (
         model == "newton" and float(design.e) < 1.0)
 
     def run_at(step):
@@ -486,7 +506,10 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         return t_end / steps, _run(model, stepper, backend, stack, law,
                                    design, theta, t_end / steps, steps,
                                    max(1, steps // samples), open_threshold)
-    checked = numerics.checked_run(run_at, dt, dt_source, damped, least)
+    checked = numerics.checked_run(
+        run_at, dt, dt_source, damped, least,
+        book=model == "hertz" and (damping == "hunt-crossley"
+                                   or contact == "thornton"))
     run, ratio, halvings = checked.run, checked.ratio, checked.halvings
     if run.status != chatter_status.OK:
         return _blown_up(run, model, design, checked.dt, preload, damping,
@@ -506,6 +529,9 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         energy_ratio=ratio, preload_lb=float(preload), damping=damping,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, status=status, dt_source=dt_source,
+        energy_book=laws.energy_book(run, stack, members(design)),
+        end_state={"q": run.book["q"], "v": run.book["v"]}
+        if run.book else {},
         numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
                   choice.omega, "p_max_rad_s": choice.p_max,
                   "contact_force_bound_lb": choice.force_lb,
@@ -518,7 +544,9 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
             t_end=t_end, open_threshold=open_threshold, min_open=min_open,
             preload=preload, nu=nu, button_radius=button_radius,
             backend=backend, samples=samples, theta=theta, stepper=stepper,
-            single_impulse=False, static_correction=static_correction))
+            single_impulse=False, static_correction=static_correction,
+            alpha=alpha, contact=contact, yield_pressure=yield_pressure,
+            button=button, button_length=button_length))
     return result
 
 
@@ -554,10 +582,11 @@ def _verified(result, design, model, damping, settings) -> ChatterResult:
                            f"more than {MAX_MODES} modes")
     finer = design.replace(n_modes=n)
     law = None if model != "hertz" else HertzLaw.for_materials(
-        float(design.E1), settings["nu"], settings["button_radius"])
+        float(design.E1), settings["nu"], settings["button_radius"],
+        button=settings["button"], length=settings["button_length"])
     step = min(result.dt / 2.0, numerics.design_step(
         members(finer), None if law is None else law.k,
-        settings["preload"]).dt)
+        settings["preload"], law is not None and law.linear).dt)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnconvergedWarning)
         check = simulate(finer, model=model, damping=damping, dt=step,

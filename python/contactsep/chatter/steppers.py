@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.chatter.contacts import (
+    ContactMemory,
     HertzLaw,
     series_energy,
     series_forces,
@@ -85,53 +86,84 @@ def moreau_jean(m, p, h_matrix, g0, q, v, *, e, dt, steps, theta=0.5,
 
 
 def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
-          c_matrix=None):
+          c_matrix=None, book=False):
     """Hertz contact by Strang splitting: half kick of the contact forces,
     the exact modal flow over dt (every mode, however stiff), half kick.
     Symplectic for chi = 0; the step resolves the contact, not the modes.
     ``c_matrix`` (k x k, in/lb): the static correction's series
-    flexibilities (None or 0: the plain truncation).
-    Returns sampled (t, gaps, energy incl. the contact's) and the
-    impulses (force at each step's start x dt) summed per sample."""
+    flexibilities (None or 0: the plain truncation; not with Thornton's
+    law).  Returns sampled (t, gaps, energy incl. the contact's) and the
+    impulses (force at each step's start x dt) summed per sample; with
+    ``book``, also the energy book: a dict of the final ``q``, ``v``,
+    the ``dissipated`` energy (the damping's work, each kick's exact
+    change of kinetic energy, its damping part, and the plastic work)
+    and the contacts' ``stored`` energy at the end (in lb)."""
     q, v = q.astype(float).copy(), v.astype(float).copy()
     series = c_matrix is not None and bool(np.any(np.asarray(c_matrix)
                                                   != 0.0))
+    if series and law.plastic:
+        raise ValueError("Thornton's law takes no series correction")
+    memory = ContactMemory(law, len(g0))
     c, s = np.cos(p * dt), np.sin(p * dt)
     samples = steps // stride + 1
     t_out = np.empty(samples)
     g_out = np.empty((samples, len(g0)))
     e_out = np.empty(samples)
     impulses = np.zeros((samples, len(g0)))
+    damped = [0.0]
 
-    def energy(q, v):
+    def remember(q):
+        for j, gap in enumerate(h_matrix @ q + g0):
+            if gap < 0.0:
+                memory.remember(j, -float(gap))
+
+    def stored(q):
         gap = h_matrix @ q + g0
         if series:
-            return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + series_energy(
-                law.k, c_matrix, gap)
-        return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + np.sum(
-            law.energy(gap))
+            return series_energy(law.k, c_matrix, gap, law.linear)
+        return sum(memory.energy(j, -float(g)) for j, g in enumerate(gap))
 
-    def series_force(gap, v):
+    def energy(q, v):
+        return 0.5 * np.sum(m * (v**2 + (p * q)**2)) + stored(q)
+
+    def series_force(gap, v, chi):
         # Flores's factor on each element's stiffness (hertz.f90)
         stiff = [law.k] * len(gap)
-        if law.chi != 0.0 and np.any(gap < 0.0):
-            stiff = [law.k * max(1.0 - law.chi * float(r), 0.0)
+        if chi != 0.0 and np.any(gap < 0.0):
+            stiff = [law.k * max(1.0 - chi * float(r), 0.0)
                      for r in h_matrix @ v]
-        return series_forces(stiff, c_matrix, gap)
+        return series_forces(stiff, c_matrix, gap, law.linear)
+
+    def forces(gap, v, chi):
+        if series:
+            return series_force(gap, v, chi)
+        if not law.plastic and chi == law.chi:
+            return law.force(gap, h_matrix @ v)
+        rates = h_matrix @ v
+        return np.array([
+            (memory.force(j, -float(g), float(r)) if chi != 0.0 else
+             memory.elastic_force(j, -float(g))) if g < 0.0 else 0.0
+            for j, (g, r) in enumerate(zip(gap, rates))])
 
     def kick(q, v):
         gap = h_matrix @ q + g0
-        force = series_force(gap, v) if series else law.force(
-            gap, h_matrix @ v)
-        return force, v + 0.5 * dt * (h_matrix.T @ force) / m
+        force = forces(gap, v, law.chi)
+        after = v + 0.5 * dt * (h_matrix.T @ force) / m
+        if law.chi != 0.0 and np.any(gap < 0.0):
+            # the damping's part of the kick's exact work
+            elastic = forces(gap, v, 0.0)
+            damped[0] -= 0.25 * dt * float((force - elastic) @ (
+                h_matrix @ v + h_matrix @ after))
+        return force, after
 
     def sampled(q, force):
         # with the correction, the physical gaps g + C lambda
         gap = h_matrix @ q + g0
         return gap + np.asarray(c_matrix) @ force if series else gap
 
+    remember(q)
     t_out[0], e_out[0] = 0.0, energy(q, v)
-    g_out[0] = sampled(q, kick(q, v)[0])
+    g_out[0] = sampled(q, forces(h_matrix @ q + g0, v, law.chi))
     first, episode = [-1.0, -1.0], 0
     for step in range(steps):
         force, v = kick(q, v)
@@ -145,10 +177,16 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
             else:
                 episode = 2
         q, v = q * c + v / p * s, -q * p * s + v * c
+        remember(q)
         force, v = kick(q, v)
         if (step + 1) % stride == 0:
             k = (step + 1) // stride
             t_out[k] = (step + 1) * dt
             g_out[k] = sampled(q, force)
             e_out[k] = energy(q, v)
-    return t_out, g_out, e_out, impulses, np.array(first)
+    out = (t_out, g_out, e_out, impulses, np.array(first))
+    if not book:
+        return out
+    return out + ({"q": q, "v": v,
+                   "dissipated": damped[0] + memory.plastic_work(),
+                   "stored": float(stored(q))},)

@@ -46,9 +46,26 @@ def register(commands: argparse._SubParsersAction) -> None:
     run_group = parser.add_argument_group("simulation")
     run_group.add_argument("--model", choices=("appE", "newton", "hertz"),
                            default="hertz", help="default hertz")
-    run_group.add_argument("--damping", choices=("none", "flores"),
+    run_group.add_argument("--damping",
+                           choices=("none", "flores", "hunt-crossley"),
                            default="none",
-                           help="Hertz damping (default none: elastic)")
+                           help="Hertz damping (default none: elastic; "
+                                "flores: calibrated to --e; hunt-crossley: "
+                                "the material constant --alpha)")
+    run_group.add_argument("--alpha", type=finite("s/in"), default=None,
+                           metavar="S_PER_IN",
+                           help="Hunt-Crossley's constant (s/in): F = k "
+                                "delta^1.5 (1 + alpha delta'), never "
+                                "calibrated to the design")
+    run_group.add_argument("--contact", choices=("hertz", "thornton"),
+                           default="hertz",
+                           help="the law's elastic part: hertz (default) "
+                                "or thornton (elastic-perfectly-plastic; "
+                                "with --yield-pressure and "
+                                "--static-correction off)")
+    run_group.add_argument("--yield-pressure", type=finite("psi"),
+                           default=None, metavar="PSI",
+                           help="Thornton's yield pressure (psi)")
     run_group.add_argument(
         "--dt", type=finite("s"), default=None, metavar="S",
         help="time step (s; default: the design's own, from its stiffest "
@@ -94,6 +111,16 @@ def register(commands: argparse._SubParsersAction) -> None:
                            help="contact button radius of the Hertz "
                                 f"constant (in; default "
                                 f"{DEFAULT_BUTTON_RADIUS:g})")
+    run_group.add_argument("--button", choices=("sphere", "cylinder"),
+                           default="sphere",
+                           help="contact button: sphere on a flat (Hertz, "
+                                "default) or cylinder across it (line "
+                                "contact, force proportional to the "
+                                "penetration; docs/chatter.md)")
+    run_group.add_argument("--button-length", type=finite("in"),
+                           default=None, metavar="IN",
+                           help="cylinder button's length (in; default "
+                                "its diameter)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--progress", choices=("auto", "always",
                                                   "never"), default="auto",
@@ -132,7 +159,7 @@ def run(args: argparse.Namespace) -> int:
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
     if "e" in overrides and args.model == "hertz" and \
-            args.damping == "none":
+            args.damping != "flores":
         warnings.warn("--e: elastic Hertz contact does not use the "
                       "coefficient of restitution (give --damping flores "
                       "to calibrate its damping to e)", ContactsepWarning)
@@ -147,7 +174,9 @@ def run(args: argparse.Namespace) -> int:
                 stepper=args.stepper, nu=args.nu,
                 button_radius=args.button_radius,
                 static_correction=args.static_correction == "on",
-                verify=args.verify)
+                verify=args.verify, alpha=args.alpha, contact=args.contact,
+                yield_pressure=args.yield_pressure, button=args.button,
+                button_length=args.button_length)
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
@@ -215,7 +244,8 @@ def refuse_blown_up(result) -> None:
 
 #: simulate()'s arguments that are options of the command.
 _OPTIONS = ("dt", "t_end", "preload", "open_threshold", "min_open", "nu",
-            "button_radius", "verify")
+            "button_radius", "verify", "alpha", "contact", "yield_pressure",
+            "static_correction", "button", "button_length")
 
 
 def _g(value, digits=6) -> str:
@@ -240,7 +270,13 @@ def summary_text(result, listed: int | None = 10) -> str:
              f"{result.dt_source}), window 0 to {_g(result.t_end_s)} s "
              f"({result.t_end_source})",
              f"preload {_g(result.preload_lb)} lb, damping "
-             f"{result.damping}, open above {_g(result.open_threshold_in)}"
+             f"{result.damping}"
+             + (f" (alpha {_g(result.alpha_s_per_in)} s/in)"
+                if result.alpha_s_per_in is not None else "")
+             + (f", contact thornton (yield pressure "
+                f"{_g(result.yield_pressure_psi)} psi)"
+                if result.contact == "thornton" else "")
+             + f", open above {_g(result.open_threshold_in)}"
              f" in, events last >= {_g(result.min_open_s)} s"
              + (", static correction" if result.static_correction
                 else "")]

@@ -57,8 +57,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="Evaluate one of the thesis's studies on the general "
                     "model and print it as a labelled table. NAME is one "
                     f"of {', '.join(STUDIES)}, chatter, preload, "
-                    "conclusion3, conclusion5, conclusion6, conclusion7, "
-                    "contact-points, materials, "
+                    "conclusion3, conclusion4, conclusion5, conclusion6, "
+                    "conclusion7, contact-points, materials, "
                     "or all (every study of eq. 23; with --out). "
                     "Design options change the thesis rig the study starts "
                     "from; a study refuses those it sets itself (fig5 its "
@@ -71,7 +71,14 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "conclusions (restitution, separator thickness, "
                     "separator mass, contact point) for circuit opening "
                     f"(each: default --model hertz, --n-modes "
-                    f"{PRELOAD_MODES}). separator-fit (a minute) fits "
+                    f"{PRELOAD_MODES}). conclusion4 (10 s) reads the "
+                    "apparent coefficient of restitution of three contact "
+                    "laws against impact velocity and separator "
+                    "thickness (--alpha, --yield-pressure, "
+                    "--reading-time). buttons (minutes) finds the open "
+                    "time and smallest preload of spherical and "
+                    "cylindrical buttons of three radii. separator-fit "
+                    "(a minute) fits "
                     "Timoshenko separators with elastic clamps and a "
                     "sensor mass to Table II (no design options). "
                     "contact-points and materials (the thesis's "
@@ -104,6 +111,19 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="preload only: the Hertz contact's damping "
                             "(default none: elastic; flores: calibrated "
                             "to e)")
+    study.add_argument("--alpha", type=finite("s/in"), default=None,
+                       metavar="S_PER_IN",
+                       help="conclusion4 (default 0.0676 s/in) and "
+                            "preload with --damping hunt-crossley: "
+                            "Hunt-Crossley's constant")
+    study.add_argument("--yield-pressure", type=finite("psi"), default=None,
+                       metavar="PSI",
+                       help="conclusion4 only: Thornton's yield pressure "
+                            "(default 45000 psi)")
+    study.add_argument("--reading-time", type=finite("s"), default=None,
+                       metavar="S",
+                       help="conclusion4 only: when e_apparent is read "
+                            "after the first impact (default 0.02 s)")
     study.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
                        help=f"preload, conclusionN, contact-points and "
@@ -170,8 +190,15 @@ def register(commands: argparse._SubParsersAction) -> None:
         "varied or sampled)")
     for name, metavar, default in (("preload", "LB", "lb; default 0"),
                                    ("min_open", "S", "s; default 1e-05"),
-                                   ("damping", "{none,flores}",
+                                   ("damping",
+                                    "{none,flores,hunt-crossley}",
                                     "default none"),
+                                   ("alpha", "S_PER_IN", "s/in; with "
+                                    "--damping hunt-crossley"),
+                                   ("contact", "{hertz,thornton}",
+                                    "default hertz"),
+                                   ("yield_pressure", "PSI", "psi; with "
+                                    "--contact thornton"),
                                    ("dt", "S", "s; default: each "
                                     "design's own; varied, not sampled"),
                                    ("t_end", "S", "s; default: each "
@@ -244,12 +271,29 @@ def _compute(name: str, args, overrides: dict):
     if name in ADVICE:
         return _recommendation(name, args, overrides)
     searches = ("preload", *CONCLUSIONS)
-    if name not in searches and (args.model or args.workers):
+    if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
     if name != "preload" and args.damping:
         raise InputError(f"--damping is study preload's option, not "
                          f"study {name}'s (conclusion3 uses flores)")
+    own_options = {"--alpha": args.alpha,
+                   "--yield-pressure": args.yield_pressure,
+                   "--reading-time": args.reading_time}
+    if name == "preload":
+        # the preload chart takes Hunt-Crossley's constant with its
+        # --damping hunt-crossley
+        own_options.pop("--alpha")
+    if name != "conclusion4" and any(v is not None
+                                     for v in own_options.values()):
+        given = ", ".join(k for k, v in own_options.items()
+                          if v is not None)
+        raise InputError(f"{given}: options of study conclusion4, not "
+                         f"study {name}'s")
+    if name == "conclusion4":
+        return _conclusion4(args, overrides)
+    if name == "buttons":
+        return _buttons(args, overrides)
     if name in searches:
         return _search_study(name, args, overrides)
     if name == "separator-fit":
@@ -274,6 +318,42 @@ def _compute(name: str, args, overrides: dict):
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
 
 
+def _conclusion4(args, overrides: dict):
+    """study conclusion4: e_apparent of three contact laws."""
+    from contactsep.studies import restitution
+    overrides = dict(overrides)
+    n_modes = overrides.pop("n_modes", restitution.MODES)
+    if overrides or args.backend:
+        raise InputError("study conclusion4 takes no design options but "
+                         "--n-modes: it runs the thesis rig over its "
+                         "separators and release heights")
+    settings = {"alpha": args.alpha, "yield_pressure": args.yield_pressure,
+                "reading_time": args.reading_time}
+    settings = {k: v for k, v in settings.items() if v is not None}
+    try:
+        with _bar(args, 3 * restitution.ROWS) as bar:
+            return restitution.conclusion4(n_modes=n_modes, progress=bar,
+                                           **settings)
+    except ValueError as error:
+        name, _, rest = str(error).partition(":")
+        raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
+
+
+def _buttons(args, overrides: dict):
+    """study buttons: open time and smallest preload against the
+    button's shape and radius."""
+    from contactsep.studies import buttons
+    overrides = dict(overrides)
+    n_modes = overrides.pop("n_modes", buttons.MODES)
+    if overrides or args.backend or args.model:
+        raise InputError("study buttons takes no design options but "
+                         "--n-modes (and --workers): it runs the thesis "
+                         "rig with each button")
+    with _bar(args, None) as bar:
+        return buttons.buttons(n_modes=n_modes, workers=args.workers,
+                               progress=bar)
+
+
 def _search_study(name: str, args, overrides: dict):
     """study preload and conclusion3|5|6|7: three-beam simulations with
     the preload search; their own model, N (default 32) and workers."""
@@ -290,9 +370,11 @@ def _search_study(name: str, args, overrides: dict):
     try:
         with _bar(args, None) as bar:
             if name == "preload":
+                extra = {} if args.alpha is None else {
+                    "settings": {"alpha": args.alpha}}
                 return preload_chart(**options,
                                      damping=args.damping or "none",
-                                     progress=bar, **overrides)
+                                     progress=bar, **extra, **overrides)
             return conclusion(name, **options, progress=bar, **overrides)
     except SearchError as error:
         # the study names its arguments; the command, its options
@@ -375,10 +457,11 @@ def run_study(args: argparse.Namespace) -> int:
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS, *ADVICE)
     if args.name not in (*STUDIES, "chatter", "separator-fit", *searches,
-                         "all"):
+                         "conclusion4", "buttons", "all"):
         raise InputError(f"study {args.name!r}: expected one of "
                          f"{', '.join(STUDIES)}, chatter, separator-fit, "
-                         f"{', '.join(searches)} or all")
+                         f"{', '.join(searches)}, conclusion4, buttons or "
+                         f"all")
     if args.name == "all" and (not args.out or args.csv or args.png):
         raise InputError("study all writes with --out DIR (not --csv "
                          "or --png)")
@@ -450,6 +533,9 @@ def _settings(args: argparse.Namespace) -> dict:
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
+             "alpha": (args.alpha, "--alpha"),
+             "contact": (args.contact, "--contact"),
+             "yield_pressure": (args.yield_pressure, "--yield-pressure"),
              "dt": (args.dt, "--dt"),
              "t_end": (args.t_end, "--t-end"),
              "static_correction": (args.static_correction,

@@ -123,3 +123,31 @@ def design_keys(design) -> dict:
             value = value.item()
         out[field_key(f.name)] = value
     return out
+
+
+#: The Hertz family's energy book in the chatter outputs (issue 28,
+#: docs/chatter.md "Energy book"): (key, unit as printed, meaning).
+ENERGY_BOOK = (
+    ("energy_initial_lbin", "in lb", "energy at the release, the "
+     "contacts' included"),
+    ("energy_dissipated_contact_lbin", "in lb", "energy the contacts "
+     "dissipated (damping's work, plastic work), summed by the stepper"),
+    ("energy_member1_lbin", "in lb", "vibration energy left in the upper "
+     "contact's modes at the end"),
+    ("energy_member2_lbin", "in lb", "vibration energy left in the "
+     "separator's modes at the end"),
+    ("energy_member3_lbin", "in lb", "vibration energy left in the lower "
+     "contact's modes at the end"),
+    ("energy_contact_lbin", "in lb", "elastic energy stored in the "
+     "contacts at the end"),
+)
+#: The contact law's settings in the chatter outputs: (key, unit as
+#: printed, meaning).
+CONTACT_LAW = (
+    ("contact", "", "the law's elastic part: hertz or thornton"),
+    ("alpha_s_per_in", "s/in", "Hunt-Crossley's material constant"),
+    ("yield_pressure_psi", "psi", "Thornton's yield pressure"),
+)
+#: The columns of ``contactsep study conclusion4`` (a contract).
+CONCLUSION4_COLUMNS = ("law", "d_in", "ys_in", "impact_velocity_in_s",
+                       "e_apparent")

@@ -146,6 +146,8 @@ def _row(spec: SweepSpec, varied: dict, i: int) -> tuple[dict, dict]:
     if spec.model != "hertz":
         settings.pop("damping")
         settings.pop("static_correction", None)
+        for name in ("alpha", "contact", "yield_pressure"):
+            settings.pop(name, None)
     elif "static_correction" in settings:
         settings["static_correction"] = \
             settings["static_correction"] == "on"

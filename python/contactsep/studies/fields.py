@@ -31,7 +31,7 @@ import numpy as np
 
 from contactsep import beams, units
 from contactsep.beams.member import THEORIES
-from contactsep.chatter.simulate import DAMPINGS
+from contactsep.chatter.simulate import CONTACTS, DAMPINGS
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError, shown
 from contactsep.model.design import (
@@ -56,8 +56,14 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
                             "separator at the start"),
     "min_open": ("s", "s", "shortest circuit opening counted as a "
                            "discontinuity event"),
-    "damping": ("", "", "Hertz contact damping: none (elastic) or flores "
-                        "(calibrated to e)"),
+    "damping": ("", "", "Hertz contact damping: none (elastic), flores "
+                        "(calibrated to e) or hunt-crossley (alpha)"),
+    "alpha": ("s_per_in", "s/in", "Hunt-Crossley's material constant "
+                                  "(damping hunt-crossley)"),
+    "contact": ("", "", "the Hertz law's elastic part: hertz or thornton "
+                        "(elastic-perfectly-plastic)"),
+    "yield_pressure": ("psi", "psi", "Thornton's yield pressure (contact "
+                                     "thornton)"),
     "dt": ("s", "s", "the adaptive stepper's time step (a convergence "
                      "check: docs/chatter.md)"),
     "static_correction": ("", "", "hertz: the truncated modes' residual "
@@ -67,7 +73,8 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
                         "(fixed, not varied)"),
 }
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
-VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt")
+VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt", "alpha",
+                     "contact", "yield_pressure")
 SAMPLED_SETTINGS = ("preload", "min_open")
 
 #: Other names accepted for a field wherever a field is named on input.
@@ -77,7 +84,7 @@ CHOICES = {"end1": beams.END_CONDITIONS, "end2": beams.END_CONDITIONS,
            "end3": beams.END_CONDITIONS,
            "impact_velocity": IMPACT_VELOCITIES,
            "lower_response": LOWER_RESPONSES, "lc_reading": LC_READINGS,
-           "release": RELEASES, "damping": DAMPINGS,
+           "release": RELEASES, "damping": DAMPINGS, "contact": CONTACTS,
            "static_correction": ("on", "off"),
            **{f"beam{m}": THEORIES for m in MEMBERS}}
 #: Fields that may be None, and what None means.
@@ -199,6 +206,11 @@ def _setting(field: str, text, label: str) -> float:
     if field == "t_end" and not (0.0 < value <= MAX_WINDOW_S):
         raise InputError(f"{label}: found {text!r}, expected a window > 0 "
                          f"and at most {MAX_WINDOW_S:g} s")
+    if field in ("alpha", "yield_pressure") and not (
+            math.isfinite(value) and value > 0.0):
+        raise InputError(f"{label}: found {text!r}, expected a "
+                         f"{'constant' if field == 'alpha' else 'pressure'}"
+                         f" > 0 {unit(field)}")
     if field == "dt" and not (0.0 < value < LISTING_TAU_S):
         raise InputError(f"{label}: found {text!r}, expected a time step "
                          f"> 0 and below the window, {LISTING_TAU_S:g} s")

@@ -325,6 +325,14 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         fig.tight_layout()
         _write(plt, fig, path, dpi)
         return
+    elif name == "buttons":
+        from contactsep.studies.buttons import draw
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0))
+        draw(axes, study)
+    elif name == "conclusion4":
+        from contactsep.studies.restitution import draw
+        fig, axes = plt.subplots(1, 2, sharey=True, figsize=(8.0, 4.0))
+        draw(axes, study)
     elif name == "separator-fit":
         from contactsep.studies.separator_fit import draw
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 7.0))

@@ -473,6 +473,8 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         found = min_preloads(designs, model, settings, simulations=sims)
     step = DEFAULT_DT[model] if dt is None else dt
     law = f", damping {damping}" if model == "hertz" else ""
+    if "alpha" in settings:
+        law += f" (alpha {settings['alpha']:g} s/in)"
     notes = [
         f"model {model}{law}, N = {n_modes} modes per member, the "
         f"adaptive stepper at dt {step:g} s, window 0-0.06 s from the "

@@ -66,7 +66,7 @@ RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
 _VARIABLE = design_fields.VARIABLE + design_fields.VARIABLE_SETTINGS
 _SAMPLED = design_fields.SAMPLED + design_fields.SAMPLED_SETTINGS
 #: What --vary takes as START:STOP:COUNT: the numbers.
-_LINEAR = _SAMPLED + ("dt",)
+_LINEAR = _SAMPLED + ("dt", "alpha", "yield_pressure")
 
 
 def _field(name: str, option: str, allowed: tuple) -> str:

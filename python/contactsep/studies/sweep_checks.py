@@ -171,6 +171,10 @@ def check_model(model: str, backend: str, used: set) -> None:
     if model == "newton" and "damping" in used:
         raise SweepError("damping: the Hertz contact's (--model hertz); "
                          "Newton's impact law has e")
+    hertz_only = sorted(used & {"alpha", "contact", "yield_pressure"})
+    if model == "newton" and hertz_only:
+        raise SweepError(f"{', '.join(hertz_only)}: the Hertz contact's "
+                         f"(--model hertz)")
     if model != "eq23" and backend != "compiled":
         raise SweepError(f"--backend {backend}: the chatter sweeps run the "
                          f"compiled steppers")
