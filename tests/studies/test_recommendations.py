@@ -109,8 +109,9 @@ def test_the_materials_study_runs_and_draws(tmp_path):
     study = mat.materials(n_modes=2, contacts=("aluminium",),
                           separators=("aluminium", "steel"),
                           preloads=(0.0,), workers=1)
-    assert len(study) == 2
-    assert list(study["separator_material"]) == ["aluminium", "steel"]
+    laws = 2 if mat.thornton_available() else 1
+    assert len(study) == 2 * laws
+    assert list(study["separator_material"]) == ["aluminium", "steel"] * laws
     # the yield-pressure column comes with Thornton's law, only
     assert ("yield_pressure_psi" in study.columns) == \
         mat.thornton_available()
@@ -187,11 +188,28 @@ def test_the_docs_tables_are_the_committed_studies():
             gap, open_ms = (float(v) for v in cell.split("/"))
             got = {float(r["preload_lb"]): r for r in rows
                    if r["contact_material"] == names[label]
-                   and r["separator_material"] == separator}
+                   and r["separator_material"] == separator
+                   and r.get("law", "hertz") == "hertz"}
             assert gap == pytest.approx(
                 1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
             assert open_ms == pytest.approx(
                 1e3 * float(got[6.0]["circuit_open_s"]), abs=0.051)
+    # the prose on Thornton's rows: closed at 6 lb but for BeCu on BeCu
+    thornton = [r for r in rows if r.get("law") == "thornton"]
+    assert len(thornton) == 32
+    pressed = [r for r in thornton if float(r["preload_lb"]) == 6.0]
+    opened = [(r["contact_material"], r["separator_material"])
+              for r in pressed if int(r["n_events"]) > 0]
+    assert opened == [("beryllium-copper", "beryllium-copper")]
+    becu = next(r for r in pressed if int(r["n_events"]) > 0)
+    assert (round(1e3 * float(becu["circuit_open_s"]), 1),
+            int(becu["n_events"])) == (2.4, 51)
+    free = [r for r in thornton if float(r["preload_lb"]) == 0.0]
+    assert (round(1e3 * min(float(r["circuit_open_s"]) for r in free)),
+            round(1e3 * max(float(r["circuit_open_s"]) for r in free))) \
+        == (22, 33)
+    assert (min(int(r["n_events"]) for r in free),
+            max(int(r["n_events"]) for r in free)) == (6, 17)
 
 
 def test_the_materials_study_runs_thorntons_law_where_simulate_has_it(
