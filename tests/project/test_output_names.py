@@ -37,6 +37,7 @@ DIMENSIONLESS = {
     "lc_reading", "release", "data_set", "title", "event", "curve",
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
+    "alias_share",
     "verify_n_modes", "verify_status"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.

@@ -486,7 +486,11 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         return t_end / steps, _run(model, stepper, backend, stack, law,
                                    design, theta, t_end / steps, steps,
                                    max(1, steps // samples), open_threshold)
-    checked = numerics.checked_run(run_at, dt, dt_source, damped, least)
+    refine = None if law is None else (
+        lambda step: numerics.design_step(members(design), law.k, preload,
+                                          largest=step).dt)
+    checked = numerics.checked_run(run_at, dt, dt_source, damped, least,
+                                   refine)
     run, ratio, halvings = checked.run, checked.ratio, checked.halvings
     if run.status != chatter_status.OK:
         return _blown_up(run, model, design, checked.dt, preload, damping,
@@ -510,6 +514,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                   choice.omega, "p_max_rad_s": choice.p_max,
                   "contact_force_bound_lb": choice.force_lb,
                   "contact_stiffness_lb_per_in": choice.stiffness_lb_in,
+                  "contact_dt_s": choice.contact_dt,
+                  "alias_share": choice.alias_share,
                   "dt_halvings": halvings,
                   "energy_tolerance": numerics.ENERGY_TOLERANCE},
         **settings)
@@ -555,9 +561,9 @@ def _verified(result, design, model, damping, settings) -> ChatterResult:
     finer = design.replace(n_modes=n)
     law = None if model != "hertz" else HertzLaw.for_materials(
         float(design.E1), settings["nu"], settings["button_radius"])
-    step = min(result.dt / 2.0, numerics.design_step(
+    step = numerics.design_step(
         members(finer), None if law is None else law.k,
-        settings["preload"]).dt)
+        settings["preload"], largest=result.dt / 2.0).dt
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnconvergedWarning)
         check = simulate(finer, model=model, damping=damping, dt=step,
