@@ -232,7 +232,7 @@ def test_the_command_verifies_and_warns_in_one_line(capsys):
 
 
 def test_the_default_n_is_one_named_constant(capsys):
-    assert chatter.DEFAULT_MODES == numerics.DEFAULT_MODES == 32
+    assert chatter.DEFAULT_MODES == numerics.DEFAULT_MODES == 64
     assert main(["chatter", "--model", "appE", "--t-end", "0.03",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["inputs"]["n_modes"] == \

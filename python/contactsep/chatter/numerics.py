@@ -40,9 +40,13 @@ from dataclasses import dataclass
 import numpy as np
 
 #: Modes per member of `contactsep chatter` and of the thesis-free
-#: defaults (the one place it is set; the static-correction study sets
-#: its value).
-DEFAULT_MODES = 32
+#: defaults (the one place it is set): the smallest N at which every
+#: converging headline quantity (first impact, first impulse, circuit
+#: open time) of the family's default runs is within 1 % of a fine-step
+#: N = 128 run (benchmarks/default_modes.py: 2.4e-3 at N = 64; at N = 32
+#: becu_light's first impulse is 77 % off; docs/chatter.md, "The
+#: default N").
+DEFAULT_MODES = 64
 #: Newton's step as a fraction of 2 / p_max (its velocity-level impulses
 #: take the modes' own bound).
 STEP_SAFETY = 0.5
