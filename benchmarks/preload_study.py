@@ -16,6 +16,10 @@ Parts (default: convergence, check, monotone):
   3 % below (an event expected) its preload.
 * ``monotone``: each row of the chart scanned finely, 0.80-1.25 times
   its preload in 1 % steps: where "closed" is not monotone.
+* ``chart-bracket [--chart CSV]`` (not in the default parts): each
+  answer of a chart at twice its N and half its step, 2 % below (an
+  event expected) and 2 % above (none): the chart's rows converged to
+  2 % (28 simulations; minutes).
 * ``chart-convergence [--modes N]`` (not in the default parts): the
   whole chart at N (default 32) and at 2N, half the step, with each
   row's change: the chart's convergence table (an hour or more on two
@@ -175,6 +179,44 @@ def chart_convergence(n_modes=32) -> None:
               f"{'yes' if abs(change) <= 0.02 else 'NO'} |")
 
 
+def chart_bracket(path=CHART, margin=0.02) -> None:
+    """Each answer of a chart (``--chart CSV``, at N) checked at 2N and
+    half the chart's step: ``margin`` (2 %) below it an event expected,
+    ``margin`` above none.  Both hold: at 2N, dt/2 the threshold lies
+    within the margin of the chart's answer (a window of events, or of
+    closed preloads, narrower than the margin aside): the row is
+    converged to the margin.  28 simulations, not a second chart."""
+    from contactsep.chatter.simulate import DEFAULT_DT
+    from contactsep.constants import LISTING_TAU_S
+    rows = [r for r in read_chart(path)
+            if r["min_preload_lb"] not in ("nan", "")]
+    n = 2 * int(rows[0]["n_modes"])
+    settings = {"dt": DEFAULT_DT["hertz"] / 2, "t_end": LISTING_TAU_S,
+                "damping": "none"}
+    tasks = []
+    for r in rows:
+        design = contactsep.thesis_design(d=float(r["d_in"]),
+                                          ys=float(r["ys_in"]), n_modes=n)
+        answer = float(r["min_preload_lb"])
+        tasks += [(design, r["model"], settings, answer * (1 - margin)),
+                  (design, r["model"], settings, answer * (1 + margin))]
+    start = time.perf_counter()
+    found = run_all(tasks)
+    print(f"The chart {path} (N = {rows[0]['n_modes']}) at N = {n}, dt "
+          f"{settings['dt']:g} s, {margin:.0%} either side of each answer "
+          f"({time.perf_counter() - start:.0f} s)\n")
+    print(f"| d (in) | y_s (in) | answer (lb) | events at -{margin:.0%} | "
+          f"events at +{margin:.0%} | longest opening at +{margin:.0%} "
+          f"(s) | within {margin:.0%} |")
+    print("|---|---|---:|---:|---:|---:|---|")
+    for k, r in enumerate(rows):
+        (below, _), (above, longest) = found[2 * k], found[2 * k + 1]
+        held = below > 0 and above == 0
+        print(f"| {float(r['d_in']):g} | {float(r['ys_in']):g} | "
+              f"{float(r['min_preload_lb']):.4g} | {below} | {above} | "
+              f"{longest:.3g} | {'yes' if held else 'NO'} |")
+
+
 def main(argv) -> None:
     chart = CHART
     if "--chart" in argv:
@@ -190,6 +232,7 @@ def main(argv) -> None:
              "convergence": convergence,
              "convergence-full": lambda: convergence(full=True),
              "check": lambda: check(chart),
+             "chart-bracket": lambda: chart_bracket(chart),
              "monotone": lambda: monotone(chart)}
     for name in argv or ["convergence", "check", "monotone"]:
         if name not in parts:

@@ -551,8 +551,8 @@ def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
 
 def _verified(result, design, model, damping, settings) -> ChatterResult:
     """``result`` with ``changes``: the relative change of each headline
-    quantity at half the step and twice the modes (the design's step
-    for 2N where that is smaller: a step stable for N modes need not be
+    quantity at half the step and twice the modes (moved down off the
+    2N design's resonances: a step free of them for N modes need not be
     for 2N)."""
     n = 2 * int(design.n_modes)
     if n > MAX_MODES:
