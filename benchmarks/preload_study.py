@@ -257,10 +257,8 @@ def chart_rows(path=CHART, rows="") -> None:
                for d, ys in keys]
     start = time.perf_counter()
     with preload.Simulations() as sims:
-        def has_event(tasks):
-            return sims.events([(designs[row], "hertz", settings, p)
-                                for row, p in tasks])
-        found = preload.search(len(keys), has_event)
+        found = preload.min_preloads(designs, "hertz", settings,
+                                     simulations=sims)
     print(f"The chart's search at N = {n}, dt {settings['dt']:g} s "
           f"({sims.runs} simulations, {time.perf_counter() - start:.0f} s)"
           f"\n")
