@@ -30,7 +30,7 @@ def chart():
 def section(title: str) -> str:
     text = PAGE.read_text()
     start = text.index(title)
-    end = re.search(r"^#{2,3} ", text[start + len(title):], flags=re.M)
+    end = re.search(r"^#{2,3} ", text[start + len(title):], flags=re.MULTILINE)
     return text[start:start + len(title) + (end.start() if end else
                                             len(text))]
 
