@@ -45,8 +45,9 @@ def quiet(design, **options):
 def test_the_step_bounds_the_closed_systems_highest_frequency(name):
     """The bound omega^2 <= max p^2 + k_lin trace(H M^-1 H^T) against the
     eigenvalues of M^-1/2 (K + k_lin H^T H) M^-1/2, both contacts closed
-    at the stiffness the step assumed (N = 8): never below, and the step
-    within the splitting's stability limit 2/omega."""
+    at the stiffness the step assumed (N = 8): never below.  (The step
+    is not bounded by it: the flow between kicks is exact, and the
+    splitting's resonances are tested in test_step_resonance.py.)"""
     design = DESIGNS[name].replace(n_modes=8)
     parts = members(design)
     law = HertzLaw.for_materials(float(design.E1))
@@ -62,7 +63,6 @@ def test_the_step_bounds_the_closed_systems_highest_frequency(name):
     highest = math.sqrt(np.linalg.eigvalsh(matrix).max())
     assert highest <= choice.omega * (1 + 1e-12)
     assert highest > 0.5 * choice.omega     # a bound, not a guess
-    assert choice.dt * choice.omega <= 2 * numerics.STEP_SAFETY + 1e-12
 
 
 @pytest.mark.parametrize("name", ["thesis", "steel_relay", "becu_light"])
@@ -232,7 +232,7 @@ def test_the_command_verifies_and_warns_in_one_line(capsys):
 
 
 def test_the_default_n_is_one_named_constant(capsys):
-    assert chatter.DEFAULT_MODES == numerics.DEFAULT_MODES == 32
+    assert chatter.DEFAULT_MODES == numerics.DEFAULT_MODES == 64
     assert main(["chatter", "--model", "appE", "--t-end", "0.03",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["inputs"]["n_modes"] == \

@@ -38,6 +38,7 @@ DIMENSIONLESS = {
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
     "contact", "law", "e_apparent", "button",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
+    "alias_share",
     "verify_n_modes", "verify_status", "contact_material",
     "separator_material", "law"}
 #: Structures: lists of [start, end] intervals (s) or confidence

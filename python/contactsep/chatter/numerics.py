@@ -5,25 +5,20 @@ chosen and checked").
 
 * **Step.**  The Hertz and Newton steppers split each step into the
   exact modal flow and a contact kick (fortran/chatter/hertz.f90,
-  adaptive*.f90).  Linearised, one step of such a splitting is stable
-  while ``omega dt < 2`` for the system's highest frequency ``omega``
-  (and a kick resonates with a mode of ``p dt`` near a multiple of pi).
-  With the contact linearised at the largest force it can carry, the
-  squared frequencies of the modal system with the contacts closed are
-  bounded by (Weyl: the contact adds a positive semidefinite matrix
-  whose trace bounds its largest eigenvalue)::
+  adaptive*.f90).  The flow is exact, so the highest retained mode does
+  not bound the Hertz step: it is at most :data:`CONTACT_PHASE` over
+  the contact's own frequency sqrt(k_lin * trace), trace =
+  sum_contacts sum_members sum_j X_j(x)^2 / M, k_lin = dF/ddelta =
+  (3/2) k^(2/3) F^(1/3) the Hertz stiffness at the force F of the
+  upper contact's impact at its largest possible speed (the release's
+  modal speeds summed) against the two first modes' effective mass,
+  plus the preload; then shrunk until no retained mode sits on a
+  resonance of the splitting (:func:`resonance_free`: the kicks alias a
+  mode with p_j dt near 2 m pi onto slow motion).  Newton's law keeps
+  :data:`STEP_SAFETY` of 2 / p_max.  ``omega`` (reported) bounds the
+  closed system's highest frequency (Weyl)::
 
-      omega^2 <= max_j p_j^2 + k_lin * sum_contacts sum_members
-                                       sum_j X_j(x)^2 / M,
-
-  k_lin = dF/ddelta = (3/2) k^(2/3) F^(1/3) the Hertz stiffness at the
-  force F.  F is the Hertz force of the upper contact's impact at its
-  largest possible speed (the release's modal speeds summed, an upper
-  bound) against the two first modes' effective mass at the contact,
-  plus the preload.  The step is :data:`STEP_SAFETY` of ``2/omega``,
-  and at most :data:`CONTACT_PHASE` over the contact's own frequency
-  ``sqrt(k_lin * trace)`` (accuracy: at few modes the contact, not the
-  highest mode, is the fastest motion).
+      omega^2 <= max_j p_j^2 + k_lin * trace.
 * **Window.**  :data:`WINDOW_PERIODS` periods of the slowest member's
   first mode after the first impact (of the N-mode release flight).
 * **Error control.**  Energy is the error indicator: an elastic run must
@@ -45,11 +40,26 @@ from dataclasses import dataclass
 import numpy as np
 
 #: Modes per member of `contactsep chatter` and of the thesis-free
-#: defaults (the one place it is set; the static-correction study sets
-#: its value).
-DEFAULT_MODES = 32
-#: The step as a fraction of the splitting's stability limit 2/omega.
+#: defaults (the one place it is set): the smallest N at which every
+#: converging headline quantity (first impact, first impulse, circuit
+#: open time) of the family's default runs is within 1 % of a fine-step
+#: N = 128 run (benchmarks/default_modes.py: 2.4e-3 at N = 64; at N = 32
+#: becu_light's first impulse is 77 % off; docs/chatter.md, "The
+#: default N").
+DEFAULT_MODES = 64
+#: Newton's step as a fraction of 2 / p_max (its velocity-level impulses
+#: take the modes' own bound).
 STEP_SAFETY = 0.5
+#: The resonance test's contact stiffness, as a multiple of the Hertz
+#: stiffness at the largest expected force (the unstable band of a mode
+#: is kappa dt / p wide: 4 keeps three band widths clear).
+RESONANCE_STIFFNESS = 4.0
+#: Largest share of the contacts' coupling the kicks may alias onto slow
+#: motion (:func:`alias_measure`; the energy error is about a third of
+#: it: 1e-7 keeps it a thirtieth of ENERGY_TOLERANCE).
+ALIAS_TOLERANCE = 1e-7
+#: Factor by which a step failing the resonance test is shrunk.
+STEP_SHRINK = 0.997
 #: Most phase (rad) of the contact's own linearised oscillation,
 #: sqrt(k_lin * trace), a step takes: about 300 steps a contact period,
 #: what the energy check asks at few modes, where the contact and not
@@ -82,6 +92,13 @@ class StepChoice:
     #: Largest expected contact force (lb) and its Hertz stiffness (lb/in).
     force_lb: float
     stiffness_lb_in: float
+    #: The contact's accuracy bound CONTACT_PHASE / sqrt(k_lin trace)
+    #: (s; the modal bound for Newton's law), before the resonance test.
+    contact_dt: float = math.nan
+    #: Largest p_j dt of the retained modes at the step (rad).
+    largest_phase: float = math.nan
+    #: :func:`alias_measure` at the step (0: no mode at p_j dt >= pi).
+    alias_share: float = math.nan
 
 
 def _mobility(member, values=None) -> float:
@@ -97,42 +114,129 @@ def largest_speed(upper) -> float:
     return float(np.sum(np.abs(upper.x * upper.q0 * upper.p)))
 
 
+def contact_couplings(members):
+    """The stacked modes' frequencies ``p`` (rad/s) and their contact
+    couplings ``w`` = X_j(x)^2 / M summed over the contacts a mode takes
+    part in (1/(lb s^2/in); the separator's modes are in both)."""
+    upper, sep, lower = members
+    p = np.concatenate([m.p for m in members])
+    w = np.concatenate([upper.x**2 / upper.mass,
+                        (sep.x**2 + sep.lower_x**2) / sep.mass,
+                        lower.x**2 / lower.mass])
+    return p, w
+
+
+def alias_measure(dt, p, w, contact_frequency) -> float:
+    """The share of the contacts' coupling held by modes the kicks
+    alias onto slow motion: sum_j w_j min(1, (omega_c dt / eps_j)^4) /
+    sum_j w_j over the modes with p_j dt >= pi, eps_j the distance of
+    p_j dt from the nearest multiple of 2 pi.
+
+    Between two kicks mode j turns by p_j dt exactly, so seen at the
+    kicks it turns by eps_j: the kicks drive it as they would a mode of
+    frequency eps_j / dt (near an odd multiple of pi they alternate in
+    sign against it and see only the force's content at 1/(2 dt): none).
+    A contact force of frequency omega_c (its spectrum falling at least
+    as (omega_c / Omega)^2 above it, a half-sine pulse's, squared in the
+    energy) feeds such a mode, instead of leaving it quasi-static as its
+    true p_j would, energy in proportion to its coupling w_j and that
+    factor: the energy error of the run, measured on the family, is a
+    third of this share (docs/chatter.md)."""
+    theta = np.asarray(p) * dt
+    high = theta >= math.pi
+    if not np.any(high):
+        return 0.0
+    theta = theta[high]
+    eps = np.abs(theta - 2.0 * math.pi * np.round(theta / (2.0 * math.pi)))
+    factor = np.minimum(1.0, (contact_frequency * dt
+                              / np.maximum(eps, 1e-300))**4)
+    return float(np.sum(w[high] * factor) / np.sum(w))
+
+
+def resonance_free(dt, p, w, stiffness, contact_frequency) -> bool:
+    """Whether the step ``dt`` keeps every retained mode off the
+    splitting's resonances (docs/chatter.md, "How the numerics are
+    chosen and checked"), contacts of linear stiffness ``stiffness``
+    (lb/in; both closed) and frequency ``contact_frequency`` (rad/s):
+
+    * stability: one mode of frequency p coupled to a contact by
+      kappa = k w (rad^2/s^2) is stable under the splitting iff
+      |2 cos(theta) - (kappa dt / p) sin(theta)| <= 2, theta = p dt
+      (the trace of its one-step map): unstable in a band of width
+      kappa dt / p just below each multiple m pi.  The test takes
+      kappa at :data:`RESONANCE_STIFFNESS` times the stiffness (a
+      margin of three band widths, and room for a force above the
+      estimate).  In the whole system the other modes' compliance sits
+      in series with the contact at the aliased (slow) frequency and
+      narrows the band further: the test errs on the safe side, and on
+      the family it never binds;
+    * aliasing: :func:`alias_measure` at most :data:`ALIAS_TOLERANCE`
+      (what binds: a mode 0.01 rad below 2 pi a step is linearly
+      stable yet takes 1e-3 of the energy, tests/chatter/
+      test_step_resonance.py)."""
+    theta = p * dt
+    kappa = RESONANCE_STIFFNESS * stiffness * w
+    trace = 2.0 * np.cos(theta) - kappa * dt / p * np.sin(theta)
+    if np.any(np.abs(trace) > 2.0):
+        return False
+    return alias_measure(dt, p, w, contact_frequency) <= ALIAS_TOLERANCE
+
+
 def design_step(members, hertz_k=None, preload=0.0,
-                linear=False) -> StepChoice:
-    """The step (s) for the stacked members (upper, separator, lower):
-    :data:`STEP_SAFETY` of 2/omega with omega bounded as in the module
-    doc.  ``hertz_k`` (lb/in^1.5) is the Hertz constant; None (Newton's
-    rigid law) bounds omega by the modes alone; with ``linear`` (a
-    cylindrical button) it is a linear spring's k (lb/in), the
+                largest=None, linear=False) -> StepChoice:
+    """The step (s) for the stacked members (upper, separator, lower).
+
+    Hertz (``hertz_k``, lb/in^1.5, the Hertz constant): the contact's
+    accuracy bound CONTACT_PHASE / sqrt(k_lin trace) (module doc), or
+    ``largest`` where smaller, shrunk by :data:`STEP_SHRINK` until
+    :func:`resonance_free` holds (the retained modes' p_j dt may exceed
+    pi: the flow between kicks is exact, so the highest mode does not
+    bound the step; the shrinking stops at p_max dt = 1, where no mode
+    can resonate).  None (Newton's rigid law): :data:`STEP_SAFETY` of
+    2 / p_max, or ``largest`` where smaller.  With ``linear`` (a
+    cylindrical button) ``hertz_k`` is a linear spring's k (lb/in), the
     stiffness itself."""
     upper, sep, lower = members
     p_max = float(max(m.p.max() for m in members))
-    force = stiffness = 0.0
-    if hertz_k is not None:
-        # the first modes' effective mass at the upper contact (the most
-        # a slow impact can push against: the largest force)
-        first = upper.x[0]**2 / upper.mass + sep.x[0]**2 / sep.mass
-        mass = 1.0 / first
-        speed = largest_speed(upper)
-        if linear:
-            force = math.sqrt(mass * hertz_k) * speed + float(preload)
-            stiffness = hertz_k
-        else:
-            depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
-            force = hertz_k * depth**1.5 + float(preload)
-            stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0
-                                                                 / 3.0)
+    if hertz_k is None:
+        dt = STEP_SAFETY * 2.0 / p_max
+        if largest is not None:
+            dt = min(dt, float(largest))
+        return StepChoice(dt=dt, omega=p_max, p_max=p_max, force_lb=0.0,
+                          stiffness_lb_in=0.0, contact_dt=dt,
+                          largest_phase=p_max * dt, alias_share=math.nan)
+    # the first modes' effective mass at the upper contact (the most
+    # a slow impact can push against: the largest force)
+    first = upper.x[0]**2 / upper.mass + sep.x[0]**2 / sep.mass
+    mass = 1.0 / first
+    speed = largest_speed(upper)
+    if linear:
+        force = math.sqrt(mass * hertz_k) * speed + float(preload)
+        stiffness = hertz_k
+    else:
+        depth = (1.25 * mass * speed**2 / hertz_k) ** 0.4
+        force = hertz_k * depth**1.5 + float(preload)
+        stiffness = 1.5 * hertz_k ** (2.0 / 3.0) * force ** (1.0 / 3.0)
     # the separator at each contact's point (x2, x2_lower; at one point
     # the sum is 2 mobility exactly)
     trace = (_mobility(upper) + (_mobility(sep) + _mobility(
         sep, sep.lower_x)) + _mobility(lower))
     omega = math.sqrt(p_max**2 + stiffness * trace)
-    dt = STEP_SAFETY * 2.0 / omega
-    if stiffness > 0.0:
-        dt = min(dt, CONTACT_PHASE / math.sqrt(stiffness * trace))
-    return StepChoice(dt=dt, omega=omega,
-                      p_max=p_max, force_lb=force,
-                      stiffness_lb_in=stiffness)
+    contact_dt = CONTACT_PHASE / math.sqrt(stiffness * trace)
+    start = contact_dt if largest is None else min(contact_dt,
+                                                   float(largest))
+    p, w = contact_couplings(members)
+    floor = 1.0 / p_max     # below it no p_j dt reaches 1: no resonance
+    dt = start
+    frequency = CONTACT_PHASE / contact_dt
+    while dt > floor and not resonance_free(dt, p, w, stiffness,
+                                            frequency):
+        dt *= STEP_SHRINK
+    dt = max(dt, min(floor, start))
+    return StepChoice(dt=dt, omega=omega, p_max=p_max, force_lb=force,
+                      stiffness_lb_in=stiffness, contact_dt=contact_dt,
+                      largest_phase=p_max * dt,
+                      alias_share=alias_measure(dt, p, w, frequency))
 
 
 def first_impact_estimate(system) -> float:
@@ -213,14 +317,17 @@ class CheckedRun:
 
 
 def checked_run(run_at, dt: float, dt_source: str, damped: bool,
-                least: float, book: bool = False) -> CheckedRun:
+                least: float, refine=None, book: bool = False) -> CheckedRun:
     """Run ``run_at(dt) -> (step, run)`` and check its energy; a step the
     design chose (``dt_source`` "design") that fails is halved, at most
     :data:`MAX_HALVINGS` times and never below ``least`` (the work
-    budget's smallest step); a given one is run once.  With ``book``
-    (the Hunt-Crossley and Thornton laws) a damped run's energy book
-    must close too: |ratio + dissipated / start - 1| <= ENERGY_TOLERANCE
-    (``run.book``, the dissipation the stepper summed)."""
+    budget's smallest step); a given one is run once.  ``refine(step)``
+    (optional) moves a halved step down off the splitting's resonances
+    (:func:`design_step` with ``largest``): half a resonance-free step
+    need not be one.  With ``book`` (the Hunt-Crossley and Thornton
+    laws) a damped run's energy book must close too: |ratio + dissipated
+    / start - 1| <= ENERGY_TOLERANCE (``run.book``, the dissipation the
+    stepper summed)."""
     halvings = 0
     while True:
         step, run = run_at(dt)
@@ -240,6 +347,8 @@ def checked_run(run_at, dt: float, dt_source: str, damped: bool,
                               damped=damped, dt_source=dt_source,
                               book=book)
         dt, halvings = dt / 2.0, halvings + 1
+        if refine is not None:
+            dt = max(float(refine(dt)), least)
 
 
 def relative_change(coarse, fine) -> float:

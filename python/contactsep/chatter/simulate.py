@@ -468,7 +468,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     stack = _system(design, preload, law, static_correction)
     choice = numerics.design_step(members(design),
                                   None if law is None else law.k, preload,
-                                  law is not None and law.linear)
+                                  linear=law is not None and law.linear)
     dt_source = "given" if dt is not None else "design"
     dt = choice.dt if dt is None else _real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
@@ -506,8 +506,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         return t_end / steps, _run(model, stepper, backend, stack, law,
                                    design, theta, t_end / steps, steps,
                                    max(1, steps // samples), open_threshold)
+    refine = None if law is None else (
+        lambda step: numerics.design_step(members(design), law.k, preload,
+                                          largest=step,
+                                          linear=law.linear).dt)
     checked = numerics.checked_run(
-        run_at, dt, dt_source, damped, least,
+        run_at, dt, dt_source, damped, least, refine,
         book=model == "hertz" and (damping == "hunt-crossley"
                                    or contact == "thornton"))
     run, ratio, halvings = checked.run, checked.ratio, checked.halvings
@@ -536,6 +540,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                   choice.omega, "p_max_rad_s": choice.p_max,
                   "contact_force_bound_lb": choice.force_lb,
                   "contact_stiffness_lb_per_in": choice.stiffness_lb_in,
+                  "contact_dt_s": choice.contact_dt,
+                  "alias_share": choice.alias_share,
                   "dt_halvings": halvings,
                   "energy_tolerance": numerics.ENERGY_TOLERANCE},
         **settings)
@@ -573,8 +579,8 @@ def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
 
 def _verified(result, design, model, damping, settings) -> ChatterResult:
     """``result`` with ``changes``: the relative change of each headline
-    quantity at half the step and twice the modes (the design's step
-    for 2N where that is smaller: a step stable for N modes need not be
+    quantity at half the step and twice the modes (moved down off the
+    2N design's resonances: a step free of them for N modes need not be
     for 2N)."""
     n = 2 * int(design.n_modes)
     if n > MAX_MODES:
@@ -584,9 +590,10 @@ def _verified(result, design, model, damping, settings) -> ChatterResult:
     law = None if model != "hertz" else HertzLaw.for_materials(
         float(design.E1), settings["nu"], settings["button_radius"],
         button=settings["button"], length=settings["button_length"])
-    step = min(result.dt / 2.0, numerics.design_step(
+    step = numerics.design_step(
         members(finer), None if law is None else law.k,
-        settings["preload"], law is not None and law.linear).dt)
+        settings["preload"], largest=result.dt / 2.0,
+        linear=law is not None and law.linear).dt
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnconvergedWarning)
         check = simulate(finer, model=model, damping=damping, dt=step,
