@@ -62,11 +62,10 @@ ENDS = ("clamped-free", "clamped-clamped", "clamped-pinned",
 #: Richardson margin, and the floors (relative and absolute).
 MARGIN = 3.0 * 4.0 / 3.0
 #: The reference's residual flexibility in series with each contact
-#: (independent_hertz.residual_matrix; issue 25's static correction).
-#: The package has no such option on this branch: after the merge of
-#: that work, run these comparisons with it on here and in the package
-#: (package_call.SETTINGS) -- without a preload (the reference does not
-#: define the preloaded state with the correction).
+#: (independent_hertz.residual_matrix; issue 25's static correction),
+#: off in the random-design comparisons (they have preloads, whose
+#: state with the correction the reference does not define); the
+#: static tests below switch it on in both, without a preload.
 STATIC_CORRECTION = False
 #: The energy at a sample is not smooth in dt: the splitting's energy
 #: error is bounded and oscillates (a symplectic scheme's modified
@@ -174,14 +173,10 @@ def compare(seed, n_max=4, static=False, intervals=True):
             for h in (dt, dt / 2)]
     coarse, fine = runs
     np.testing.assert_array_equal(coarse.t, fine.t)
+    # both report the physical gaps (with the static correction a closed
+    # contact's is minus its Hertz element's penetration, and an open
+    # one's moves with the other's force through the separator's spring)
     g_ref = ref.gaps(coarse.t)
-    if static:
-        # the package reports the physical gaps (a closed contact: minus
-        # the Hertz element's own penetration), the reference its modal
-        cmat = ih.residual_matrix(setup)
-        lam = np.array([ih.series_forces(ref.k, 0.0, cmat, g, np.zeros(2))
-                        for g in g_ref.T]).T
-        g_ref = g_ref + cmat @ lam
     scale = float(setup.ys)
     # Flores's force depends on the velocity the kick changes, and its
     # clamp at zero has a kink: the splitting is first order there, its
@@ -238,17 +233,19 @@ def compare(seed, n_max=4, static=False, intervals=True):
                            ref.circuit_intervals())):
         if not intervals:
             continue
-        if static:
-            # with the correction, a crossing during a step with a force
-            # is found on the grid's physical gaps (docs/chatter.md, "The
-            # static correction"): its instant should be good to a step
-            for t in _disagreements(a, r):
-                assert t[-1] - t[0] <= 2.0 * dt, (seed, contact, t, a, r)
-            continue
         for t in _disagreements(a, r):
             near = np.abs(ref.gaps(t) - threshold) <= np.array(
                 gap_tols)[:, None]
             ok = near.any(axis=0) if contact is None else near[contact]
+            if static and not ok.all():
+                # with the correction, a crossing in a step where a force
+                # acts at either end is found on the grid's physical gaps,
+                # linear between them (docs/chatter.md, "The static
+                # correction"): its instant is good to that step, not to
+                # the gap tolerance (seed 1: the first closing, 0.06 dt)
+                piece = (t[-1] - t[0]) * (len(t) + 1) / (len(t) - 1)
+                assert piece <= dt, (seed, contact, t, piece / dt, a, r)
+                continue
             assert ok.all(), (seed, contact, t[~ok], a, r)
     return design, damping, preload
 
@@ -284,19 +281,17 @@ def test_the_static_correction_agrees_with_the_independent_simulator(seed):
     compare(seed, static=True, intervals=False)
 
 
-#: Found by this check, not resolved: with the static correction the
-#: package's open instants differ from the reference's by more than a
-#: step (seed 1: the lower contact opens 1.2e-5 s, 14 steps, early; seed
-#: 2: 3e-8 s, 3 steps); the gaps themselves agree (the test above).
-OPEN_INSTANTS_DIFFER = pytest.mark.xfail(
-    reason="the static correction's open instants: more than a step off",
-    strict=True)
-
-
-@pytest.mark.parametrize("seed", [
-    pytest.param(s, marks=OPEN_INSTANTS_DIFFER) if s in (1, 2) else s
-    for s in range(5)])
+@pytest.mark.parametrize("seed", range(5))
 def test_the_static_corrections_open_instants_agree_to_a_step(seed):
+    """The open instants with the static correction.  An open contact's
+    physical gap is not its modal one while the other contact presses:
+    the separator's residual spring moves it by -c2 lambda_other.  The
+    reference once located its crossings in contact phases on the modal
+    gaps, and disagreed with the package by 14 steps (seed 1: the lower
+    contact "opened" while its element was still 2e-6 in deep, with
+    0.015 lb on it) and 3 steps (seed 2); on the physical gaps every
+    instant agrees to the gap tolerance, or within a step where the
+    package interpolates (see compare)."""
     compare(seed, static=True)
 
 
