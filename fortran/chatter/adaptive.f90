@@ -22,8 +22,16 @@
 !> before the first root s* of that parabola: no contact can close, and
 !> the fixed-step stepper would meet no force, at any grid point before
 !> it.  The flight step is the largest tabled multiple of dt (a power of
-!> two, or the sample stride) that fits in s*, the next sample and the
-!> end.  Where a contact may close, the step is the law's fixed step.
+!> two, or the whole run) that fits in s* and the end.  Where a contact
+!> may close, the step is the law's fixed step.
+!>
+!> Samples.  The steps do not depend on the samples asked for: the
+!> samples inside a flight step are a copy of the state at its start
+!> flowed to them (the first by its own rotation, the rest by the
+!> stride's table), so that the trajectory, and every summary figure
+!> found on it, is the same bits for any number of samples (cutting the
+!> flight at the samples changed the round-off, which a rattling
+!> preloaded contact amplifies: issue 26).
 !>
 !> A preloaded start (n_moving < n): the modes n_moving+1..n (separator
 !> and lower contact) are in static equilibrium with the preload, which
@@ -58,7 +66,7 @@ module chatter_adaptive
   use chatter_adaptive_state, only: adaptive_run, max_level, head, &
       max_waiting
   use chatter_adaptive_flow, only: table, flow, gaps, energy, &
-      amplitude_bounds, dot
+      amplitude_bounds, dot, advance
   use chatter_adaptive_crossings, only: watch
   use chatter_adaptive_gap_max, only: search_waiting
   use chatter_adaptive_laws, only: hertz_step, newton_step
@@ -130,7 +138,8 @@ contains
     type(adaptive_run) :: run
     real(wp) :: e_end
     real(wp) :: span, safe
-    integer :: step, i_next, level, c, sample, units, passes
+    integer :: step, i_next, level, c, sample, units, passes, first_in
+    real(wp), allocatable :: q_copy(:), v_copy(:)
 
     t_out = 0.0_wp
     g_out = 0.0_wp
@@ -141,6 +150,7 @@ contains
         energy_bound, max_cross)
     call law_setup(run%law, stiffness, chi, 0.0_wp, 0.0_wp, 0.0_wp)
     if (present(contact)) run%law = contact
+    allocate(q_copy(n), v_copy(n))
     if (law == law_hertz) call correct(run, cmat)
     run%crossings => crossings
     sample = 1
@@ -155,8 +165,7 @@ contains
         if (stop_requested /= 0) run%status = status_interrupted
         if (run%status /= status_ok) exit
       end if
-      i_next = min(steps, sample * stride)
-      if (sample >= samples) i_next = steps
+      i_next = steps
       ! a flight step if no (considered) contact is closed
       units = 0
       if (.not. any_closed(run)) then
@@ -182,8 +191,8 @@ contains
         end if
       end if
       if (units >= 1) then
-        ! the stride from a sample point, else the largest power of two
-        if (units == stride .and. mod(step, stride) == 0) then
+        ! the whole run from its start, else the largest power of two
+        if (units == steps .and. step == 0) then
           level = 0
         else
           level = 1
@@ -192,6 +201,15 @@ contains
             level = level + 1
           end do
           units = 2**(level - 1)
+        end if
+        ! the state at the step's start, if a sample falls inside it
+        first_in = -1
+        if (sample < samples) then
+          if (sample * stride < step + units) then
+            first_in = sample * stride - step
+            q_copy(:) = run%q
+            v_copy(:) = run%v
+          end if
         end if
         call flow(run, level)
         span = real(units, wp) * dt
@@ -215,12 +233,20 @@ contains
         end if
         step = step + 1
       end if
-      if (step == sample * stride .and. sample < samples) then
+      ! the samples this step reached (a flight step may pass several)
+      do while (sample < samples)
+        if (sample * stride > step) exit
         sample = sample + 1
-        t_out(sample) = real(step, wp) * dt
-        g_out(:, sample) = sampled_gaps(run)
-        call energy(run, e_out(sample))
-      end if
+        t_out(sample) = real((sample - 1) * stride, wp) * dt
+        if ((sample - 1) * stride == step) then
+          g_out(:, sample) = sampled_gaps(run)
+          call energy(run, e_out(sample))
+        else
+          call sample_within(run, q_copy, v_copy, first_in, &
+              g_out(:, sample), e_out(sample))
+          first_in = 0
+        end if
+      end do
       if (run%status /= status_ok) exit
     end do
     call search_waiting(run)
@@ -287,17 +313,18 @@ contains
         run%coupling(c, level) = sum(run%ht(:, c) * run%inv_mh(:, level))
       end do
     end do
-    ! tables: -1 half a step, 0 the stride, 1.. powers of two (1, 2, 4,
-    ! ...) of dt up to the run's length
+    ! tables: -2 the sample stride, -1 half a step, 0 the whole run,
+    ! 1.. powers of two (1, 2, 4, ...) of dt up to the run's length
     levels = 1
     do while (levels < max_level .and. 2**levels <= steps)
       levels = levels + 1
     end do
     run%levels = levels
-    allocate(run%tab_c(n, -1:levels), run%tab_s(n, -1:levels), &
-        run%tab_p(n, -1:levels))
+    allocate(run%tab_c(n, -2:levels), run%tab_s(n, -2:levels), &
+        run%tab_p(n, -2:levels))
+    call table(run, -2, real(stride, wp) * dt)
     call table(run, -1, 0.5_wp * dt)
-    call table(run, 0, real(stride, wp) * dt)
+    call table(run, 0, real(steps, wp) * dt)
     do level = 1, levels
       call table(run, level, real(2**(level - 1), wp) * dt)
     end do
@@ -362,6 +389,41 @@ contains
     g = run%gap
     if (run%series) g = g + matmul(run%cmat, run%force)
   end function sampled_gaps
+
+  !> A sample inside a flight step: the copy (q, v) of the state flowed
+  !> on to it, by units steps of its own rotation (the step's first
+  !> sample, from the step's start) or by the stride's table (units 0:
+  !> the next ones).  No force acts in flight: the modal energy is the
+  !> step's, and run%force, which sampled_gaps adds, holds through it.
+  subroutine sample_within(run, q, v, units, g, e)
+    type(adaptive_run), intent(inout) :: run
+    real(wp), intent(inout) :: q(run%n), v(run%n)
+    integer, intent(in) :: units
+    real(wp), intent(out) :: g(run%k), e
+    real(wp) :: cs(run%n), sn(run%n), ps(run%n), tau, sums(4)
+    real(wp) :: gap_end(run%k)
+    integer :: nm, j
+
+    nm = run%moving
+    if (units > 0) then
+      tau = real(units, wp) * run%dt
+      do j = 1, nm
+        cs(j) = cos(run%p(j) * tau)
+        sn(j) = sin(run%p(j) * tau) / run%p(j)
+        ps(j) = run%p(j) * sin(run%p(j) * tau)
+      end do
+      call advance(nm, q, v, cs, sn, ps, run%ht(:, 1), &
+          run%ht(:, run%h2), sums)
+    else
+      call advance(nm, q, v, run%tab_c(:, -2), run%tab_s(:, -2), &
+          run%tab_p(:, -2), run%ht(:, 1), run%ht(:, run%h2), sums)
+    end if
+    gap_end = run%gap
+    run%gap(:) = sums(1:run%k) + run%g_still
+    g = sampled_gaps(run)
+    call energy(run, e)
+    run%gap(:) = gap_end
+  end subroutine sample_within
 
   !> Contacts whose forces act: all, or contact 1 while frozen.
   integer function considered(run)

@@ -14,7 +14,7 @@ module chatter_adaptive_flow
   private
   public :: table, flow, gaps, energy, amplitude_bounds, chord
   public :: end_rates, gap_at, monotone
-  public :: dot
+  public :: dot, advance
 
 contains
 

@@ -58,7 +58,8 @@ module chatter_adaptive_state
     real(wp), allocatable :: cmat(:, :), shift(:)
     logical :: series = .false.
     !> Rotation by the exact flow: cos(p tau), sin(p tau) / p and
-    !> p sin(p tau) for tau in slot -1 (dt/2), 0 (the sample stride),
+    !> p sin(p tau) for tau in slot -2 (the sample stride), -1 (dt/2),
+    !> 0 (the whole run),
     !> 1..levels (2^(slot-1) dt).
     real(wp), allocatable :: tab_c(:, :), tab_s(:, :), tab_p(:, :)
     integer :: levels = 0

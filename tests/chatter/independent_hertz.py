@@ -36,7 +36,8 @@ both), and the thesis's g = 386.4 in/s^2 (Appendix B's listing value).
   1/16 of the shortest period; a sign change of g - threshold is refined
   by Brent's method, and a sign change of g' (an extremum inside a
   cell) is refined first, so that a crossing pair inside one cell is
-  found.  In contact phases, DOP853's event location on its dense output.
+  found.  In contact phases, DOP853's event location on its dense output
+  (on the physical gaps with the static correction, below).
   The closing of a contact is found the same way in flight.
 
 * **The static correction** (``Setup.static_correction``, optional):
@@ -46,7 +47,11 @@ both), and the thesis's g = 386.4 in/s^2 (Appendix B's listing value).
   C = [[c1 + c2, -c2], [-c2, c2 + c3]], lambda_c = k delta_c^1.5 with
   delta = -(g + C lambda), solved each evaluation (Gauss-Seidel over the
   two contacts, Brent on each); the energy adds lambda C lambda / 2
-  (conserved to 2e-14 on the thesis rig at N = 4).
+  (conserved to 2e-14 on the thesis rig at N = 4).  The gaps the
+  contacts see are then g + C lambda (``Trajectory.gaps``): a closed
+  contact's is minus its element's penetration, and an open one's moves
+  with the other contact's force (-c2 lambda_other, the separator's
+  spring), so its crossings are located on those.
 
 Units: in, lb, s.  Gaps positive open: g_upper = y1(x1) - y2(x2),
 g_lower = y2(x2_lower) - y3(x3) (+ the preload's offsets); the
@@ -97,8 +102,8 @@ class Setup:
     nu: float = 0.33
     button_radius: float = 0.125
     release: str = "tip"
-    #: Residual flexibility in series with each Hertz contact (the static
-    #: correction of issue 25: not in the package yet; no preload).
+    #: Residual flexibility in series with each Hertz contact (issue 25's
+    #: static correction; no preload).
     static_correction: bool = False
 
 
@@ -123,9 +128,15 @@ class Trajectory:
     m: np.ndarray = None
     k: float = 0.0
     chi: float = 0.0
+    #: The static correction's residual flexibility matrix (None: off).
+    cmat: np.ndarray = None
 
-    def gaps(self, t) -> np.ndarray:
-        """Both gaps at times t (2, len(t))."""
+    def gaps(self, t, modal: bool = False) -> np.ndarray:
+        """Both physical gaps at times t (2, len(t)): the modal gaps,
+        plus C lambda with the static correction (a closed contact's is
+        minus its element's penetration; an open one's moves with the
+        other contact's force through the separator's residual spring,
+        -c2 lambda_other); ``modal``: the modal gaps H q + g0."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
         out = np.empty((2, t.size))
         starts = np.array([seg[1] for seg in self.segments])
@@ -148,6 +159,13 @@ class Trajectory:
                 y = seg[3](t[sel])
                 n = self.p.size
                 out[:, sel] = self.h @ y[:n] + self.g0[:, None]
+                if self.cmat is not None and not modal:
+                    # a force acts only in contact phases
+                    u = self.h @ y[n:2 * n]
+                    for i in np.flatnonzero(sel):
+                        j = int(np.count_nonzero(sel[:i]))
+                        out[:, i] += self.cmat @ series_forces(
+                            self.k, self.chi, self.cmat, out[:, i], u[:, j])
         return out
 
     def open_intervals(self, contact: int) -> np.ndarray:
@@ -184,14 +202,16 @@ class Trajectory:
         sqrt(1.5 k delta^0.5 w) and damping rate chi k delta^1.5 w
         (w = sum h^2/m, the contact's inverse effective mass) at its
         deepest penetration.  A step well below its inverse resolves
-        every contact, preloaded or not."""
+        every contact, preloaded or not.  With the static correction the
+        depth is the modal one, -(H q + g0), which exceeds the element's
+        own (the series spring takes C lambda of it): a bound."""
         w = (self.h**2 / m).sum(axis=1)
         rate = 0.0
         for seg in self.segments:
             if seg[0] == "flow":
                 continue
             t = np.linspace(seg[1], seg[2], samples)
-            depth = np.maximum(-self.gaps(t), 0.0).max(axis=1)
+            depth = np.maximum(-self.gaps(t, modal=True), 0.0).max(axis=1)
             rate = max(rate, float(np.max(np.sqrt(1.5 * k * np.sqrt(depth)
                                                   * w))),
                        float(np.max(chi * k * depth**1.5 * w)))
@@ -363,7 +383,8 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
     traj = Trajectory(t_end=t_end, first_impact_s=math.nan, m=m, k=k,
                       first_impulse_lb_s=math.nan, v_impact=math.nan,
                       first_contact_s=math.nan,
-                      energy0=energy0, energy_end=math.nan, h=h, g0=g0, p=p)
+                      energy0=energy0, energy_end=math.nan, h=h, g0=g0, p=p,
+                      cmat=cmat)
     traj.open_at_start = tuple(bool(x > threshold) for x in gaps(q))
 
     # --- before the first impact: the upper contact flies, the rest is
@@ -431,14 +452,22 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
             return float(np.min(h @ y[:3 * n] + g0))
         all_open.terminal, all_open.direction = True, 1.0
 
+        def physical(y):
+            # the gaps the contacts see: with the static correction an
+            # open contact's moves with the other's force (-c2 lambda)
+            g = h @ y[:3 * n] + g0
+            if cmat is None:
+                return g
+            return g + cmat @ force(g, h @ y[3 * n:6 * n])
+
         def upper_free(_, y):
-            return float(h[0] @ y[:3 * n] + g0[0])
+            return float(physical(y)[0])
         upper_free.direction = 1.0
 
         events = [all_open, upper_free]
         for c in (0, 1):
             def cross(_, y, c=c):
-                return float(h[c] @ y[:3 * n] + g0[c] - threshold)
+                return float(physical(y)[c] - threshold)
             events.append(cross)
         y0 = np.concatenate([q, v, [0.0, 0.0]])
         scale = np.concatenate([np.abs(q) + 1e-12, np.abs(v) + 1e-9,
@@ -469,6 +498,11 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
         for c in (0, 1):
             for tc in sol.t_events[2 + c]:
                 rate = float(h[c] @ sol.sol(tc)[3 * n:6 * n])
+                if cmat is not None:
+                    # the physical gap's own rate (central difference)
+                    d = 1e-9 * (t_stop - t)
+                    rate = float(physical(sol.sol(min(tc + d, t_stop)))[c]
+                                 - physical(sol.sol(max(tc - d, t)))[c])
                 traj.crossings.append((float(tc), c, rate > 0.0))
         traj.segments.append(("ode", t, t_stop, sol.sol))
         q, v = y_end[:3 * n].copy(), y_end[3 * n:6 * n].copy()

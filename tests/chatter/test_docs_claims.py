@@ -26,12 +26,12 @@ def _relative(a, b):
 
 def test_the_hertz_n16_convergence_figures():
     """"at the default 5e-8 s against 3.125e-9 s: first impulse 6.8e-7,
-    largest lower gap 6.9e-7, open time 4.2e-6 relative" (0.8 s)."""
+    largest lower gap 7.1e-7, open time 4.2e-6 relative" (0.8 s)."""
     design = contactsep.thesis_design(n_modes=16)
     default, fine = (run(design, dt=dt, t_end=0.06, samples=10)
                      for dt in (5e-8, 3.125e-9))
     for name, claim in (("first_impulse_lb_s", "6.8e-7"),
-                        ("max_lower_gap_in", "6.9e-7"),
+                        ("max_lower_gap_in", "7.1e-7"),
                         ("circuit_open_s", "4.2e-6")):
         measured = _relative(getattr(default, name), getattr(fine, name))
         assert _printed(measured, claim), (name, measured, claim)
@@ -65,7 +65,7 @@ def test_the_printed_claims_are_on_the_page():
     from pathlib import Path
     text = " ".join((Path(__file__).resolve().parents[2] / DOCS)
                     .read_text().split())
-    assert ("first impulse 6.8e-7, largest lower gap 6.9e-7, open time "
+    assert ("first impulse 6.8e-7, largest lower gap 7.1e-7, open time "
             "4.2e-6 relative") in text
     assert "halves each time N doubles up to N = 32" in text
     assert "impulse ×0.60, kick ×0.98" in text

@@ -343,8 +343,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         ``"numpy"`` runs the NumPy twins of the fixed-step steppers
         (slow: tests only).
     samples : int
-        Sample intervals of the gaps (1: the ends only; the summary does
-        not depend on it for hertz and newton).
+        Sample intervals of the gaps (1: the ends only).  The adaptive
+        stepper's trajectory and summary do not depend on it (hertz and
+        newton: its flight steps do not stop at the samples), except
+        ``energy_ratio``, the last sample's, which is at ``t_end`` where
+        the samples divide the steps; the fixed-step reference takes its
+        largest lower gap and crossings from the samples.
     theta : float
         Moreau-Jean's theta (fixed stepper).
     stepper : {"adaptive", "fixed"}
