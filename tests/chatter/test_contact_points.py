@@ -41,8 +41,9 @@ from test_independent import (
 
 pytest.importorskip("scipy")
 
-#: 3x the first-order Richardson estimate 2|X(dt) - X(dt/2)|, over the
-#: |X(dt) - X(dt/2)| the comparisons below take (elastic runs).
+#: Elastic runs: 3x the second-order Richardson estimate
+#: (4/3) |X(dt) - X(dt/2)| (test_independent.estimated_error), as a
+#: factor of the |X(dt) - X(dt/2)| the comparisons below take.
 MARGIN = 3.0 * 4.0 / 3.0
 
 
