@@ -36,6 +36,7 @@ from test_independent import (
     _disagreements,
     random_design,
     reference_preload,
+    reference_window,
     setup_of,
 )
 
@@ -74,19 +75,7 @@ def compare(seed, static):
     preload = reference_preload(_setup(design, damping, 0.0, static),
                                 fraction) if fraction else 0.0
     setup = _setup(design, damping, preload, static)
-    upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
-                    setup.upper["h"], setup.upper["gamma"],
-                    setup.upper["E"], 1)
-    period = 2.0 * math.pi / float(upper.p[0])
-    first = ih.simulate(setup, 2.0 * period, to_first_impact=True)
-    assert math.isfinite(first.first_impact_s), "no impact in the window"
-    t_end = first.first_impact_s + 0.15 * period
-    ref = ih.simulate(setup, t_end)
-    samples = 400
-    rate = ref.stiffest_rate(ref.k, ref.chi, ref.m)
-    dt = min(ref.first_contact_s / 300.0, 0.05 / rate)
-    per_sample = max(1, int(math.ceil(t_end / samples / dt)))
-    dt = t_end / (samples * per_sample)
+    ref, t_end, dt, samples = reference_window(setup)
     coarse, fine = (run(design, dt=h, t_end=t_end, samples=samples,
                         damping=damping, preload=preload,
                         static_correction=static) for h in (dt, dt / 2))

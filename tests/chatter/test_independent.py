@@ -142,6 +142,26 @@ def reference_preload(setup, fraction):
     return fraction * lower["L"] / flexibility
 
 
+def reference_window(setup, samples=400):
+    """The reference run of ``setup`` over its window (the first impact
+    plus 0.15 of the upper contact's first period) and the package's
+    step for it: ``(reference, t_end, dt, samples)``, dt a whole number
+    of steps a sample, resolving the first contact (300 steps) and the
+    stiffest contact's rate (0.05 rad a step)."""
+    upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
+                    setup.upper["h"], setup.upper["gamma"],
+                    setup.upper["E"], 1)
+    period = 2.0 * math.pi / float(upper.p[0])
+    first = ih.simulate(setup, 2.0 * period, to_first_impact=True)
+    assert math.isfinite(first.first_impact_s), "no impact in the window"
+    t_end = first.first_impact_s + 0.15 * period
+    ref = ih.simulate(setup, t_end)
+    rate = ref.stiffest_rate(ref.k, ref.chi, ref.m)
+    dt = min(ref.first_contact_s / 300.0, 0.05 / rate)
+    per_sample = max(1, int(math.ceil(t_end / samples / dt)))
+    return ref, t_end, t_end / (samples * per_sample), samples
+
+
 def compare(seed, n_max=4, static=False, intervals=True):
     """The package against the reference on random design ``seed``;
     ``static``: both with the static correction (and no preload: the
@@ -154,19 +174,7 @@ def compare(seed, n_max=4, static=False, intervals=True):
     setup = setup_of(design, damping, 0.0, static)
     preload = reference_preload(setup, fraction) if fraction else 0.0
     setup = setup_of(design, damping, preload, static)
-    upper = ih.beam(setup.upper["end"], setup.upper["L"], setup.upper["b"],
-                    setup.upper["h"], setup.upper["gamma"],
-                    setup.upper["E"], 1)
-    period = 2.0 * math.pi / float(upper.p[0])
-    first = ih.simulate(setup, 2.0 * period, to_first_impact=True)
-    assert math.isfinite(first.first_impact_s), "no impact in the window"
-    t_end = first.first_impact_s + 0.15 * period
-    ref = ih.simulate(setup, t_end)
-    samples = 400
-    rate = ref.stiffest_rate(ref.k, ref.chi, ref.m)
-    dt = min(ref.first_contact_s / 300.0, 0.05 / rate)
-    per_sample = max(1, int(math.ceil(t_end / samples / dt)))
-    dt = t_end / (samples * per_sample)
+    ref, t_end, dt, samples = reference_window(setup)
     # Flores: a third run at dt/4 (the error has two orders, below)
     steps = (dt, dt / 2) if damping == "none" else (dt, dt / 2, dt / 4)
     runs = [run(design, dt=h, t_end=t_end, samples=samples,
