@@ -2,8 +2,8 @@
 module model_api
   use contactsep_kinds, only: wp
   use model_batch, only: design_result, batch_memory, mode_tables, &
-      evaluate_design, finish_design
-  use model_extremes, only: extremes, extremes_workspace
+      evaluate_design, finish_chunk
+  use model_extremes, only: extremes_workspace
   use model_status, only: status_ok
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value
   use model_given, only: evaluate_given_design
@@ -43,8 +43,7 @@ contains
     type(design_result) :: res(chunk)
     real(wp) :: tau(chunk)
     integer :: n3(chunk), ints(6)
-    logical :: search(chunk), resolved(chunk), ends(chunk)
-    logical :: ties(chunk, 2)
+    logical :: search(chunk)
     type(batch_memory) :: memory
     type(extremes_workspace) :: ws
     integer :: first, last, i, k
@@ -63,41 +62,9 @@ contains
         n3(k) = ints(6)
         tau(k) = real_in(22, i)
       end do
-      k = last - first + 1
-      call extremes(c3(:, first:last), p3(:, first:last), n3(1:k), &
-          tau(1:k), search(1:k), ws, y3_max(first:last), &
-          t_max(first:last), y3_min(first:last), t_min(first:last), &
-          ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
-      do i = first, last
-        k = i - first + 1
-        if (search(k)) then
-          res(k)%y3_max = y3_max(i)
-          res(k)%t_max = t_max(i)
-          res(k)%y3_min = y3_min(i)
-          res(k)%t_min = t_min(i)
-          res(k)%at_end = ends(k)
-          res(k)%max_tied = ties(k, 1)
-          res(k)%min_tied = ties(k, 2)
-        end if
-        call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
-            p3(:, i), c3(:, i))
-        t1(i) = res(k)%t1
-        v_impact(i) = res(k)%v_impact
-        psi(i) = res(k)%psi
-        v0(i) = res(k)%v0
-        r(i) = res(k)%r
-        y3_max(i) = res(k)%y3_max
-        t_max(i) = res(k)%t_max
-        y3_min(i) = res(k)%y3_min
-        t_min(i) = res(k)%t_min
-        m1(i) = res(k)%m1
-        m2(i) = res(k)%m2
-        m3(i) = res(k)%m3
-        at_end(i) = merge(1, 0, res(k)%at_end)
-        max_tied(i) = merge(1, 0, res(k)%max_tied)
-        min_tied(i) = merge(1, 0, res(k)%min_tied)
-        status(i) = res(k)%status
-      end do
+      call finish_chunk(first, last, res, search, n3, tau, ws, t1, &
+          v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
+          max_tied, min_tied, status, m1, m2, m3, p1, p2, p3, c3)
     end do
   end subroutine evaluate_batch
 
@@ -126,8 +93,7 @@ contains
     type(design_result) :: res(chunk)
     real(wp) :: tau(chunk)
     integer :: n3(chunk), ints(6)
-    logical :: search(chunk), resolved(chunk), ends(chunk)
-    logical :: ties(chunk, 2)
+    logical :: search(chunk)
     type(extremes_workspace) :: ws
     integer :: first, last, i, k
 
@@ -144,41 +110,9 @@ contains
         n3(k) = ints(6)
         tau(k) = real_in(22, i)
       end do
-      k = last - first + 1
-      call extremes(c3(:, first:last), p3(:, first:last), n3(1:k), &
-          tau(1:k), search(1:k), ws, y3_max(first:last), &
-          t_max(first:last), y3_min(first:last), t_min(first:last), &
-          ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
-      do i = first, last
-        k = i - first + 1
-        if (search(k)) then
-          res(k)%y3_max = y3_max(i)
-          res(k)%t_max = t_max(i)
-          res(k)%y3_min = y3_min(i)
-          res(k)%t_min = t_min(i)
-          res(k)%at_end = ends(k)
-          res(k)%max_tied = ties(k, 1)
-          res(k)%min_tied = ties(k, 2)
-        end if
-        call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
-            p3(:, i), c3(:, i))
-        t1(i) = res(k)%t1
-        v_impact(i) = res(k)%v_impact
-        psi(i) = res(k)%psi
-        v0(i) = res(k)%v0
-        r(i) = res(k)%r
-        y3_max(i) = res(k)%y3_max
-        t_max(i) = res(k)%t_max
-        y3_min(i) = res(k)%y3_min
-        t_min(i) = res(k)%t_min
-        m1(i) = res(k)%m1
-        m2(i) = res(k)%m2
-        m3(i) = res(k)%m3
-        at_end(i) = merge(1, 0, res(k)%at_end)
-        max_tied(i) = merge(1, 0, res(k)%max_tied)
-        min_tied(i) = merge(1, 0, res(k)%min_tied)
-        status(i) = res(k)%status
-      end do
+      call finish_chunk(first, last, res, search, n3, tau, ws, t1, &
+          v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
+          max_tied, min_tied, status, m1, m2, m3, p1, p2, p3, c3)
     end do
   end subroutine evaluate_batch_given
 

@@ -10,6 +10,7 @@ module model_batch
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, &
       ieee_is_finite
   use contactsep_kinds, only: wp
+  use model_extremes, only: extremes, extremes_workspace
   use model_status, only: status_ok, status_no_impact, &
       status_invalid_input, status_not_finite, status_unresolved
   use model_beam_modes, only: eigenvalue, sigma_parts, mode_value, &
@@ -21,7 +22,7 @@ module model_batch
   implicit none
   private
   public :: mode_tables, evaluate_design, finish_design, design_is_valid, &
-      clear
+      clear, finish_chunk
 
   !> Number of real columns of a design row.
   integer, parameter, public :: n_real = 23
@@ -254,5 +255,66 @@ contains
     p3 = nan
     c3 = nan
   end subroutine clear
+
+  !> The extremes of a chunk's designs (batch columns first..last, whose
+  !> results are res(1:last-first+1)), searched together, and every
+  !> design's figures written to the batch's columns (as evaluate_batch
+  !> and evaluate_batch_given of model_api both end a chunk).
+  subroutine finish_chunk(first, last, res, search, n3, tau, ws, t1, &
+      v_impact, psi, v0, r, y3_max, t_max, y3_min, t_min, at_end, &
+      max_tied, min_tied, status, m1, m2, m3, p1, p2, p3, c3)
+    integer, intent(in) :: first, last
+    type(design_result), intent(inout) :: res(:)
+    !> Which designs' extremes are searched; lower-contact mode counts,
+    !> windows (s).
+    logical, intent(in) :: search(:)
+    integer, intent(in) :: n3(:)
+    real(wp), intent(in) :: tau(:)
+    type(extremes_workspace), intent(inout) :: ws
+    real(wp), intent(inout) :: t1(:), v_impact(:), psi(:), v0(:), r(:)
+    real(wp), intent(inout) :: y3_max(:), t_max(:), y3_min(:), t_min(:)
+    real(wp), intent(inout) :: m1(:), m2(:), m3(:)
+    integer, intent(inout) :: at_end(:), max_tied(:), min_tied(:)
+    integer, intent(inout) :: status(:)
+    real(wp), intent(inout) :: p1(:, :), p2(:, :), p3(:, :), c3(:, :)
+    logical :: resolved(size(res)), ends(size(res)), ties(size(res), 2)
+    integer :: i, k
+
+    k = last - first + 1
+    call extremes(c3(:, first:last), p3(:, first:last), n3(1:k), &
+        tau(1:k), search(1:k), ws, y3_max(first:last), &
+        t_max(first:last), y3_min(first:last), t_min(first:last), &
+        ends(1:k), ties(1:k, 1), ties(1:k, 2), resolved(1:k))
+    do i = first, last
+      k = i - first + 1
+      if (search(k)) then
+        res(k)%y3_max = y3_max(i)
+        res(k)%t_max = t_max(i)
+        res(k)%y3_min = y3_min(i)
+        res(k)%t_min = t_min(i)
+        res(k)%at_end = ends(k)
+        res(k)%max_tied = ties(k, 1)
+        res(k)%min_tied = ties(k, 2)
+      end if
+      call finish_design(res(k), resolved(k), p1(:, i), p2(:, i), &
+          p3(:, i), c3(:, i))
+      t1(i) = res(k)%t1
+      v_impact(i) = res(k)%v_impact
+      psi(i) = res(k)%psi
+      v0(i) = res(k)%v0
+      r(i) = res(k)%r
+      y3_max(i) = res(k)%y3_max
+      t_max(i) = res(k)%t_max
+      y3_min(i) = res(k)%y3_min
+      t_min(i) = res(k)%t_min
+      m1(i) = res(k)%m1
+      m2(i) = res(k)%m2
+      m3(i) = res(k)%m3
+      at_end(i) = merge(1, 0, res(k)%at_end)
+      max_tied(i) = merge(1, 0, res(k)%max_tied)
+      min_tied(i) = merge(1, 0, res(k)%min_tied)
+      status(i) = res(k)%status
+    end do
+  end subroutine finish_chunk
 
 end module model_batch
