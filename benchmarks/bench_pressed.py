@@ -68,8 +68,9 @@ def ringing(design, preload):
     depth = -np.asarray(r.gap_lower[half:])
     spectrum = np.abs(np.fft.rfft(depth - depth.mean()))
     freqs = np.fft.rfftfreq(depth.size, float(r.t[1] - r.t[0]))
+    # the strongest oscillation, not the drift of the mean (bin 0)
     return (float(depth.min()), float(depth.max()),
-            float(freqs[int(np.argmax(spectrum))]),
+            float(freqs[1 + int(np.argmax(spectrum[1:]))]),
             len(r.circuit_open_intervals))
 
 
