@@ -79,7 +79,7 @@ def main(save: bool = False) -> None:
     say("clock: process CPU time")
     say(f"| design, N = {N_MODES} | preload (lb) | free (s) | preloaded "
         f"(s) | ratio | fixed steps, free / preloaded | lower depth, "
-        f"2nd half (in) | its strongest frequency (kHz) | circuit "
+        f"2nd half (in) | its strongest frequency (Hz) | circuit "
         f"openings |")
     say("|---|---:|---:|---:|---:|---|---|---:|---:|")
     for name, design in FAMILY.items():
@@ -91,7 +91,7 @@ def main(save: bool = False) -> None:
         say(f"| {name} | {load:.3g} | {free:.3f} | {pressed:.3f} | "
             f"{pressed / free:.1f} | {r_free.work['fixed_steps']:,} / "
             f"{r_load.work['fixed_steps']:,} | {low:.3g} to {high:.3g} | "
-            f"{hz / 1e3:.1f} | {openings} |")
+            f"{hz:.3g} | {openings} |")
     if save:
         say.save("bench_pressed", "OPENBLAS_NUM_THREADS=1 python "
                  "benchmarks/bench_pressed.py --save")
