@@ -13,7 +13,8 @@ second half of the window, its range and the strongest frequency of its
 spectrum: a lower contact that stays pressed rings on its Hertz spring
 for the whole window (the elastic law has no damping), so its force is
 not smooth between impacts and the steps must follow the ringing
-(docs/performance.md, "Preloaded runs").
+(docs/performance.md, "Preloaded runs"); the last column is the depth
+range with Flores damping calibrated to the design's e.
 
 CPU time of this process (``time.process_time``), so that other work on
 the machine does not count; ``--save``: also into
@@ -44,11 +45,12 @@ REPEATS = 2
 SAMPLES = 200_001
 
 
-def run(design, preload, samples=1):
+def run(design, preload, samples=1, damping="none"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return simulate(design, model="hertz", preload=preload,
-                        samples=samples, single_impulse=False)
+                        samples=samples, single_impulse=False,
+                        damping=damping)
 
 
 def cpu_best(design, preload):
@@ -60,10 +62,10 @@ def cpu_best(design, preload):
     return best, result
 
 
-def ringing(design, preload):
+def ringing(design, preload, damping="none"):
     """Depth range (in) over the second half of the window, its
     strongest frequency (Hz), and the run's circuit openings."""
-    r = run(design, preload, SAMPLES)
+    r = run(design, preload, SAMPLES, damping)
     half = len(r.t) // 2
     depth = -np.asarray(r.gap_lower[half:])
     spectrum = np.abs(np.fft.rfft(depth - depth.mean()))
@@ -80,18 +82,20 @@ def main(save: bool = False) -> None:
     say(f"| design, N = {N_MODES} | preload (lb) | free (s) | preloaded "
         f"(s) | ratio | fixed steps, free / preloaded | lower depth, "
         f"2nd half (in) | its strongest frequency (Hz) | circuit "
-        f"openings |")
-    say("|---|---:|---:|---:|---:|---|---|---:|---:|")
+        f"openings | the same depth with Flores damping (in) |")
+    say("|---|---:|---:|---:|---:|---|---|---:|---:|---|")
     for name, design in FAMILY.items():
         design = design.replace(n_modes=N_MODES)
         load = min(PRELOAD_LB, 0.5 * largest_preload(design))
         free, r_free = cpu_best(design, 0.0)
         pressed, r_load = cpu_best(design, load)
         low, high, hz, openings = ringing(design, load)
+        damped = ringing(design, load, "flores")
         say(f"| {name} | {load:.3g} | {free:.3f} | {pressed:.3f} | "
             f"{pressed / free:.1f} | {r_free.work['fixed_steps']:,} / "
             f"{r_load.work['fixed_steps']:,} | {low:.3g} to {high:.3g} | "
-            f"{hz:.3g} | {openings} |")
+            f"{hz:.3g} | {openings} | {damped[0]:.3g} to "
+            f"{damped[1]:.3g} |")
     if save:
         say.save("bench_pressed", "OPENBLAS_NUM_THREADS=1 python "
                  "benchmarks/bench_pressed.py --save")
