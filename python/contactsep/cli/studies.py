@@ -111,6 +111,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="preload only: the Hertz contact's damping "
                             "(default none: elastic; flores: calibrated "
                             "to e)")
+    study.add_argument("--converge", action="store_true",
+                       help="preload only: check each row at twice its N "
+                            "and half its step, and search again there "
+                            "where it moves by more than 2 % (up to checks "
+                            "at N = 128; docs/chatter.md)")
     study.add_argument("--alpha", type=finite("s/in"), default=None,
                        metavar="S_PER_IN",
                        help="conclusion4 (default 0.0676 s/in) and "
@@ -274,6 +279,9 @@ def _compute(name: str, args, overrides: dict):
     if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
+    if name != "preload" and args.converge:
+        raise InputError(f"--converge is study preload's option, not "
+                         f"study {name}'s")
     if name != "preload" and args.damping:
         raise InputError(f"--damping is study preload's option, not "
                          f"study {name}'s (conclusion3 uses flores)")
@@ -374,6 +382,7 @@ def _search_study(name: str, args, overrides: dict):
                     "settings": {"alpha": args.alpha}}
                 return preload_chart(**options,
                                      damping=args.damping or "none",
+                                     converge=args.converge,
                                      progress=bar, **extra, **overrides)
             return conclusion(name, **options, progress=bar, **overrides)
     except SearchError as error:

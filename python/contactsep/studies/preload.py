@@ -444,13 +444,16 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                   damping: str = "none", dt=None,
                   workers: int | None = None, thicknesses=THICKNESSES,
                   heights=HEIGHTS, settings=None, progress=None,
-                  **overrides) -> Study:
+                  converge=False, **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
     to e), ``dt`` the stepper's step (default: the model's);
     ``settings`` simulate()'s other keywords, passed to every run;
-    ``progress(k)`` is called as k more simulations finish (a bar)."""
+    ``progress(k)`` is called as k more simulations finish (a bar);
+    ``converge``: each row checked at 2N, dt/2 and searched again where
+    it fails, up to checks at N = 128 (or at the N given;
+    :mod:`contactsep.studies.preload_converge`)."""
     from contactsep.studies import search_checks as checks
     checks.check_search("preload", model, MODELS, n_modes, workers,
                         overrides, True)
@@ -469,9 +472,17 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     settings["dt"] = DEFAULT_DT[model] if dt is None else dt
     settings["t_end"] = LISTING_TAU_S
     settings.update(extra)
+    step = DEFAULT_DT[model] if dt is None else dt
+    columns, converged = {}, []
     with Simulations(workers, progress=progress) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
-    step = DEFAULT_DT[model] if dt is None else dt
+        if converge:
+            from contactsep.studies.preload_converge import chart_columns
+            columns, converged = chart_columns(rows, lambda n, idx: [
+                thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
+                              **overrides) for i in idx], found, n_modes,
+                step, model, settings, sims, *(
+                    () if converge is True else (int(converge),)))
     law = f", damping {damping}" if model == "hertz" else ""
     if "alpha" in settings:
         law += f" (alpha {settings['alpha']:g} s/in)"
@@ -487,6 +498,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         f"{BAND_LOW:g} to {BAND_HIGH:g} times the answer simulated, "
         f"closed above it",
         f"{sims.runs} simulations",
+        *converged,
     ]
     for (d, ys), result in zip(rows, found):
         notes += limit_notes(f"d = {d:g} in, y_s = {ys:g} in", result)
@@ -498,12 +510,11 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
             notes.append(f"not monotone at d = {d:g} in, y_s = {ys:g} in: "
                          f"no event also at {where}")
     notes += design_lines(designs[0], per_row=("h2", "ys"))
+    table = {"model": np.array([model] * len(rows)),
+             "n_modes": np.full(len(rows), int(n_modes)),
+             "d_in": np.array([d for d, _ in rows]),
+             "ys_in": np.array([ys for _, ys in rows]),
+             "min_preload_lb": np.array([r.min_preload_lb for r in found])}
+    table.update(columns)
     return Study("preload", "The smallest lower-contact preload with no "
-                 "discontinuity event in the window", {
-                     "model": np.array([model] * len(rows)),
-                     "n_modes": np.full(len(rows), int(n_modes)),
-                     "d_in": np.array([d for d, _ in rows]),
-                     "ys_in": np.array([ys for _, ys in rows]),
-                     "min_preload_lb": np.array(
-                         [r.min_preload_lb for r in found])},
-                 tuple(notes))
+                 "discontinuity event in the window", table, tuple(notes))

@@ -1,0 +1,146 @@
+"""The preload chart converged row by row (``contactsep study preload
+--converge``; issue 25, docs/chatter.md "Convergence of the answer").
+
+A row's answer at N modes and step dt is **converged to 2 %** when, at
+2N and dt/2, a preload 2 % above it has no discontinuity event and one
+within 2 % below it has an event: the threshold at 2N, dt/2 then lies
+within 2 % of the answer (a window of events, or of closed preloads,
+narrower than the checked steps aside: the search's own caveat).  The
+preload 2 % below is tried first; where it is closed (a closed window
+of the rattle, or an answer that moved down), every 0.25 % between it
+and the answer.
+
+A row that fails is searched again at 2N, dt/2 (the chart's whole
+search, :func:`contactsep.studies.preload.min_preloads`) and its new
+answer checked the same way at 4N, dt/4; up to :data:`MAX_MODES`.  A
+row is only searched again at an N whose own check fits under
+MAX_MODES, so a row that fails its last possible check keeps its
+answer, marked not converged.  Convergence in N at a halved step:
+the chart's step (5e-8 s) is converged in dt on the thesis rig (the
+same answer to 4 digits at 2.5e-8 s), and halving it with N keeps the
+check a check of both.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+#: How close the threshold at 2N, dt/2 must lie to a converged answer.
+MARGIN = 0.02
+#: The largest N a check runs at (a search runs at most at half of it).
+MAX_MODES = 128
+#: Where the preload MARGIN below is closed: the factors between it and
+#: the answer (every MARGIN / 8).
+BETWEEN = tuple(1.0 - MARGIN * k / 8 for k in range(1, 8))
+
+
+@dataclass(frozen=True)
+class RowAnswer:
+    """One row's answer and its check."""
+
+    #: The answer (lb; NaN: none below the simulation's limit), the N
+    #: and the step (s) it was found at.
+    min_preload_lb: float
+    n_modes: int
+    dt_s: float
+    #: The N of its last check (0: none) and whether it held.
+    check_n_modes: int
+    converged: bool
+    #: ((N, answer lb), ...) of every search of the row, coarsest first.
+    history: tuple
+
+
+def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
+    """Whether each answer holds to MARGIN on its design (at the N and
+    step the designs and settings carry): no event MARGIN above, an
+    event MARGIN below or between."""
+    tasks = []
+    for design, answer in zip(designs, answers):
+        tasks += [(design, model, settings, answer * (1.0 - MARGIN)),
+                  (design, model, settings, answer * (1.0 + MARGIN))]
+    found = sims.events(tasks)
+    closed = [i for i in range(len(designs)) if not found[2 * i]]
+    scan = sims.events([(designs[i], model, settings, answers[i] * f)
+                        for i in closed for f in BETWEEN])
+    below = [found[2 * i] for i in range(len(designs))]
+    for j, i in enumerate(closed):
+        below[i] = any(scan[j * len(BETWEEN):(j + 1) * len(BETWEEN)])
+    return [below[i] and not found[2 * i + 1] for i in range(len(designs))]
+
+
+def converge_rows(make_designs, answers, n_modes, dt, model, settings,
+                  sims, max_modes=MAX_MODES) -> list[RowAnswer]:
+    """Each row's answer checked at twice its N and half its step, and
+    searched again there where the check fails (module docstring).
+
+    ``make_designs(n, rows)`` gives the designs of the rows (indices) at
+    N = n; ``answers`` the chart's at ``n_modes`` and ``dt``;
+    ``settings`` simulate()'s keywords but dt; ``sims`` an open
+    :class:`~contactsep.studies.preload.Simulations`."""
+    from contactsep.studies.preload import min_preloads
+    state = [{"answer": float(a), "n": int(n_modes), "dt": float(dt),
+              "check": 0, "held": False,
+              "history": ((int(n_modes), float(a)),)} for a in answers]
+    pending = [i for i, a in enumerate(answers) if math.isfinite(a)]
+    n, step = int(n_modes), float(dt)
+    while pending and 2 * n <= max_modes:
+        n, step = 2 * n, step / 2.0
+        finer = {**settings, "dt": step}
+        designs = make_designs(n, pending)
+        held = brackets_hold(designs, [state[i]["answer"] for i in pending],
+                             model, finer, sims)
+        failing = []
+        for i, design, ok in zip(pending, designs, held):
+            state[i]["check"], state[i]["held"] = n, ok
+            if not ok:
+                failing.append((i, design))
+        # search again only where the new answer can itself be checked
+        if not failing or 2 * n > max_modes:
+            break
+        found = min_preloads([design for _, design in failing], model,
+                             finer, simulations=sims)
+        pending = []
+        for (i, _), result in zip(failing, found):
+            row = state[i]
+            row["answer"] = float(result.min_preload_lb)
+            row["n"], row["dt"] = n, step
+            row["check"], row["held"] = 0, False
+            row["history"] += ((n, row["answer"]),)
+            if math.isfinite(row["answer"]):
+                pending.append(i)
+    return [RowAnswer(min_preload_lb=s["answer"], n_modes=s["n"],
+                      dt_s=s["dt"], check_n_modes=s["check"],
+                      converged=s["held"], history=s["history"])
+            for s in state]
+
+
+def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
+                  sims, max_modes=MAX_MODES):
+    """The chart's converged columns and notes: ``rows`` its (d, y_s),
+    ``found`` its searches at ``n_modes`` and ``dt``; returns
+    (columns, notes) for :func:`~contactsep.studies.preload.
+    preload_chart`."""
+    import numpy as np
+    answers = converge_rows(make_designs, [r.min_preload_lb for r in found],
+                            n_modes, dt, model, settings, sims, max_modes)
+    columns = {
+        "n_modes": np.array([a.n_modes for a in answers]),
+        "dt_s": np.array([a.dt_s for a in answers]),
+        "min_preload_lb": np.array([a.min_preload_lb for a in answers]),
+        "check_n_modes": np.array([a.check_n_modes for a in answers]),
+        "converged": np.array([int(a.converged) for a in answers])}
+    notes = [f"converged: each answer checked at twice its N and half its "
+             f"step, no event {MARGIN:.0%} above it and one within "
+             f"{MARGIN:.0%} below (converged 1); a row that fails is "
+             f"searched again there, up to checks at N = {max_modes}"]
+    for (d, ys), a in zip(rows, answers):
+        if len(a.history) > 1:
+            steps = ", ".join(f"{p:.4g} lb at N = {n}" for n, p in a.history)
+            notes.append(f"d = {d:g} in, y_s = {ys:g} in: searched again: "
+                         f"{steps}")
+        if math.isfinite(a.min_preload_lb) and not a.converged:
+            notes.append(f"d = {d:g} in, y_s = {ys:g} in: not converged to "
+                         f"{MARGIN:.0%} (its check at N = "
+                         f"{a.check_n_modes} failed)")
+    return columns, notes

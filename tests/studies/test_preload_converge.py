@@ -1,0 +1,138 @@
+"""The preload chart converged row by row (issue 25 item 5,
+contactsep.studies.preload_converge): the check at 2N, dt/2 and the
+search again where it fails, against simulators whose threshold at each
+N is known (a preload has an event below it, none at or above it), so
+every answer and verdict below follows from the thresholds alone."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from contactsep.studies import preload_converge as pc
+from contactsep.studies.study import thesis_design
+
+DT = 5e-8
+
+
+class Thresholds:
+    """Simulations whose event is preload < threshold[N][row] (the row
+    is the design's separator thickness); records the N and step of
+    every run."""
+
+    def __init__(self, thresholds):
+        self.thresholds = thresholds
+        self.runs = []
+
+    def events(self, tasks):
+        out = []
+        for design, model, settings, load in tasks:
+            n = int(design.n_modes)
+            self.runs.append((n, settings["dt"]))
+            rule = self.thresholds[n][float(design.h2)]
+            out.append(rule(load) if callable(rule) else load < rule)
+        return out
+
+
+ROWS = (0.25, 0.5)
+
+
+def designs_at(n, rows):
+    return [thesis_design(d=ROWS[i], n_modes=n) for i in rows]
+
+
+def converge(thresholds, answers, max_modes=pc.MAX_MODES):
+    sims = Thresholds(thresholds)
+    return pc.converge_rows(designs_at, answers, 32, DT, "hertz",
+                            {"damping": "none"}, sims, max_modes), sims
+
+
+def test_an_answer_that_holds_at_2n_is_converged_at_n():
+    # the threshold moves +1 % from N = 32 to 64: 2 % below it an
+    # event, 2 % above none
+    found, sims = converge({64: {0.25: 10.1, 0.5: 4.0}}, [10.0, 4.0])
+    a, b = found
+    assert (a.n_modes, a.check_n_modes, a.converged) == (32, 64, True)
+    assert a.min_preload_lb == 10.0 and a.dt_s == DT
+    assert (b.n_modes, b.converged) == (32, True)
+    # two runs a row, all at 2N and half the step
+    assert sims.runs == [(64, DT / 2)] * 4
+
+
+def test_a_closed_preload_2_percent_below_holds_by_an_event_between():
+    # "closed" not monotone at 2N: closed at 0.98 a, a window of events
+    # at 0.985-0.99 a, closed above; the threshold 0.9 a below
+    def window(load, a=10.0):
+        return load < 0.9 * a or 0.985 * a <= load < 0.99 * a
+
+    found, sims = converge({64: {0.25: window, 0.5: 4.0}}, [10.0, 4.0])
+    assert found[0].converged and found[0].n_modes == 32
+    # the scan between ran for that row only: 7 runs
+    assert len(sims.runs) == 4 + len(pc.BETWEEN)
+
+
+def test_a_closed_window_wider_than_the_scan_fails_the_check():
+    def closed_below(load, a=10.0):
+        return load < 0.9 * a
+
+    found, _ = converge({64: {0.25: closed_below, 0.5: 4.0},
+                         128: {0.25: 9.0, 0.5: 4.0}}, [10.0, 4.0])
+    assert found[0].n_modes == 64 and found[0].converged
+    assert 9.0 <= found[0].min_preload_lb <= 9.09
+
+
+def test_an_answer_that_moves_down_more_than_2_percent_is_searched_again():
+    # N = 64 moves the first row to 9.0 (-10 %), N = 128 to 9.05
+    found, sims = converge({64: {0.25: 9.0, 0.5: 4.0},
+                            128: {0.25: 9.05, 0.5: 4.0}}, [10.0, 4.0])
+    a, b = found
+    assert (a.n_modes, a.dt_s, a.check_n_modes, a.converged) == (
+        64, DT / 2, 128, True)
+    # the chart's search: within 1 % above the threshold at N = 64
+    assert 9.0 <= a.min_preload_lb <= 9.0 * 1.01
+    assert a.history[0] == (32, 10.0) and a.history[1][0] == 64
+    assert (b.n_modes, b.converged) == (32, True)
+    # the second row is not run again after it held
+    assert {n for n, _ in sims.runs} == {64, 128}
+    assert all(step == DT / 4 for n, step in sims.runs if n == 128)
+
+
+def test_an_answer_that_moves_up_fails_its_check():
+    # 2 % above the answer still has an event at N = 64
+    found, _ = converge({64: {0.25: 12.0, 0.5: 4.0},
+                         128: {0.25: 12.05, 0.5: 4.0}}, [10.0, 4.0])
+    assert 12.0 <= found[0].min_preload_lb <= 12.0 * 1.01
+    assert (found[0].n_modes, found[0].converged) == (64, True)
+
+
+def test_a_row_failing_its_last_check_keeps_its_answer_unconverged():
+    # at max_modes = 64 there is no check of an N = 64 answer: no search
+    found, sims = converge({64: {0.25: 9.0, 0.5: 4.0}}, [10.0, 4.0],
+                           max_modes=64)
+    a = found[0]
+    assert (a.min_preload_lb, a.n_modes, a.check_n_modes, a.converged) == (
+        10.0, 32, 64, False)
+    assert len(a.history) == 1
+    assert {n for n, _ in sims.runs} == {64}
+    # and at 128 a row still moving at 128 stays unconverged at N = 64
+    found, _ = converge({64: {0.25: 9.0, 0.5: 4.0},
+                         128: {0.25: 8.0, 0.5: 4.0}}, [10.0, 4.0])
+    a = found[0]
+    assert (a.n_modes, a.check_n_modes, a.converged) == (64, 128, False)
+    assert 9.0 <= a.min_preload_lb <= 9.09
+
+
+def test_a_row_without_an_answer_is_not_simulated():
+    found, sims = converge({64: {0.5: 4.0}}, [math.nan, 4.0])
+    assert math.isnan(found[0].min_preload_lb)
+    assert (found[0].check_n_modes, found[0].converged) == (0, False)
+    assert found[1].converged
+    assert len(sims.runs) == 2
+
+
+@pytest.mark.parametrize("max_modes", [16, 32])
+def test_no_check_above_max_modes(max_modes):
+    found, sims = converge({}, [10.0, 4.0], max_modes=max_modes)
+    assert sims.runs == []
+    assert all(not r.converged and r.check_n_modes == 0 for r in found)
