@@ -12,6 +12,7 @@ import pytest
 import contactsep
 from contactsep import beams
 from contactsep.chatter import system
+from contactsep.chatter.single_impulse import modal_impact_speed
 from contactsep.model.twin import member_constants
 
 #: The module (contactsep.chatter.simulate is also the function's name).
@@ -66,7 +67,7 @@ def test_modal_impact_speed_is_eq_23s_for_the_thesis_design():
     and the chatter layer's crossing of its own modal model."""
     design = contactsep.thesis_design(d=0.25)
     kernel = float(contactsep.evaluate(design).v_impact)
-    assert sim._modal_impact_speed(design) == pytest.approx(kernel,
+    assert modal_impact_speed(design) == pytest.approx(kernel,
                                                             rel=1e-9)
 
 
@@ -79,4 +80,4 @@ def test_chatter_runs_with_a_timoshenko_separator():
     # chatter layer's own modal model crosses the gap with
     assert result.single_impulse["psi_lb_s"] > 0.0
     assert result.single_impulse["v_impact_in_s"] == pytest.approx(
-        sim._modal_impact_speed(design), rel=1e-9)
+        modal_impact_speed(design), rel=1e-9)

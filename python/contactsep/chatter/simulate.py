@@ -31,33 +31,24 @@ from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import ContactsepWarning
-from contactsep.model.design import SIZE_RANGE
+from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
+    APPE_MAX_MODES,
+    BUTTONS,
+    CONTACTS,
+    DAMPINGS,
+    FORKED_APPE_MODES,
+    FORKED_WORK,
+    MAX_MODES,
+    MAX_SAMPLES,
+    MAX_STEPS,
+    MAX_T_END,
+    MAX_WORK,
+    MODELS,
+    STEPPERS,
+)
+from contactsep.chatter.limits import check_settings as _check
+from contactsep.chatter.single_impulse import single_impulse as _single_impulse
 
-MODELS = ("appE", "newton", "hertz")
-#: Most modes per member, and most time steps, a run may take.
-MAX_MODES = 1024
-MAX_STEPS = 1e9
-#: Most steps x modes (all three members) a newton or hertz run may take:
-#: the default run at N = 1024 is 3.7e9 (about a minute).
-MAX_WORK = 1e10
-#: Most modes appE takes: its event search grows steeply with N (0.7 s
-#: at N = 64, 1.9 s at 96, 25 s at 128; N = 1024 ran for 9 minutes).
-APPE_MAX_MODES = 128
-#: Longest window (s): 170 times the listing's TAU.
-MAX_T_END = 10.0
-#: Most sample intervals of the gaps (each sample holds t, two gaps and
-#: the energy, and more on their way out: about 200 MB at the limit;
-#: 10^9 asked for gigabytes).
-MAX_SAMPLES = 4_000_000
-#: A run of at least this many steps x modes (or appE with more modes
-#: than FORKED_APPE_MODES) runs in a child process, so that Ctrl-C and
-#: SIGTERM stop it at once instead of after the compiled call returns.
-FORKED_WORK = 3e8
-FORKED_APPE_MODES = 48
-DAMPINGS = laws.DAMPINGS
-CONTACTS = laws.CONTACTS
-BUTTONS = laws.BUTTONS
-STEPPERS = ("adaptive", "fixed")
 #: The thesis rig's converged steps (docs/chatter.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
 #: time within 1e-6 of the dt -> 0 limit); Newton 5e-8 s (max lower gap
@@ -139,152 +130,6 @@ def _system(design, preload, law, static_correction=False
         else np.zeros((2, 2))
     return runners.System(m=m, p=p, h=h, g0=g0, q0=q0, v0=v0,
                           n_upper=upper.p.size, c=c)
-
-
-def _single_impulse(design) -> dict:
-    """The thesis's single-impulse answer (eq. 23, compiled model) as
-    printed and in the impulse form (psi/M3), with the members' own
-    beam physics (issue 27: eq. 23 takes their modes)."""
-    from contactsep.model import evaluate
-    from contactsep.model.energy import EnergyBoundWarning
-    from contactsep.model.status import explain
-    from contactsep.model.contact_points import lower_point_differs
-    with warnings.catch_warnings():
-        # both forms are reported, labelled; the as-printed one may
-        # exceed the release's energy (docs/model.md)
-        warnings.simplefilter("ignore", EnergyBoundWarning)
-        ev = evaluate(design.replace(lower_response="as-printed",
-                                     x2_lower=None))
-    if lower_point_differs(design):
-        # eq. 23 passes the impulse through one separator point: only the
-        # release flight (t1, the impact speed) holds at x2
-        return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
-                "v_impact_in_s": float(ev.v_impact), "psi_lb_s": math.nan,
-                "v0_in_s": math.nan, "y3_max_in": math.nan,
-                "y3_max_impulse_form_in": math.nan}
-    impulse = evaluate(design.replace(lower_response="impulse",
-                                      x2_lower=None))
-    if ev.status != 0:
-        # the figures are null: say why, once (issue 31: tau = 1e300
-        # gave them all null and nothing on stderr)
-        warnings.warn(f"single impulse (eq. 23): "
-                      f"{explain(int(ev.status), design)}; its figures are "
-                      f"null (the simulation does not depend on them)",
-                      ContactsepWarning, stacklevel=3)
-    return {"t1_s": float(ev.t1) if ev.status == 0 else math.nan,
-            "v_impact_in_s": float(ev.v_impact),
-            "psi_lb_s": float(ev.psi), "v0_in_s": float(ev.v0),
-            "y3_max_in": float(ev.y3_max),
-            "y3_max_impulse_form_in": float(impulse.y3_max)}
-
-
-def _modal_impact_speed(design) -> float:
-    """(A second path, for tests: eq. 23 gives it too.)  |dy1/dt| when the released upper contact's modal model (its beam
-    physics) first reaches the gap: y1 = sum X_j q_j cos p_j t sampled
-    at 1/64 of its shortest period, the crossing bisected."""
-    upper = system.members(design)[0]
-    amplitude = upper.x * upper.q0
-    gap = float(design.gap)
-
-    def height(t):
-        return float(np.sum(amplitude * np.cos(upper.p * t))) - gap
-
-    step = 2.0 * math.pi / float(np.max(upper.p)) / 64.0
-    t, limit = 0.0, 8.0 * math.pi / float(np.min(upper.p))
-    while height(t + step) > 0.0:
-        t += step
-        if t > limit:
-            return math.nan
-    lo, hi = t, t + step
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if height(mid) > 0.0 else (lo, mid)
-    return float(abs(np.sum(amplitude * upper.p * np.sin(upper.p * hi))))
-
-
-#: A real number for an argument, or a ChatterError naming it.
-_real = laws.real
-
-
-def _check(design, model, damping, backend, preload, samples, theta, nu,
-           button_radius, t_end, open_threshold, min_open, stepper):
-    """Refuse, before any work, every setting that cannot run."""
-    def refuse(message):
-        raise ChatterError(message)
-    from contactsep.model import Design
-    if not isinstance(design, Design):
-        refuse(f"design: found {type(design).__name__}, expected a "
-               f"contactsep.Design")
-    if model not in MODELS:
-        refuse(f"model: found {model!r}, expected one of "
-               f"{', '.join(MODELS)}")
-    if backend not in ("compiled", "numpy"):
-        refuse(f"backend: found {backend!r}, expected compiled or numpy")
-    if damping not in DAMPINGS:
-        refuse(f"damping: found {damping!r}, expected one of "
-               f"{', '.join(DAMPINGS)}")
-    if stepper not in STEPPERS:
-        refuse(f"stepper: found {stepper!r}, expected one of "
-               f"{', '.join(STEPPERS)}")
-    preload = _real("preload", preload, "lb")
-    theta = _real("theta", theta, "")
-    nu = _real("nu", nu, "")
-    button_radius = _real("button_radius", button_radius, "in")
-    t_end = None if t_end is None else _real("t_end", t_end, "s")
-    open_threshold = _real("open_threshold", open_threshold, "in")
-    min_open = _real("min_open", min_open, "s")
-    if not (preload >= 0.0 and math.isfinite(preload)):
-        refuse(f"preload: found {preload!r}, expected a force >= 0 lb")
-    if model == "appE" and preload != 0.0:
-        refuse("preload: appE has no lower contact (the upper contact "
-               "against a rigid stop); use 0")
-    if isinstance(samples, (bool, np.bool_)) or not isinstance(
-            samples, (int, np.integer)) or not 1 <= samples <= MAX_SAMPLES:
-        refuse(f"samples: found {samples!r}, expected an integer from 1 "
-               f"to {MAX_SAMPLES:,}")
-    if not 0.5 <= theta <= 1.0:
-        refuse(f"theta: found {theta!r}, expected 1/2 <= theta <= 1 "
-               f"(Moreau-Jean's theta-method)")
-    if not -1.0 < nu <= 0.5:
-        refuse(f"nu: found {nu!r}, expected -1 < nu <= 0.5")
-    low, high = SIZE_RANGE
-    if not low <= button_radius <= high:
-        refuse(f"button_radius: found {button_radius!r}, expected {low:g} "
-               f"to {high:g} in")
-    if t_end is not None and not (0.0 < t_end <= MAX_T_END):
-        refuse(f"t_end: found {t_end!r}, expected a time > 0 and at most "
-               f"{MAX_T_END:g} s")
-    if not 0.0 <= min_open <= (MAX_T_END if t_end is None else t_end):
-        refuse(f"min_open: found {min_open!r}, expected 0 to t_end = "
-               f"{MAX_T_END if t_end is None else t_end:g} s")
-    if design.shape != ():
-        refuse("design: chatter simulates one design, not a batch")
-    if not float(design.ys) > 0.0:
-        refuse(f"ys: found {float(design.ys)!r}, expected a release "
-               f"height > 0 above the separator")
-    if not 0.0 <= open_threshold < float(design.ys):
-        refuse(f"open_threshold: found {open_threshold!r}, expected 0 <= "
-               f"open_threshold < ys = {float(design.ys):g} in (a threshold "
-               f"at the release height never sees the upper contact open)")
-    if isinstance(design.n_modes, tuple):
-        refuse("n_modes: one N for all members")
-    limit = APPE_MAX_MODES if model == "appE" else MAX_MODES
-    if int(design.n_modes) > limit:
-        refuse(f"n_modes: found {int(design.n_modes)}, expected at most "
-               f"{limit} modes per member for {model} (a run costs steps x "
-               f"3N, appE's event search more; N = 64 converges the Hertz "
-               f"answers, docs/chatter.md)")
-    if float(design.gap) != 0.0:
-        refuse(f"gap: found {float(design.gap)!r}, expected 0: the "
-               f"simulation releases the upper contact ys above the "
-               f"separator's surface (give ys - gap as ys)")
-    if design.Lc is not None:
-        refuse(f"Lc: found {design.Lc!r}, expected None: the simulation's "
-               f"separator is the beam of length L2 (L_c is the single-"
-               f"impulse model's equivalent length)")
-    if damping == "flores" and not float(design.e) > 0.0:
-        refuse("e: found 0.0, expected e > 0 with Flores damping (its "
-               "constant is 8(1 - e)/(5 e V))")
 
 
 def smallest_dt(n_modes: int, t_end: float = LISTING_TAU_S) -> float:
@@ -474,7 +319,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                                   None if law is None else law.k, preload,
                                   linear=law is not None and law.linear)
     dt_source = "given" if dt is not None else "design"
-    dt = choice.dt if dt is None else _real("dt", dt, "s")
+    dt = choice.dt if dt is None else laws.real("dt", dt, "s")
     if not (dt > 0.0 and dt < t_end):
         raise ChatterError(f"dt: found {dt!r}, expected 0 < dt < t_end")
     least = smallest_dt(int(design.n_modes), t_end)
