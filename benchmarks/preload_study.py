@@ -13,7 +13,8 @@ Parts (default: convergence, check, monotone):
   (e = 0.375) for N = 16 ... 128 (about half an hour).
 * ``check``: each row of a chart (``--chart CSV``, default
   docs/studies/preload.csv) simulated 3 % above (no event expected) and
-  3 % below (an event expected) its preload.
+  3 % below (an event expected) its preload, at the row's own N and
+  step.
 * ``monotone``: each row of the chart scanned finely, 0.80-1.25 times
   its preload in 1 % steps: where "closed" is not monotone.
 * ``chart-bracket [--chart CSV]`` (not in the default parts): each
@@ -113,16 +114,19 @@ def check(path=CHART) -> None:
         design = contactsep.thesis_design(d=float(r["d_in"]),
                                           ys=float(r["ys_in"]),
                                           n_modes=int(r["n_modes"]))
+        # each row at its own N and step (a converged chart's)
+        settings = {**CHART_SETTINGS,
+                    "dt": float(r.get("dt_s") or CHART_SETTINGS["dt"])}
         for factor in (0.97, 1.03):
-            tasks.append((design, r["model"], CHART_SETTINGS,
+            tasks.append((design, r["model"], settings,
                           factor * float(r["min_preload_lb"])))
     out = run_all(tasks)
-    print("| d (in) | y_s (in) | min preload (lb) | events at -3 % | "
+    print("| d (in) | y_s (in) | N | min preload (lb) | events at -3 % | "
           "longest (us) | events at +3 % | longest (us) |")
-    print("|---|---|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
     for k, r in enumerate(rows):
         (below, lb), (above, la) = out[2 * k], out[2 * k + 1]
-        print(f"| {r['d_in']} | {r['ys_in']} | "
+        print(f"| {r['d_in']} | {r['ys_in']} | {r['n_modes']} | "
               f"{float(r['min_preload_lb']):.4g} | {below} | {lb * 1e6:.1f}"
               f" | {above} | {la * 1e6:.1f} |")
 

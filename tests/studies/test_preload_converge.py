@@ -136,3 +136,22 @@ def test_no_check_above_max_modes(max_modes):
     found, sims = converge({}, [10.0, 4.0], max_modes=max_modes)
     assert sims.runs == []
     assert all(not r.converged and r.check_n_modes == 0 for r in found)
+
+
+def test_the_chart_columns_say_each_row_s_n_and_verdict():
+    from contactsep.studies.preload import PreloadSearch
+    sims = Thresholds({64: {0.25: 9.0, 0.5: 4.0},
+                       128: {0.25: 9.05, 0.5: 4.0}})
+    found = [PreloadSearch(10.0, ((9.9, True), (10.0, False))),
+             PreloadSearch(4.0, ((3.96, True), (4.0, False)))]
+    columns, notes, answers = pc.chart_columns(
+        [(0.25, 0.5), (0.5, 0.5)], designs_at, found, 32, DT, "hertz",
+        {"damping": "none"}, sims)
+    assert list(columns["n_modes"]) == [64, 32]
+    assert list(columns["dt_s"]) == [DT / 2, DT]
+    assert list(columns["check_n_modes"]) == [128, 64]
+    assert list(columns["converged"]) == [1, 1]
+    assert answers[0].search is not None and answers[1].search is None
+    assert any(n.startswith("d = 0.25 in, y_s = 0.5 in: searched again: "
+                            "10 lb at N = 32, 9.0") for n in notes)
+    assert not any("not converged" in n for n in notes)

@@ -137,10 +137,24 @@ def _preload(ax, c):
             ax.plot(c["d_in"][missing], np.full(missing.sum(), 0.97), "^",
                     color=line.get_color(), transform=edge, clip_on=False,
                     label=f"y_s = {ys:g} in: none below the preload limit")
+    # a converged chart (study preload --converge): the rows found again
+    # at a higher N ringed, and the N range in the label
+    n_low, n_high = int(np.min(c["n_modes"])), int(np.max(c["n_modes"]))
+    finer = c["n_modes"] > n_low
+    if np.any(finer):
+        ax.plot(c["d_in"][finer], c["min_preload_lb"][finer], "s", ms=10,
+                mfc="none", color="k", label=f"searched again at N = "
+                f"{n_high} (moved > 2 % from N = {n_low})")
+    label = f"{c['model'][0]}, N = {n_low}" + (
+        f"-{n_high}" if n_high > n_low else "")
+    if "converged" in c:
+        label += ": each row within 2 % at 2N" if np.all(
+            c["converged"][~np.isnan(c["min_preload_lb"])] == 1) else \
+            ": checked at 2N"
     ax.set(xlabel="separator thickness d (in)",
            ylabel="smallest preload with no event (lb)")
-    ax.text(0.98, 0.95, f"{c['model'][0]}, N = {c['n_modes'][0]}",
-            transform=ax.transAxes, fontsize=8, ha="right", va="top")
+    ax.text(0.98, 0.95, label, transform=ax.transAxes, fontsize=8,
+            ha="right", va="top")
 
 
 def _convergence(ax, c):

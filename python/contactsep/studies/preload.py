@@ -473,12 +473,12 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     settings["t_end"] = LISTING_TAU_S
     settings.update(extra)
     step = DEFAULT_DT[model] if dt is None else dt
-    columns, converged = {}, []
+    columns, converged, again = {}, [], []
     with Simulations(workers, progress=progress) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
         if converge:
             from contactsep.studies.preload_converge import chart_columns
-            columns, converged = chart_columns(rows, lambda n, idx: [
+            columns, converged, again = chart_columns(rows, lambda n, idx: [
                 thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
                               **overrides) for i in idx], found, n_modes,
                 step, model, settings, sims, *(
@@ -500,15 +500,20 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         f"{sims.runs} simulations",
         *converged,
     ]
-    for (d, ys), result in zip(rows, found):
-        notes += limit_notes(f"d = {d:g} in, y_s = {ys:g} in", result)
+    for k, ((d, ys), result) in enumerate(zip(rows, found)):
+        row = f"d = {d:g} in, y_s = {ys:g} in"
+        if again and again[k].search is not None:
+            # the answer's own search: the row's last, at its N
+            result = again[k].search
+            row += f" (N = {again[k].n_modes})"
+        notes += limit_notes(row, result)
         below = result.closed_below
         if below:
             where = f"{below[0]:.4g} lb" if len(below) == 1 else (
                 f"{len(below)} tested preloads from {below[0]:.4g} to "
                 f"{below[-1]:.4g} lb")
-            notes.append(f"not monotone at d = {d:g} in, y_s = {ys:g} in: "
-                         f"no event also at {where}")
+            notes.append(f"not monotone at {row}: no event also at "
+                         f"{where}")
     notes += design_lines(designs[0], per_row=("h2", "ys"))
     table = {"model": np.array([model] * len(rows)),
              "n_modes": np.full(len(rows), int(n_modes)),

@@ -49,6 +49,8 @@ class RowAnswer:
     converged: bool
     #: ((N, answer lb), ...) of every search of the row, coarsest first.
     history: tuple
+    #: The row's last search again (a PreloadSearch), None if none.
+    search: object = None
 
 
 def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
@@ -80,7 +82,7 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
     :class:`~contactsep.studies.preload.Simulations`."""
     from contactsep.studies.preload import min_preloads
     state = [{"answer": float(a), "n": int(n_modes), "dt": float(dt),
-              "check": 0, "held": False,
+              "check": 0, "held": False, "search": None,
               "history": ((int(n_modes), float(a)),)} for a in answers]
     pending = [i for i, a in enumerate(answers) if math.isfinite(a)]
     n, step = int(n_modes), float(dt)
@@ -104,14 +106,15 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
         for (i, _), result in zip(failing, found):
             row = state[i]
             row["answer"] = float(result.min_preload_lb)
-            row["n"], row["dt"] = n, step
+            row["n"], row["dt"], row["search"] = n, step, result
             row["check"], row["held"] = 0, False
             row["history"] += ((n, row["answer"]),)
             if math.isfinite(row["answer"]):
                 pending.append(i)
     return [RowAnswer(min_preload_lb=s["answer"], n_modes=s["n"],
                       dt_s=s["dt"], check_n_modes=s["check"],
-                      converged=s["held"], history=s["history"])
+                      converged=s["held"], history=s["history"],
+                      search=s["search"])
             for s in state]
 
 
@@ -119,8 +122,9 @@ def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
                   sims, max_modes=MAX_MODES):
     """The chart's converged columns and notes: ``rows`` its (d, y_s),
     ``found`` its searches at ``n_modes`` and ``dt``; returns
-    (columns, notes) for :func:`~contactsep.studies.preload.
-    preload_chart`."""
+    (columns, notes, answers) for :func:`~contactsep.studies.preload.
+    preload_chart` (answers: the RowAnswers, whose ``search`` is a
+    row's search again)."""
     import numpy as np
     answers = converge_rows(make_designs, [r.min_preload_lb for r in found],
                             n_modes, dt, model, settings, sims, max_modes)
@@ -143,4 +147,4 @@ def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
             notes.append(f"d = {d:g} in, y_s = {ys:g} in: not converged to "
                          f"{MARGIN:.0%} (its check at N = "
                          f"{a.check_n_modes} failed)")
-    return columns, notes
+    return columns, notes, answers

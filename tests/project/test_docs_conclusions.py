@@ -1,0 +1,85 @@
+"""docs/chatter.md's tables of the thesis's conclusions against circuit
+opening ("The thesis's conclusions and circuit opening") quote the
+committed studies (docs/studies/conclusion3|5|6|7.csv, `contactsep study
+conclusionN --csv`), row for row, at the page's rounding.  Reads files
+only: the studies are three-beam searches of minutes each."""
+
+from __future__ import annotations
+
+import csv
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+PAGE = ROOT / "docs" / "chatter.md"
+STUDIES = ROOT / "docs" / "studies"
+
+#: Each study's leading columns: its table's header start and cells.
+LEADING = {
+    "conclusion5": ("| d (in) |", lambda r: [f"{float(r['d_in']):g}"]),
+    "conclusion6": ("| γ2 (lb/in³) | R |",
+                    lambda r: [f"{float(r['gamma2_lb_in3']):g}",
+                               f"{float(r['R']):.2f}"]),
+    "conclusion7": ("| x3/L3 |", lambda r: [f"{float(r['r']):.1f}"]),
+    "conclusion3": ("| e |", lambda r: [f"{float(r['e']):g}"]),
+}
+
+
+def rows(name: str) -> list[dict]:
+    lines = [line for line in (STUDIES / f"{name}.csv").read_text()
+             .splitlines() if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def cells(row: dict) -> list[str]:
+    """The page's rounding: y3 to 4 decimals, the gap to 3 digits, the
+    open time in ms to 0.1, the preload to 4 digits."""
+    return [f"{float(row['y3_max_in']):.4f}",
+            f"{float(row['max_lower_gap_in']):.3g}",
+            f"{1e3 * float(row['circuit_open_s']):.1f}", row["n_events"],
+            f"{float(row['min_preload_lb']):.4g}"]
+
+
+def section() -> str:
+    text = PAGE.read_text()
+    start = text.index("## The thesis's conclusions and circuit opening")
+    end = re.search(r"^## ", text[start + 3:], flags=re.MULTILINE)
+    return text[start:start + 3 + end.start()]
+
+
+@pytest.mark.parametrize("name", sorted(LEADING))
+def test_the_conclusion_table_quotes_its_study(name):
+    header, leading = LEADING[name]
+    text = section()
+    lines = text[text.index(header + " eq. 23 max y3 (in)"):].splitlines()
+    quoted = []
+    for line in lines[2:]:
+        if not line.startswith("|"):
+            break
+        quoted.append([c.strip() for c in line.strip("|").split("|")])
+    expected = [leading(r) + cells(r) for r in rows(name)]
+    assert quoted == expected
+
+
+#: Each study's row that is the thesis rig itself (d = 0.25 in, the
+#: rig's density, its tip contact point, the elastic contact).
+THESIS_ROW = {"conclusion5": ("d_in", 0.25), "conclusion6": (
+    "gamma2_lb_in3", 0.1), "conclusion7": ("r", 1.0), "conclusion3": (
+    "e", 1.0)}
+
+
+def test_every_study_has_the_thesis_rig_s_row_of_the_chart():
+    """Four studies and the preload chart search the same design (the
+    thesis rig, y_s = 0.5 in, elastic Hertz, N = 32, the chart's step
+    and window) in separate runs: the same answer and figures."""
+    chart = [r for r in rows("preload") if float(r["d_in"]) == 0.25
+             and float(r["ys_in"]) == 0.5]
+    assert len(chart) == 1 and int(chart[0]["n_modes"]) == 32
+    found = []
+    for name, (column, value) in THESIS_ROW.items():
+        (row,) = [r for r in rows(name) if float(r[column]) == value]
+        found.append(cells(row)[1:])
+    assert all(f == found[0] for f in found)
+    assert found[0][-1] == f"{float(chart[0]['min_preload_lb']):.4g}"
