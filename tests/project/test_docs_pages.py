@@ -696,11 +696,11 @@ def test_the_general_members_limit_and_the_fe_tolerances():
 
 
 def test_the_simulation_counts_of_the_long_studies():
-    """"study chatter ... # 45 simulations", "study preload ... # 1886
-    simulations": the chatter table's rows, the preload chart's count."""
+    """"study chatter ... # 45 simulations", "study preload --converge ...
+    # 2353 simulations": the chatter table's rows, the preload chart's count."""
     chatter, chart = quoted("studies.md", r"contactsep study chatter --out "
                             r"docs/studies # (\d+) simulations.*?contactsep "
-                            r"study preload --out docs/studies # (\d+) "
+                            r"study preload --converge --out docs/studies # (\d+) "
                             r"simulations")
     assert int(chatter) == len(rows("chatter"))
     notes = contactsep.read(STUDIES / "preload.csv").attrs["comments"]

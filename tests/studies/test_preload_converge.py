@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from contactsep.studies import preload_converge as pc
@@ -155,3 +156,21 @@ def test_the_chart_columns_say_each_row_s_n_and_verdict():
     assert any(n.startswith("d = 0.25 in, y_s = 0.5 in: searched again: "
                             "10 lb at N = 32, 9.0") for n in notes)
     assert not any("not converged" in n for n in notes)
+
+
+@pytest.mark.parametrize("bad", ["yes", 3, 1.5, 2048, np.bool_(True)])
+def test_a_bad_converge_is_one_line_before_any_work(bad):
+    from contactsep.errors import InputError
+    from contactsep.studies.preload import preload_chart
+    with pytest.raises(InputError, match=r"^converge: found .*, expected "
+                       r"True, False or the largest N of a check") as info:
+        preload_chart(n_modes=2, converge=bad, thicknesses=(0.5,),
+                      heights=(0.5,), workers=1)
+    assert "\n" not in str(info.value)
+
+
+def test_converge_true_checks_up_to_128_or_twice_n():
+    assert pc.largest_check(True, 32) == 128
+    assert pc.largest_check(True, 100) == 200
+    assert pc.largest_check(False, 32) is None
+    assert pc.largest_check(64, 32) == 64

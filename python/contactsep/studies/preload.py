@@ -460,6 +460,8 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     thicknesses = checks.check_values("thicknesses", thicknesses, "in")
     heights = checks.check_values("heights", heights, "in")
     refuse_fixed("preload", overrides, FIXED)
+    from contactsep.studies.preload_converge import largest_check
+    largest = largest_check(converge, n_modes)
     if damping != "none" and model != "hertz":
         raise InputError("damping: the Hertz contact's (--model hertz)")
     rows = [(d, ys) for d in thicknesses for ys in heights]
@@ -476,13 +478,12 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     columns, converged, again = {}, [], []
     with Simulations(workers, progress=progress) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
-        if converge:
+        if largest is not None:
             from contactsep.studies.preload_converge import chart_columns
             columns, converged, again = chart_columns(rows, lambda n, idx: [
                 thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
                               **overrides) for i in idx], found, n_modes,
-                step, model, settings, sims, *(
-                    () if converge is True else (int(converge),)))
+                step, model, settings, sims, largest)
     law = f", damping {damping}" if model == "hertz" else ""
     if "alpha" in settings:
         law += f" (alpha {settings['alpha']:g} s/in)"

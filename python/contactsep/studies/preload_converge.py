@@ -35,6 +35,25 @@ MAX_MODES = 128
 BETWEEN = tuple(1.0 - MARGIN * k / 8 for k in range(1, 8))
 
 
+def largest_check(converge, n_modes: int) -> int | None:
+    """The largest N of a check ``converge`` asks for (None: no
+    convergence), or an InputError in one line: True (MAX_MODES), False,
+    or an integer from 2 ``n_modes`` to 1024."""
+    from contactsep.errors import InputError
+    if converge is False or converge is None:
+        return None
+    if converge is True:
+        return max(MAX_MODES, 2 * int(n_modes))
+    import numpy as np
+    if isinstance(converge, (bool, np.bool_)) or not isinstance(
+            converge, (int, np.integer)) or not (
+            2 * int(n_modes) <= converge <= 1024):
+        raise InputError(f"converge: found {converge!r}, expected True, "
+                         f"False or the largest N of a check (an integer "
+                         f"from 2N = {2 * int(n_modes)} to 1024)")
+    return int(converge)
+
+
 @dataclass(frozen=True)
 class RowAnswer:
     """One row's answer and its check."""
