@@ -92,3 +92,67 @@ def test_the_committed_study_is_what_the_code_computes(name):
     from contactsep.studies.conclusions import conclusion
     committed = (STUDIES / f"{name}.csv").read_text()
     assert conclusion(name, workers=2).csv_text() == committed
+
+
+# the physical separator's (`--separator physical`): "With the physical
+# separator (issue 27)"
+
+def physical_section() -> str:
+    text = PAGE.read_text()
+    start = text.index("### With the physical separator (issue 27)")
+    return text[start:text.index("## The thesis's conclusions", start)]
+
+
+def quoted_table(text: str, header: str) -> list[list[str]]:
+    lines = text[text.index(header):].splitlines()
+    out = [[c.strip() for c in lines[0].strip("|").split("|")]]
+    for line in lines[2:]:
+        if not line.startswith("|"):
+            break
+        out.append([c.strip() for c in line.strip("|").split("|")])
+    return out
+
+
+def g3(value) -> str:
+    return "none" if value != value else f"{float(value):.3g}"
+
+
+def test_the_physical_chart_quotes_both_charts():
+    physical = {(float(r["d_in"]), float(r["ys_in"])): float(
+        r["min_preload_lb"]) for r in rows("preload_physical")}
+    rigid = {(float(r["d_in"]), float(r["ys_in"])): float(
+        r["min_preload_lb"]) for r in rows("preload")}
+    table = quoted_table(physical_section(), "| y_s (in) | d = 0.125 |")
+    ds = (0.125, 0.25, 0.35, 0.5, 0.75)
+    assert len(table) == 4
+    for cells in table[1:]:
+        ys = float(cells[0])
+        assert cells[1:] == [f"{g3(physical[d, ys])} ({g3(rigid[d, ys])})"
+                             for d in ds], ys
+
+
+def test_the_physical_conclusion_5_table_quotes_its_study():
+    table = quoted_table(physical_section(),
+                         "| d (in) | max lower gap (in) |")
+    assert table[1:] == [
+        [f"{float(r['d_in']):g}", f"{float(r['max_lower_gap_in']):.3g}",
+         f"{1e3 * float(r['circuit_open_s']):.1f}", r["n_events"],
+         f"{float(r['min_preload_lb']):.4g}"]
+        for r in rows("conclusion5_physical")]
+
+
+@pytest.mark.parametrize("name, header, column", [
+    ("conclusion6_physical", "| conclusion 6: γ2 (lb/in³) |",
+     "gamma2_lb_in3"),
+    ("conclusion7_physical", "| conclusion 7: x3/L3 |", "r"),
+    ("conclusion3_physical", "| conclusion 3: e |", "e")])
+def test_the_physical_conclusion_rows_quote_their_study(name, header,
+                                                        column):
+    table = quoted_table(physical_section(), header)
+    found = rows(name)
+    values = [float(v) for v in table[0][1:]]
+    assert values == [float(r[column]) for r in found]
+    assert table[1] == ["max lower gap (in)"] + [
+        f"{float(r['max_lower_gap_in']):.3g}" for r in found]
+    assert table[2] == ["min preload (lb)"] + [
+        g3(r["min_preload_lb"]) for r in found]
