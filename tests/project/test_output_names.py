@@ -39,7 +39,8 @@ DIMENSIONLESS = {
     "contact", "law", "e_apparent", "button",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
     "alias_share",
-    "verify_n_modes", "verify_status", "contact_material",
+    "verify_n_modes", "verify_status", "check_n_modes", "converged",
+    "contact_material",
     "separator_material", "law"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.

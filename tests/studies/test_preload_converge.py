@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from contactsep.studies import preload_converge as pc
+from contactsep.studies.preload import min_preloads
 from contactsep.studies.study import thesis_design
 
 DT = 5e-8
@@ -46,7 +47,8 @@ def designs_at(n, rows):
 def converge(thresholds, answers, max_modes=pc.MAX_MODES):
     sims = Thresholds(thresholds)
     return pc.converge_rows(designs_at, answers, 32, DT, "hertz",
-                            {"damping": "none"}, sims, max_modes), sims
+                            {"damping": "none"}, sims, max_modes,
+                            search_again=min_preloads), sims
 
 
 def test_an_answer_that_holds_at_2n_is_converged_at_n():
@@ -147,7 +149,7 @@ def test_the_chart_columns_say_each_row_s_n_and_verdict():
              PreloadSearch(4.0, ((3.96, True), (4.0, False)))]
     columns, notes, answers = pc.chart_columns(
         [(0.25, 0.5), (0.5, 0.5)], designs_at, found, 32, DT, "hertz",
-        {"damping": "none"}, sims)
+        {"damping": "none"}, sims, search_again=min_preloads)
     assert list(columns["n_modes"]) == [64, 32]
     assert list(columns["dt_s"]) == [DT / 2, DT]
     assert list(columns["check_n_modes"]) == [128, 64]

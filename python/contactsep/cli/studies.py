@@ -114,7 +114,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     study.add_argument("--converge", action="store_true",
                        help="preload only: check each row at twice its N "
                             "and half its step, and search again there "
-                            "where it moves by more than 2 % (up to checks "
+                            "where it moves by more than 2 %% (up to checks "
                             "at N = 128; docs/chatter.md)")
     study.add_argument("--alpha", type=finite("s/in"), default=None,
                        metavar="S_PER_IN",

@@ -483,7 +483,8 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
             columns, converged, again = chart_columns(rows, lambda n, idx: [
                 thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
                               **overrides) for i in idx], found, n_modes,
-                step, model, settings, sims, largest)
+                step, model, settings, sims, largest,
+                search_again=min_preloads)
     law = f", damping {damping}" if model == "hertz" else ""
     if "alpha" in settings:
         law += f" (alpha {settings['alpha']:g} s/in)"

@@ -91,15 +91,17 @@ def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
 
 
 def converge_rows(make_designs, answers, n_modes, dt, model, settings,
-                  sims, max_modes=MAX_MODES) -> list[RowAnswer]:
+                  sims, max_modes=MAX_MODES, *, search_again
+                  ) -> list[RowAnswer]:
     """Each row's answer checked at twice its N and half its step, and
     searched again there where the check fails (module docstring).
 
     ``make_designs(n, rows)`` gives the designs of the rows (indices) at
     N = n; ``answers`` the chart's at ``n_modes`` and ``dt``;
     ``settings`` simulate()'s keywords but dt; ``sims`` an open
-    :class:`~contactsep.studies.preload.Simulations`."""
-    from contactsep.studies.preload import min_preloads
+    :class:`~contactsep.studies.preload.Simulations`; ``search_again``
+    the chart's search (:func:`contactsep.studies.preload.min_preloads`,
+    given by the caller: this module sits beside it, not under it)."""
     state = [{"answer": float(a), "n": int(n_modes), "dt": float(dt),
               "check": 0, "held": False, "search": None,
               "history": ((int(n_modes), float(a)),)} for a in answers]
@@ -119,7 +121,7 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
         # search again only where the new answer can itself be checked
         if not failing or 2 * n > max_modes:
             break
-        found = min_preloads([design for _, design in failing], model,
+        found = search_again([design for _, design in failing], model,
                              finer, simulations=sims)
         pending = []
         for (i, _), result in zip(failing, found):
@@ -138,7 +140,7 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
 
 
 def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
-                  sims, max_modes=MAX_MODES):
+                  sims, max_modes=MAX_MODES, *, search_again):
     """The chart's converged columns and notes: ``rows`` its (d, y_s),
     ``found`` its searches at ``n_modes`` and ``dt``; returns
     (columns, notes, answers) for :func:`~contactsep.studies.preload.
@@ -146,7 +148,8 @@ def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
     row's search again)."""
     import numpy as np
     answers = converge_rows(make_designs, [r.min_preload_lb for r in found],
-                            n_modes, dt, model, settings, sims, max_modes)
+                            n_modes, dt, model, settings, sims, max_modes,
+                            search_again=search_again)
     columns = {
         "n_modes": np.array([a.n_modes for a in answers]),
         "dt_s": np.array([a.dt_s for a in answers]),
