@@ -16,18 +16,13 @@ Parts (default: convergence, check, monotone):
   3 % below (an event expected) its preload, at the row's own N and
   step.
 * ``monotone``: each row of the chart scanned finely, 0.80-1.25 times
-  its preload in 1 % steps: where "closed" is not monotone.
-* ``chart-bracket [--chart CSV]`` (not in the default parts): each
-  answer of a chart at twice its N and half its step, 2 % below (an
-  event expected) and 2 % above (none): the chart's rows converged to
-  2 % (28 simulations; minutes).
-* ``chart-rows --rows d:ys,...`` (not in the default parts): the
-  chart's search at 2N and half the step for the rows given (those
-  chart-bracket could not hold), each answer's change.
-* ``chart-convergence [--modes N]`` (not in the default parts): the
-  whole chart at N (default 32) and at 2N, half the step, with each
-  row's change: the chart's convergence table (an hour or more on two
-  cores at N = 32; run it with the static correction in).
+  its preload in 1 % steps (at the row's own N and step): where
+  "closed" is not monotone.
+
+(The chart's convergence in N, each row checked at twice its N and half
+its step and searched again where it moves: ``contactsep study preload
+--converge``, contactsep.studies.preload_converge, which replaced this
+script's chart-bracket, chart-rows and chart-convergence parts.)
 """
 
 from __future__ import annotations
@@ -45,6 +40,13 @@ CHART = "docs/studies/preload.csv"
 #: The chart's numerics (preload_chart gives them explicitly: the thesis
 #: rig's step and the listing's window, not each design's own).
 CHART_SETTINGS = {"dt": 5e-8, "t_end": 0.06}
+
+
+def row_settings(row):
+    """A chart row's numerics: the chart's, at the row's own step (a
+    converged chart's rows differ)."""
+    return {**CHART_SETTINGS,
+            "dt": float(row.get("dt_s") or CHART_SETTINGS["dt"])}
 
 
 def read_chart(path):
@@ -114,11 +116,8 @@ def check(path=CHART) -> None:
         design = contactsep.thesis_design(d=float(r["d_in"]),
                                           ys=float(r["ys_in"]),
                                           n_modes=int(r["n_modes"]))
-        # each row at its own N and step (a converged chart's)
-        settings = {**CHART_SETTINGS,
-                    "dt": float(r.get("dt_s") or CHART_SETTINGS["dt"])}
         for factor in (0.97, 1.03):
-            tasks.append((design, r["model"], settings,
+            tasks.append((design, r["model"], row_settings(r),
                           factor * float(r["min_preload_lb"])))
     out = run_all(tasks)
     print("| d (in) | y_s (in) | N | min preload (lb) | events at -3 % | "
@@ -146,7 +145,8 @@ def monotone(path=CHART) -> None:
         answer = float(r["min_preload_lb"])
         for f in factors:
             if f * answer <= largest_preload(design):
-                tasks.append((design, r["model"], CHART_SETTINGS, f * answer))
+                tasks.append((design, r["model"], row_settings(r),
+                              f * answer))
                 where.append((k, f))
     out = run_all(tasks)
     print(f"factors {factors[0]:g}-{factors[-1]:g} of each row's preload "
@@ -165,142 +165,15 @@ def monotone(path=CHART) -> None:
               f"{max(f for f, _ in part):g} |")
 
 
-def chart_convergence(n_modes=32) -> None:
-    """The whole chart at N and again at 2N and half the step (each row
-    its own search, as contactsep preload's min_preload_change): the
-    convergence table of the chart, each row's change flagged above 2 %.
-    With the static correction (issue 25) the chart converged to 2 % a
-    row is the N at which no row is flagged."""
-    from contactsep.chatter.simulate import DEFAULT_DT
-    step = DEFAULT_DT["hertz"]      # the chart's own (preload_chart)
-    start = time.perf_counter()
-    coarse = preload.preload_chart(n_modes=n_modes)
-    middle = time.perf_counter()
-    fine = preload.preload_chart(n_modes=2 * n_modes, dt=step / 2)
-    print(f"The preload chart at N = {n_modes}, dt {step:g} s "
-          f"({middle - start:.0f} s) and at N = {2 * n_modes}, dt "
-          f"{step / 2:g} s ({time.perf_counter() - middle:.0f} s)\n")
-    print(f"| d (in) | y_s (in) | N = {n_modes} (lb) | N = {2 * n_modes}, "
-          f"dt/2 (lb) | change | within 2 % |")
-    print("|---|---|---:|---:|---:|---|")
-    for d, ys, a, b in zip(coarse["d_in"], coarse["ys_in"],
-                           coarse["min_preload_lb"], fine["min_preload_lb"]):
-        change = (b - a) / a if a > 0 else float("nan")
-        print(f"| {d:g} | {ys:g} | {a:.4g} | {b:.4g} | {change:+.1%} | "
-              f"{'yes' if abs(change) <= 0.02 else 'NO'} |")
-
-
-def chart_bracket(path=CHART, margin=0.02) -> None:
-    """Each answer of a chart (``--chart CSV``, at N) checked at 2N and
-    half the chart's step: ``margin`` (2 %) below it an event expected,
-    ``margin`` above none.  Both hold: at 2N, dt/2 the threshold lies
-    within the margin of the chart's answer (a window of events, or of
-    closed preloads, narrower than the margin aside): the row is
-    converged to the margin.  A row closed at -margin too (a closed
-    window of the rattle) is scanned between, 0.25 % apart, and below
-    to -5 %: an event there still puts the threshold within the
-    margin.  28 simulations and 10 a closed row, not a second chart."""
-    rows = [r for r in read_chart(path)
-            if r["min_preload_lb"] not in ("nan", "")]
-    n = 2 * int(rows[0]["n_modes"])
-    settings = {"dt": CHART_SETTINGS["dt"] / 2,
-                "t_end": CHART_SETTINGS["t_end"], "damping": "none"}
-    tasks = []
-    for r in rows:
-        design = contactsep.thesis_design(d=float(r["d_in"]),
-                                          ys=float(r["ys_in"]), n_modes=n)
-        answer = float(r["min_preload_lb"])
-        tasks += [(design, r["model"], settings, answer * (1 - margin)),
-                  (design, r["model"], settings, answer * (1 + margin))]
-    start = time.perf_counter()
-    found = run_all(tasks)
-    # a row closed at -margin too (the rattle's closed windows): the
-    # preloads between, 0.25 % apart, and below it to -5 %
-    steps = [1 - margin * k / 8 for k in range(1, 8)] + [
-        0.97, 0.96, 0.95]
-    closed = [k for k in range(len(rows)) if found[2 * k][0] == 0]
-    scan = run_all([(tasks[2 * k][0], rows[k]["model"], settings,
-                     float(rows[k]["min_preload_lb"]) * f)
-                    for k in closed for f in steps])
-    highest = {}
-    for i, k in enumerate(closed):
-        events = [f for j, f in enumerate(steps)
-                  if scan[i * len(steps) + j][0] > 0]
-        highest[k] = max(events) if events else None
-    print(f"The chart {path} (N = {rows[0]['n_modes']}) at N = {n}, dt "
-          f"{settings['dt']:g} s, {margin:.0%} either side of each answer "
-          f"({time.perf_counter() - start:.0f} s)\n")
-    print(f"| d (in) | y_s (in) | answer (lb) | events at -{margin:.0%} | "
-          f"events at +{margin:.0%} | longest opening at +{margin:.0%} "
-          f"(s) | highest event below | within {margin:.0%} |")
-    print("|---|---|---:|---:|---:|---:|---|---|")
-    for k, r in enumerate(rows):
-        (below, _), (above, longest) = found[2 * k], found[2 * k + 1]
-        top = 1 - margin if below else highest.get(k)
-        held = top is not None and top >= 1 - margin - 1e-12 \
-            and above == 0
-        where = "none to -5 %" if top is None else f"{top:.4f} x"
-        print(f"| {float(r['d_in']):g} | {float(r['ys_in']):g} | "
-              f"{float(r['min_preload_lb']):.4g} | {below} | {above} | "
-              f"{longest:.3g} | {where} | {'yes' if held else 'NO'} |")
-
-
-def chart_rows(path=CHART, rows="") -> None:
-    """The chart's search itself, at 2N and half the chart's step, for
-    the rows ``--rows d:ys,d:ys`` (those chart-bracket could not hold
-    to 2 %): each row's answer at 2N, dt/2 and its change from the
-    chart's (a few hundred simulations a row)."""
-    chart = {(float(r["d_in"]), float(r["ys_in"])): r
-             for r in read_chart(path)}
-    keys = [tuple(float(v) for v in item.split(":"))
-            for item in rows.split(",") if item]
-    n = 2 * int(next(iter(chart.values()))["n_modes"])
-    settings = {"dt": CHART_SETTINGS["dt"] / 2,
-                "t_end": CHART_SETTINGS["t_end"], "damping": "none"}
-    designs = [contactsep.thesis_design(d=d, ys=ys, n_modes=n)
-               for d, ys in keys]
-    start = time.perf_counter()
-    with preload.Simulations() as sims:
-        found = preload.min_preloads(designs, "hertz", settings,
-                                     simulations=sims)
-    print(f"The chart's search at N = {n}, dt {settings['dt']:g} s "
-          f"({sims.runs} simulations, {time.perf_counter() - start:.0f} s)"
-          f"\n")
-    print(f"| d (in) | y_s (in) | chart (lb) | N = {n}, dt/2 (lb) | change "
-          f"| closed below it at N = {n} (lb) |")
-    print("|---|---|---:|---:|---:|---|")
-    for (d, ys), result in zip(keys, found):
-        answer = float(chart[(d, ys)]["min_preload_lb"])
-        below = result.closed_below
-        text = f"{len(below)} from {min(below):.4g} to {max(below):.4g}" \
-            if below else "-"
-        print(f"| {d:g} | {ys:g} | {answer:.4g} | "
-              f"{result.min_preload_lb:.4g} | "
-              f"{result.min_preload_lb / answer - 1:+.1%} | {text} |")
-
-
 def main(argv) -> None:
     chart = CHART
     if "--chart" in argv:
         at = argv.index("--chart")
         chart = argv[at + 1]
         del argv[at:at + 2]
-    n_modes = 32
-    if "--modes" in argv:
-        at = argv.index("--modes")
-        n_modes = int(argv[at + 1])
-        del argv[at:at + 2]
-    rows = ""
-    if "--rows" in argv:
-        at = argv.index("--rows")
-        rows = argv[at + 1]
-        del argv[at:at + 2]
-    parts = {"chart-convergence": lambda: chart_convergence(n_modes),
-             "chart-rows": lambda: chart_rows(chart, rows),
-             "convergence": convergence,
+    parts = {"convergence": convergence,
              "convergence-full": lambda: convergence(full=True),
              "check": lambda: check(chart),
-             "chart-bracket": lambda: chart_bracket(chart),
              "monotone": lambda: monotone(chart)}
     for name in argv or ["convergence", "check", "monotone"]:
         if name not in parts:
