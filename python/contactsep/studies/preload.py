@@ -53,6 +53,7 @@ from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
+from contactsep.studies.preload_converge import chart_columns, largest_check
 from contactsep.studies.pool import (
     map_longest_first,
     stop_pool,
@@ -460,7 +461,6 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     thicknesses = checks.check_values("thicknesses", thicknesses, "in")
     heights = checks.check_values("heights", heights, "in")
     refuse_fixed("preload", overrides, FIXED)
-    from contactsep.studies.preload_converge import largest_check
     largest = largest_check(converge, n_modes)
     if damping != "none" and model != "hertz":
         raise InputError("damping: the Hertz contact's (--model hertz)")
@@ -479,7 +479,6 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     with Simulations(workers, progress=progress) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
         if largest is not None:
-            from contactsep.studies.preload_converge import chart_columns
             columns, converged, again = chart_columns(rows, lambda n, idx: [
                 thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
                               **overrides) for i in idx], found, n_modes,

@@ -26,6 +26,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from contactsep.errors import InputError
+
 #: How close the threshold at 2N, dt/2 must lie to a converged answer.
 MARGIN = 0.02
 #: The largest N a check runs at (a search runs at most at half of it).
@@ -39,12 +43,10 @@ def largest_check(converge, n_modes: int) -> int | None:
     """The largest N of a check ``converge`` asks for (None: no
     convergence), or an InputError in one line: True (MAX_MODES), False,
     or an integer from 2 ``n_modes`` to 1024."""
-    from contactsep.errors import InputError
     if converge is False or converge is None:
         return None
     if converge is True:
         return max(MAX_MODES, 2 * int(n_modes))
-    import numpy as np
     if isinstance(converge, (bool, np.bool_)) or not isinstance(
             converge, (int, np.integer)) or not (
             2 * int(n_modes) <= converge <= 1024):
@@ -146,7 +148,6 @@ def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
     (columns, notes, answers) for :func:`~contactsep.studies.preload.
     preload_chart` (answers: the RowAnswers, whose ``search`` is a
     row's search again)."""
-    import numpy as np
     answers = converge_rows(make_designs, [r.min_preload_lb for r in found],
                             n_modes, dt, model, settings, sims, max_modes,
                             search_again=search_again)
