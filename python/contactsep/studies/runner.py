@@ -122,6 +122,13 @@ def chunk_result(spec, first, last, threshold, mode, directory=None):
     return columns, last - first, seconds
 
 
+def chunk_result_on_dask(spec, first, last, threshold, mode):
+    """:func:`chunk_result` on a Dask worker, its malloc set back to
+    glibc's own thresholds first (dask_run.heap_as_glibc_default)."""
+    dask_run.heap_as_glibc_default()
+    return chunk_result(spec, first, last, threshold, mode)
+
+
 class _Done:
     """A chunk that needs no work (stored by an earlier run)."""
 
@@ -273,8 +280,8 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
         shared = spec
 
     def submit(first, last):
-        future = client.submit(chunk_result, shared, first, last, threshold,
-                               task_mode, pure=False)
+        future = client.submit(chunk_result_on_dask, shared, first, last,
+                               threshold, task_mode, pure=False)
         futures.append(future)
         return future
 
