@@ -3,7 +3,7 @@ a yardstick measured in the same run.
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/bench_scaling.py \\
         [--eq23 DESIGNS] [--hertz DESIGNS] [--repeat R] [--no-dask] \
-        [--preload]
+        [--preload [--preload-at K,K] [--preload-converged]]
 
 The yardstick: an embarrassingly parallel NumPy kernel (numpy.sin on 1e6
 elements, 60 times) in k processes at once; its speed-up k * t1 / tk is
@@ -17,7 +17,9 @@ seconds, speed-up over one worker, efficiency = speed-up / the
 yardstick's speed-up at k, Dask's throughput / the local pool's at the
 same k, and the parent's CPU share = the parent's CPU seconds / (k x
 wall seconds).  ``--preload``: the time of the preload chart (N = 4) on
-1 and on all usable cores.  ``--repeat R``: each time the best of R
+1 and on all usable cores (``--preload-at K,K,...``: on those numbers
+of workers instead; ``--preload-converged``: also the converged chart,
+N = 32 checked at 2N, as ``contactsep study preload --converge``).  ``--repeat R``: each time the best of R
 runs, the configurations taken in turn (on a shared machine the load
 drifts between one configuration and the next).
 """
@@ -89,6 +91,13 @@ def main() -> None:
                         help="best of R runs of each configuration")
     parser.add_argument("--no-dask", action="store_true")
     parser.add_argument("--preload", action="store_true")
+    parser.add_argument("--preload-at", default=None,
+                        help="worker counts of the preload chart "
+                             "(default: 1 and all usable cores)")
+    parser.add_argument("--preload-converged", action="store_true",
+                        help="also time the converged N = 32 chart")
+    parser.add_argument("--no-sweeps", action="store_true",
+                        help="only the yardstick and the preload chart")
     args = parser.parse_args()
     cores = runner.usable_cores()
     ks = [1]
@@ -118,7 +127,8 @@ def main() -> None:
           f"{'speed-up':>8} {'efficiency':>10} {'dask/local':>10} "
           f"{'parent %':>8}")
     engines = ("local",) + (() if args.no_dask else ("dask",))
-    for name, (spec, threshold) in sweeps.items():
+    for name, (spec, threshold) in \
+            ({} if args.no_sweeps else sweeps).items():
         runs = {}
         for _ in range(args.repeat):
             for engine in engines:
@@ -144,11 +154,17 @@ def main() -> None:
                       f"{share}", flush=True)
     if args.preload:
         from contactsep.studies.preload import preload_chart
-        for k in (1, cores):
-            start = time.perf_counter()
-            preload_chart(n_modes=4, workers=k)
-            print(f"preload chart N = 4, {k} workers: "
-                  f"{time.perf_counter() - start:.1f} s", flush=True)
+        at = (1, cores) if args.preload_at is None else \
+            tuple(int(k) for k in args.preload_at.split(","))
+        charts = [("N = 4", dict(n_modes=4))]
+        if args.preload_converged:
+            charts.append(("N = 32 converged", dict(converge=True)))
+        for label, options in charts:
+            for k in at:
+                start = time.perf_counter()
+                preload_chart(workers=k, **options)
+                print(f"preload chart {label}, {k} workers: "
+                      f"{time.perf_counter() - start:.1f} s", flush=True)
     load = os.getloadavg()
     print(f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at the "
           f"end")
