@@ -30,6 +30,7 @@ import argparse
 import multiprocessing
 import os
 import resource
+import sys
 import time
 
 import numpy as np
@@ -135,6 +136,9 @@ def main() -> None:
                 for k in ks:
                     seconds, cpu = timed_sweep(spec, threshold, k,
                                                engine == "dask", warm[name])
+                    # as it goes (stderr): a run cut short keeps its rows
+                    print(f"{name} {engine} k = {k}: {seconds:.2f} s",
+                          file=sys.stderr, flush=True)
                     if (engine, k) not in runs or \
                             seconds < runs[engine, k][0]:
                         runs[engine, k] = (seconds, cpu)
