@@ -224,6 +224,20 @@ def threads(client) -> int:
         return 1
 
 
+def gather_finished(client, futures) -> dict:
+    """{key: result} of those of ``futures`` that have finished, fetched
+    in one gather (one round trip for many chunks); {} when that fails
+    (a worker lost meanwhile): each is then waited for alone."""
+    ready = [f for f in futures if f.status == "finished"]
+    if not ready:
+        return {}
+    try:
+        values = client.gather(ready)
+    except Exception:        # noqa: BLE001 - left to wait()
+        return {}
+    return {f.key: value for f, value in zip(ready, values)}
+
+
 def wait(client, future, stop, done_designs: int):
     """A chunk's result, listening for a stop every quarter second and
     for the scheduler's loss (SchedulerLost: at once when Dask cancels

@@ -267,11 +267,21 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
 def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                   store):
     """As :func:`_results_local`, the chunks on a Dask cluster
-    (contactsep.studies.dask_run)."""
+    (contactsep.studies.dask_run).
+
+    The parent's loop is the limit on many workers (measured on 16:
+    docs/performance.md): a result fetched alone costs a round trip to
+    the scheduler and a worker, and a window of two chunks a worker
+    left workers idle while the parent fetched the oldest.  So the
+    window holds DASK_WINDOW_PER_WORKER chunks a worker (the scheduler
+    queues them), and each fetch takes every finished chunk in one
+    gather; the chunks are still taken in order."""
     client = address if hasattr(address, "submit") else connect(address)
     task_mode = "summary" if mode == "summary" else "columns"
     bounds.workers = dask_run.threads(client)
     futures = []
+    pending = {}        # key -> future, submitted and not yet taken
+    fetched = {}        # key -> result, gathered ahead of its turn
     done = 0
     # the spec goes to the workers once, not with every task
     try:
@@ -283,6 +293,7 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
         future = client.submit(chunk_result_on_dask, shared, first, last,
                                threshold, task_mode, pure=False)
         futures.append(future)
+        pending[future.key] = future
         return future
 
     def take(item):
@@ -291,17 +302,28 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
         if isinstance(work, _Done):
             done += last - first
             return "columns", work.value, last - first
-        value, designs, seconds = dask_run.wait(client, work, stop, done)
+        if work.key in fetched:
+            value, designs, seconds = fetched.pop(work.key)
+        else:
+            value, designs, seconds = dask_run.wait(client, work, stop,
+                                                    done)
+            fetched.update(dask_run.gather_finished(
+                client, [f for key, f in pending.items()
+                         if key != work.key and key not in fetched]))
+        del pending[work.key]
         bounds.record(designs, seconds)
         if store is not None:
             store.save(first, last, value)
         done += designs
         return task_mode, value, designs
 
+    window = DASK_WINDOW_PER_WORKER * bounds.workers + 2
+    if task_mode == "columns":
+        # columns wait in the parent until their turn: fewer of them
+        window = 2 * bounds.workers + 2
     try:
         with dask_run.quiet_dask():
-            yield from _submit_all(bounds, submit, store,
-                                   2 * bounds.workers + 2, take)
+            yield from _submit_all(bounds, submit, store, window, take)
     finally:
         with dask_run.quiet_dask():
             try:
@@ -310,6 +332,10 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                 pass
             if client is not address:
                 client.close()
+
+
+#: Chunks in flight per Dask worker thread when only summaries come back.
+DASK_WINDOW_PER_WORKER = 4
 
 
 def check_run(*, chunk_size=None, workers=None, threshold=None
