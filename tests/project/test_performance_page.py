@@ -216,8 +216,13 @@ def test_the_constants_the_page_states_are_the_codes():
                                 r"left, down to ([\d.]+) s a chunk")
     assert (int(a_worker), float(smallest)) == (chunks.CHUNKS_PER_WORKER,
                                                 chunks.MIN_CHUNK_S)
-    quoted(r"now twice the cluster's threads, plus 2\)")
-    assert "2 * bounds.workers + 2" in inspect.getsource(runner)
+    (per,) = quoted(r"then twice the cluster's threads plus 2, now (\w+) "
+                    r"times when only summaries come back, fetched in one "
+                    r"gather\)")
+    assert {"three": 3, "four": 4, "six": 6, "eight": 8}[per] == \
+        runner.DASK_WINDOW_PER_WORKER
+    assert "DASK_WINDOW_PER_WORKER * bounds.workers + 2" in \
+        inspect.getsource(runner)
     (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "
                      r"\(`model.design.MAX_MODES`\)")
     assert int(most.replace(",", "")) == design.MAX_MODES

@@ -218,6 +218,53 @@ def test_sweep_on_a_dask_local_cluster_equals_local():
     assert {task["worker"] for task in chunks} <= workers
 
 
+def test_dask_summary_equals_local_bit_for_bit():
+    """Summary only (no output): the chunks fetched in batches ahead of
+    their turn (runner._results_dask) are still merged in order, so the
+    summary is the local one's, bit for bit (a different merge order
+    would move the means' last bits)."""
+    distributed = pytest.importorskip("distributed")
+    local = runner.run_sweep(spec(), threshold=0.1, chunk_size=7,
+                             workers=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1,
+                                  processes=False, dashboard_address=None
+                                  ) as cluster, \
+            distributed.Client(cluster) as client:
+        remote = runner.run_sweep(spec(), threshold=0.1, chunk_size=7,
+                                  scheduler=client)
+    assert local["n"] == 200
+    assert local.pop("elapsed_s") > 0 and remote.pop("elapsed_s") > 0
+    assert remote == local
+
+
+def test_gather_finished_takes_only_finished_chunks():
+    distributed = pytest.importorskip("distributed")
+    from contactsep.studies import dask_run
+
+    def fail():
+        raise ValueError("a chunk that fails")
+
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1,
+                                  processes=False, dashboard_address=None
+                                  ) as cluster, \
+            distributed.Client(cluster) as client:
+        done = [client.submit(pow, 2, k, pure=False) for k in range(3)]
+        failed = client.submit(fail, pure=False)
+        distributed.wait(done + [failed])
+        event = distributed.Event(client=client)
+        waiting = client.submit(event.wait, pure=False)
+        got = dask_run.gather_finished(client, done + [failed, waiting])
+        assert got == {f.key: 2 ** k for k, f in enumerate(done)}
+        assert dask_run.gather_finished(client, [failed, waiting]) == {}
+        event.set()
+
+        class Lost:              # a client whose gather fails
+            def gather(self, futures):
+                raise OSError("connection closed")
+
+        assert dask_run.gather_finished(Lost(), done) == {}
+
+
 def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
     path = tmp_path / "s.csv"
     original = sweep.evaluate_chunk
