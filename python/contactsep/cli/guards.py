@@ -1,11 +1,14 @@
-"""Guards of the study and sweep commands (issue 31): a --design file's
-echoes of defaults the command does not read, an --out folder that will
-be made, and a sweep writer whose write errors name its file."""
+"""Guards and shared options of the study and sweep commands (issue 31):
+a --design file's echoes of defaults the command does not read, an
+--out folder that will be made, a sweep writer whose write errors name
+its file, the outputs checked before any work, and --backend."""
 
 from __future__ import annotations
 
+import argparse
 import os
 
+from contactsep import output
 from contactsep.cli.design_options import fields_from_file
 from contactsep.errors import InputError
 
@@ -70,3 +73,18 @@ class NamedWriter:
             self._writer.close(*args, **kwargs)
         except OSError as error:
             raise self._named(error) from None
+
+
+def add_backend_option(parser: argparse.ArgumentParser) -> None:
+    """--backend: the compiled batch or its NumPy twin."""
+    parser.add_argument("--backend", choices=("compiled", "numpy"),
+                        default=None,
+                        help="compiled: the Fortran batch (default); "
+                             "numpy: its NumPy twin")
+
+
+def check_targets(args: argparse.Namespace, targets: dict) -> None:
+    """Before any work: the outputs (option -> path) can be written, no
+    two are one file, none is the --design file the command reads."""
+    design = getattr(args, "design", None)
+    output.check_targets(targets, {"--design": design} if design else {})

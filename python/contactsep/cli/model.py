@@ -49,8 +49,8 @@ def register(commands: argparse._SubParsersAction) -> None:
 def results_dict(design, result) -> dict:
     """The design (output names, the form --design reads back) and every
     result under a key that carries its unit."""
-    from contactsep.studies.fields import describe
     from contactsep.model.names import SHOWN_WHEN_GIVEN
+    from contactsep.studies.fields import describe
     fields = {name: getattr(design, name) for name in design_fields()
               if name not in SHOWN_WHEN_GIVEN
               or getattr(design, name) is not None}
