@@ -11,6 +11,7 @@ import io
 import json
 import math
 import types
+import warnings
 
 import numpy as np
 import pytest
@@ -357,3 +358,93 @@ def test_no_answer_below_the_largest_preload_the_design_takes():
     assert any(note.startswith("no answer") for note in answer.notes)
     data = _strict(output.json_text(answer.to_json_dict()))
     assert data["min_preload_lb"] is None
+
+
+# --converge: the planted threshold converges as 1/N^3 (a converging
+# answer) or keeps moving with N and dt (one that never converges)
+
+def _converging(monkeypatch, coefficient=40.0):
+    def threshold(design):
+        n = int(design.n_modes)
+        return 0.25 * largest_preload(design) * (1.0 + coefficient / n**3)
+
+    def fake_event(task):
+        design, _, settings, load = task
+        return load < threshold(design)
+
+    def fake_simulate(design, model, preload=0.0, **settings):
+        return types.SimpleNamespace(
+            dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
+            min_open_s=1e-5, t_end_s=0.06,
+            longest_open_s=2e-5 if preload < threshold(design) else 5e-6)
+    monkeypatch.setattr(preload, "_simulate_event", fake_event)
+    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
+    return threshold
+
+
+def test_converge_takes_the_answer_at_2n_where_it_holds_at_4n(monkeypatch):
+    threshold = _converging(monkeypatch)
+    design = FAMILY["steel_relay"].replace(n_modes=8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        answer = contactsep.preload(design, workers=1, converge=True)
+    t8, t16 = threshold(design), threshold(design.replace(n_modes=16))
+    assert t8 <= answer.min_preload_lb <= 1.01 * t8
+    assert answer.min_preload_change < -0.02      # 40/8^3 - 40/16^3
+    assert answer.converged is True
+    assert (answer.converged_n_modes, answer.converged_check_n_modes) == \
+        (16, 32)
+    assert answer.converged_dt_s == pytest.approx(2.5e-8)
+    assert t16 <= answer.converged_min_preload_lb <= 1.01 * t16
+    assert [n for n, _ in answer.converge_history] == [8, 16]
+
+
+def test_converge_keeps_the_answer_where_2n_moves_it_under_2_percent(
+        monkeypatch):
+    _converging(monkeypatch, coefficient=1.0)   # 1/512 - 1/4096 < 2 %
+    design = FAMILY["becu_light"].replace(n_modes=8)
+    answer = contactsep.preload(design, workers=1, converge=True)
+    assert abs(answer.min_preload_change) <= 0.02
+    assert answer.converged is True
+    assert answer.converged_min_preload_lb == answer.min_preload_lb
+    assert (answer.converged_n_modes, answer.converged_check_n_modes) == \
+        (8, 16)
+
+
+def test_converge_says_so_where_the_answer_never_settles(planted):
+    planted()      # moves with 1/N and with dt: never within 2 %
+    design = FAMILY["thesis"].replace(n_modes=8)
+    with pytest.warns(UserWarning, match="not converged to 2% by N = 128"):
+        answer = contactsep.preload(design, workers=1, converge=True)
+    assert answer.converged is False
+    assert answer.converged_check_n_modes == 128
+    # searched again at 32 and 64 (a search at 128 could not be checked)
+    assert [n for n, _ in answer.converge_history] == [8, 16, 32, 64]
+    finer = _threshold(design.replace(n_modes=64), {"dt": 5e-8 / 8})
+    assert finer <= answer.converged_min_preload_lb <= 1.01 * finer
+    data = json.loads(json.dumps(answer.to_json_dict(), allow_nan=False))
+    assert data["converged"] is False
+    assert data["converge_history"][-1]["n_modes"] == 64
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"converge": True, "verify": False}, "converge: starts from the"),
+    ({"converge": 8}, "converge: found 8"),
+    ({"converge": "yes"}, "converge: found 'yes'"),
+    ({"converge": 4096}, "converge: found 4096"),
+])
+def test_bad_converge_requests_are_one_line_errors(kwargs, message,
+                                                   planted):
+    planted()
+    with pytest.raises(InputError, match=message) as error:
+        contactsep.preload(FAMILY["thesis"].replace(n_modes=8), workers=1,
+                           **kwargs)
+    assert "\n" not in str(error.value)
+
+
+def test_the_command_converges_on_request(planted, capsys):
+    planted()
+    assert main(["preload", "--n-modes", "8", "--converge", "32",
+                 "--workers", "1", "--progress", "never"]) == 0
+    out = capsys.readouterr().out
+    assert "converged to 2 %" in out and "NOT held at N = 32" in out

@@ -87,6 +87,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
                         help="seed of the draws (default 0; the same "
                              "designs as sweep --sample with that seed)")
+    run_group.add_argument(
+        "--converge", nargs="?", const=True, default=False,
+        type=integer(2, 1024), metavar="N",
+        help="also the answer converged to 2 %%: where it moves more "
+             "than 2 %% at 2N, the answer at 2N checked at 4N and a "
+             "quarter of the step, searched again there if it fails, up "
+             "to checks at N = 128 (or the N given)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
@@ -148,6 +155,7 @@ def run(args: argparse.Namespace) -> int:
         answer = preload(design, model=args.model, tolerance=args.tolerance,
                          p_target=p_target, samples=args.samples,
                          seed=args.seed, workers=args.workers,
+                         converge=args.converge,
                          progress=None if bar is None else bar.update,
                          **settings)
     except InputError as error:
@@ -176,6 +184,18 @@ def _g(value, unit="") -> str:
     return f"{value:.5g}{unit}"
 
 
+def _converged_lines(answer) -> list:
+    if answer.converged is None:
+        return []
+    steps = ", ".join(f"{_g(p)} at N = {n}"
+                      for n, p in answer.converge_history)
+    return [f"  converged to 2 %         "
+            f"{_g(answer.converged_min_preload_lb, ' lb')} (N = "
+            f"{answer.converged_n_modes}, dt = {answer.converged_dt_s:g} s; "
+            f"{'held' if answer.converged else 'NOT held'} at N = "
+            f"{answer.converged_check_n_modes}; searches: {steps})"]
+
+
 def summary_text(answer) -> str:
     """The answer, its change, the windows and the robust answer."""
     change = answer.min_preload_change
@@ -185,6 +205,7 @@ def summary_text(answer) -> str:
              f"  at dt/2 and 2N           "
              f"{_g(answer.verify_min_preload_lb, ' lb')} (change "
              f"{'none' if change is None else f'{change:+.2%}'})",
+             *_converged_lines(answer),
              f"  longest opening there    "
              f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
              f"openings >= min_open)",

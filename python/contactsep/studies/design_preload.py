@@ -31,7 +31,13 @@ from contactsep.studies.preload import (
     TOLERANCE,
     Simulations,
     limit_notes,
+    min_preloads,
     search,
+)
+from contactsep.studies.preload_converge import (
+    MARGIN,
+    converge_rows,
+    largest_check,
 )
 from contactsep.studies.preload_robust import (
     DEFAULT_P_TARGET,
@@ -105,6 +111,19 @@ class PreloadAnswer:
     #: The robust answer under tolerances (None: none given).
     robust: RobustPreload | None
     notes: tuple
+    #: With ``converge``: the answer converged to 2 % (lb), the N and
+    #: step (s) it was found at, the N of the check it passed, and
+    #: whether it passed one (None: not asked; False: the last check,
+    #: at the largest N allowed, failed).  The answer at N when its
+    #: change at 2N is within 2 %; else the answer at 2N, checked at 4N
+    #: and searched again there if it fails, and so on.
+    converged_min_preload_lb: float | None = None
+    converged_n_modes: int | None = None
+    converged_dt_s: float | None = None
+    converged_check_n_modes: int | None = None
+    converged: bool | None = None
+    #: ((N, answer lb), ...) of every search, coarsest first.
+    converge_history: tuple = ()
 
     def to_json_dict(self) -> dict:
         """JSON-ready (strict through contactsep.output: NaN -> null)."""
@@ -125,6 +144,13 @@ class PreloadAnswer:
             "longest_open_at_answer_s": self.longest_open_at_answer_s,
             "simulations": self.simulations,
             "robust": self.robust.to_json_dict() if self.robust else None,
+            "converged_min_preload_lb": self.converged_min_preload_lb,
+            "converged_n_modes": self.converged_n_modes,
+            "converged_dt_s": self.converged_dt_s,
+            "converged_check_n_modes": self.converged_check_n_modes,
+            "converged": self.converged,
+            "converge_history": [{"n_modes": n, "min_preload_lb": p}
+                                 for n, p in self.converge_history],
             "tested": [{"preload_lb": p, "event": bool(e)}
                        for p, e in self.tested],
             "verify_tested": [{"preload_lb": p, "event": bool(e)}
@@ -143,6 +169,7 @@ class PreloadAnswer:
                  f"# min_preload_change = {_g(self.min_preload_change)} "
                  f"(at half the step and twice the modes: "
                  f"{_g(self.verify_min_preload_lb)} lb)",
+                 *self._converged_lines(),
                  "# event windows (lb): " + spans_text(self.event_windows),
                  "# closed windows below the answer (lb): "
                  + spans_text(self.closed_windows)]
@@ -165,6 +192,18 @@ class PreloadAnswer:
             lines += [f"robust,{p:.12g},{n},{k},{f}"
                       for p, n, k, f in self.robust.tested]
         return "\n".join(lines) + "\n"
+
+
+    def _converged_lines(self) -> list:
+        if self.converged is None:
+            return []
+        steps = ", ".join(f"{_g(p)} lb at N = {n}"
+                          for n, p in self.converge_history)
+        return [f"# converged_min_preload_lb = "
+                f"{_g(self.converged_min_preload_lb)} (N = "
+                f"{self.converged_n_modes}, dt {_g(self.converged_dt_s)} s;"
+                f" {'held' if self.converged else 'FAILED'} its check at "
+                f"N = {self.converged_check_n_modes}; searches: {steps})"]
 
 
 def _plain(value):
@@ -211,8 +250,9 @@ def _change(answer: float, other: float) -> float | None:
 
 def preload(design, model: str = "hertz", *, tolerance=(),
             p_target: float = DEFAULT_P_TARGET, samples: int | None = None,
-            seed: int = 0, verify: bool = True, workers: int | None = None,
-            progress=None, **settings) -> PreloadAnswer:
+            seed: int = 0, verify: bool = True, converge=False,
+            workers: int | None = None, progress=None,
+            **settings) -> PreloadAnswer:
     """The smallest lower-contact preload (lb) with no discontinuity
     event for ``design`` (a :class:`contactsep.Design`, its own N).
 
@@ -235,6 +275,14 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     verify : bool
         Search again at half the step and twice the modes for
         ``min_preload_change`` (default True).
+    converge : bool or int
+        Also the answer converged to 2 % (``converged_*`` fields;
+        default False): where ``min_preload_change`` exceeds 2 %, the
+        answer at 2N is checked at 4N and a quarter of the step (no
+        event 2 % above, one within 2 % below) and searched again there
+        if the check fails, and so on up to checks at N = 128 (True) or
+        at the N given (contactsep.studies.preload_converge).  Needs
+        ``verify`` and one N for every member.
     workers : int, optional
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
@@ -260,6 +308,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         raise InputError("--samples: the draws of --tolerance; give a "
                          "tolerance")
     probe = _probe(design, model, settings)
+    max_check = _check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
     notes = []
     with Simulations(workers, progress=progress) as sims:
@@ -272,6 +321,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             _probe(finer, model, verify_settings)
             verify_found = _search(finer, model, verify_settings, sims,
                                    largest_preload(finer), start=answer)
+        converged = None
+        if max_check is not None:
+            converged = _converge(design, model, settings, sims, found,
+                                  verify_found, probe.dt, max_check)
         runs = sims.runs
         robust = None
         if spec is not None:
@@ -295,11 +348,17 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                   in limit_notes("the design", verify_found)]
     change = None if verify_found is None else _change(answer,
                                                        verify_answer)
+    if converged is not None and not converged["converged"]:
+        warnings.warn(f"the smallest preload is not converged to "
+                      f"{MARGIN:.0%} by N = "
+                      f"{converged['converged_check_n_modes']}: its check "
+                      f"there failed", ContactsepWarning)
     if change is not None and abs(change) > 0.02:
-        warnings.warn(f"the smallest preload moves by {change:+.1%} at "
-                      f"half the step and twice the modes: raise "
-                      f"n_modes (or lower dt) and search again",
-                      ContactsepWarning)
+        if max_check is None:
+            warnings.warn(f"the smallest preload moves by {change:+.1%} "
+                          f"at half the step and twice the modes: raise "
+                          f"n_modes (or lower dt) and search again, or "
+                          f"converge it (--converge)", ContactsepWarning)
     return PreloadAnswer(
         design=design, model=model, settings=dict(settings),
         dt_s=probe.dt, n_modes=design.n_modes, min_preload_lb=answer,
@@ -309,7 +368,50 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         tested=found.tested,
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
-        simulations=runs, robust=robust, notes=tuple(notes))
+        simulations=runs, robust=robust, notes=tuple(notes),
+        **(converged or {}))
+
+
+def _check_converge(converge, verify, n_modes):
+    """The largest N of a convergence check (None: not asked), or an
+    InputError in one line."""
+    if converge is False or converge is None:
+        return None
+    if not verify:
+        raise InputError("converge: starts from the search at twice the "
+                         "modes; it needs verify")
+    if isinstance(n_modes, (tuple, list)):
+        raise InputError("converge: doubles one N; give the same n_modes "
+                         "for every member")
+    return largest_check(converge, int(n_modes))
+
+
+def _converge(design, model, settings, sims, found, verify_found, dt,
+              max_check) -> dict:
+    """The converged_* fields of the answer (PreloadAnswer)."""
+    n = int(design.n_modes)
+    answer, finer = found.min_preload_lb, verify_found.min_preload_lb
+    history = ((n, answer), (2 * n, finer))
+    change = _change(answer, finer)
+    if change is not None and abs(change) <= MARGIN:
+        return dict(converged_min_preload_lb=answer, converged_n_modes=n,
+                    converged_dt_s=dt, converged_check_n_modes=2 * n,
+                    converged=True, converge_history=history)
+    if not math.isfinite(finer) or 4 * n > max_check:
+        return dict(converged_min_preload_lb=finer,
+                    converged_n_modes=2 * n, converged_dt_s=dt / 2,
+                    converged_check_n_modes=2 * n, converged=False,
+                    converge_history=history)
+    row, = converge_rows(
+        lambda m, rows: [design.replace(n_modes=m) for _ in rows],
+        [finer], 2 * n, dt / 2, model,
+        {k: v for k, v in settings.items() if k != "dt"}, sims, max_check,
+        search_again=min_preloads)
+    return dict(converged_min_preload_lb=row.min_preload_lb,
+                converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,
+                converged_check_n_modes=row.check_n_modes,
+                converged=row.converged,
+                converge_history=((n, answer),) + row.history)
 
 
 def _search(design, model, settings, sims, ceiling, start=None):
