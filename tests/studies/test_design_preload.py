@@ -218,6 +218,8 @@ def test_bad_requests_are_input_errors(kwargs, message):
     (["--tolerance", "size=normal(1,2)"], "--tolerance size"),
     (["--samples", "5"], "--samples: the draws of --tolerance"),
     (["--dt", "-1"], "--dt:"),
+    (["--converge", "3"], "--converge: found 3"),
+    (["--converge", "x"], "--converge: found 'x'"),
 ])
 def test_bad_command_lines_are_one_line_errors(argv, message, capsys):
     assert main(["preload", "--n-modes", "2", *argv]) == 2

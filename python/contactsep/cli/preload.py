@@ -161,7 +161,7 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
-        if sep and name in _OPTIONS:
+        if sep and (name in _OPTIONS or name == "converge"):
             raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
         raise
     finally:
