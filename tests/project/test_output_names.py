@@ -40,6 +40,7 @@ DIMENSIONLESS = {
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
     "alias_share",
     "verify_n_modes", "verify_status", "check_n_modes", "converged",
+    "converged_n_modes", "converged_check_n_modes", "simulations",
     "contact_material",
     "separator_material", "law"}
 #: Structures: lists of [start, end] intervals (s) or confidence
@@ -48,7 +49,7 @@ STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
               "p_open_ci95", "p_exceed_ci95", "inputs", "design",
               "single_impulse", "work", "vary", "sample", "fixed",
               "settings", "impacts", "n_failed_by_status", "numerics",
-              "changes"}
+              "changes", "converge_history"}
 #: Attribute names that carry a unit: never an output key.
 RAW = {f.name for f in dataclasses.fields(Design)
        if contactsep.studies.fields.unit(f.name)} | {

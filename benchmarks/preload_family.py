@@ -1,0 +1,152 @@
+"""The smallest preload of each design of the test family at the default
+N, and how far it moves at twice the modes and half the step (issue 25,
+items 2 and 5; docs/chatter.md, "The preload command on the family"):
+
+    OPENBLAS_NUM_THREADS=1 nice python benchmarks/preload_family.py \\
+        [--designs NAME,NAME] [--workers K] [--json F] [--csv F]
+
+For every design of tests/design_family.py (FAMILY; the thesis rigs'
+rows are the preload chart's, docs/studies/preload.csv, checked there),
+``contactsep.preload(design)`` as the command runs it: elastic Hertz,
+N = DEFAULT_MODES, the design's own step and window, the static
+correction on, its whole search, then the same search at 2N and half
+the step (``verify``: ``min_preload_change``).  Prints one row a design:
+the answer, the answer at 2N, dt/2, their relative change, the
+simulations and the seconds; ``--json`` writes the rows (strict JSON)
+as they finish.  Tens of minutes a relay on two cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+import warnings
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
+from design_family import FAMILY  # noqa: E402
+
+from contactsep.studies.design_preload import preload  # noqa: E402
+from contactsep.studies.preload import DEFAULT_MODES  # noqa: E402
+
+RELAYS = [name for name in FAMILY if not name.startswith("thesis")]
+
+
+def finite(value):
+    return value if isinstance(value, (int, float)) and \
+        math.isfinite(value) else None
+
+
+def error(answer) -> str:
+    """(answer at N - converged answer) / converged answer."""
+    a, c = answer.min_preload_lb, answer.converged_min_preload_lb
+    if not (math.isfinite(a) and c is not None and math.isfinite(c)) \
+            or c == 0:
+        return "-"
+    return f"{(a - c) / c:+.2%}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--designs", default=",".join(RELAYS))
+    parser.add_argument("--workers", type=int, default=None)
+    parser.add_argument("--json", default=None)
+    parser.add_argument("--csv", default=None,
+                        help="the rows as CSV ('#' comments first)")
+    parser.add_argument("--from-json", default=None,
+                        help="no runs: the CSV of an earlier --json")
+    args = parser.parse_args()
+    if args.from_json:
+        with open(args.from_json) as rows:
+            write_csv(json.load(rows), args.csv)
+        return
+    rows = []
+    print("| design | N | dt s | min preload lb | at 2N, dt/2 lb | change "
+          "| converged lb | at N | checked at N | held | error at N "
+          "| simulations | s |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|")
+    for name in args.designs.split(","):
+        design = FAMILY[name].replace(n_modes=DEFAULT_MODES)
+        start = time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            answer = preload(design, workers=args.workers, converge=True)
+        seconds = time.perf_counter() - start
+        row = {"design": name, "n_modes": answer.n_modes,
+               "dt_s": answer.dt_s,
+               "min_preload_lb": finite(answer.min_preload_lb),
+               "verify_min_preload_lb": finite(answer.verify_min_preload_lb),
+               "min_preload_change": finite(answer.min_preload_change),
+               "converged_min_preload_lb":
+                   finite(answer.converged_min_preload_lb),
+               "converged_n_modes": answer.converged_n_modes,
+               "converged_dt_s": answer.converged_dt_s,
+               "converged_check_n_modes": answer.converged_check_n_modes,
+               "converged": answer.converged,
+               "simulations": answer.simulations, "wall_s": seconds}
+        rows.append(row)
+        change = row["min_preload_change"]
+        print(f"| {name} | {answer.n_modes} | {answer.dt_s:.3g} | "
+              f"{answer.min_preload_lb:.4g} | "
+              f"{answer.verify_min_preload_lb:.4g} | "
+              f"{'-' if change is None else f'{change:+.2%}'} | "
+              f"{answer.converged_min_preload_lb:.4g} | "
+              f"{answer.converged_n_modes} | "
+              f"{answer.converged_check_n_modes} | "
+              f"{'yes' if answer.converged else 'no'} | "
+              f"{error(answer)} | "
+              f"{answer.simulations} | {seconds:.0f} |", flush=True)
+        if args.json:
+            partial = args.json + ".part"
+            with open(partial, "w") as out:
+                json.dump(rows, out, indent=1, allow_nan=False)
+            os.replace(partial, args.json)
+    if args.csv:
+        write_csv(rows, args.csv)
+
+
+COLUMNS = ("design", "n_modes", "dt_s", "min_preload_lb",
+           "verify_min_preload_lb", "min_preload_change",
+           "converged_min_preload_lb", "converged_n_modes", "converged_dt_s",
+           "converged_check_n_modes", "converged", "simulations", "wall_s")
+
+
+def write_csv(rows, path) -> None:
+    """The rows, '#' comments first; replaced only when finished."""
+    lines = ["# contactsep.preload(design, converge=True) on the designs of "
+             "tests/design_family.py at N = DEFAULT_MODES (elastic Hertz, "
+             "the design's own step and window, static correction on)",
+             "# min_preload_change: the answer at 2N and half the step "
+             "against the answer (a full second search)",
+             "# converged_*: the answer converged to 2 % (where the change "
+             "exceeds 2 %, the answer at 2N checked at 4N and a quarter of "
+             "the step); converged 1: its check held",
+             "# units: lb, s; wall_s: wall time on two worker processes",
+             ",".join(COLUMNS)]
+    for row in rows:
+        cells = []
+        for column in COLUMNS:
+            value = row[column if column in row or column != "wall_s"
+                        else "seconds"]
+            if value is None:
+                cells.append("")
+            elif isinstance(value, bool):
+                cells.append(str(int(value)))
+            elif isinstance(value, float):
+                cells.append(f"{value:.6g}")
+            else:
+                cells.append(str(value))
+        lines.append(",".join(cells))
+    partial = path + ".part"
+    with open(partial, "w") as out:
+        out.write("\n".join(lines) + "\n")
+    os.replace(partial, path)
+
+
+if __name__ == "__main__":
+    main()
