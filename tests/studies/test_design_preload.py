@@ -450,3 +450,25 @@ def test_the_command_converges_on_request(planted, capsys):
                  "--workers", "1", "--progress", "never"]) == 0
     out = capsys.readouterr().out
     assert "converged to 2 %" in out and "NOT held at N = 32" in out
+
+
+def test_converge_stops_where_the_work_budget_does(planted, monkeypatch):
+    """A long window: a run at N = 64 and its step would exceed the
+    simulation's work budget (chatter.simulate.smallest_dt); the checks
+    stop at N = 32 with a note instead of failing the whole search."""
+    planted()
+    plain = design_preload.simulate
+
+    def long_window(*args, **kwargs):
+        result = plain(*args, **kwargs)
+        result.t_end_s = 1.0
+        return result
+    monkeypatch.setattr(design_preload, "simulate", long_window)
+    design = FAMILY["thesis"].replace(n_modes=8)
+    with pytest.warns(UserWarning, match="not converged to 2% by N = 32"):
+        answer = contactsep.preload(design, workers=1, converge=True)
+    assert answer.converged is False
+    assert answer.converged_check_n_modes == 32
+    assert [n for n, _ in answer.converge_history] == [8, 16]
+    assert any(note.startswith("converge: checks stop at N = 32")
+               for note in answer.notes)

@@ -21,7 +21,7 @@ import warnings
 from dataclasses import dataclass
 
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.simulate import largest_preload, smallest_dt
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies.preload import (
     BAND_HIGH,
@@ -323,8 +323,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                                    largest_preload(finer), start=answer)
         converged = None
         if max_check is not None:
-            converged = _converge(design, model, settings, sims, found,
-                                  verify_found, probe.dt, max_check)
+            converged, converge_notes = _converge(
+                design, model, settings, sims, found, verify_found, probe,
+                max_check)
+            notes += converge_notes
         runs = sims.runs
         robust = None
         if spec is not None:
@@ -386,32 +388,50 @@ def _check_converge(converge, verify, n_modes):
     return largest_check(converge, int(n_modes))
 
 
-def _converge(design, model, settings, sims, found, verify_found, dt,
-              max_check) -> dict:
-    """The converged_* fields of the answer (PreloadAnswer)."""
-    n = int(design.n_modes)
+def _reachable(n_modes: int, dt: float, t_end: float, max_check: int
+               ) -> int:
+    """The largest N, doubling from ``n_modes`` at ``dt`` (halved with
+    each doubling), up to ``max_check``, whose runs the simulation's
+    work budget takes (chatter.simulate.smallest_dt)."""
+    n, step = n_modes, dt
+    while 2 * n <= max_check and step / 2 >= smallest_dt(2 * n, t_end):
+        n, step = 2 * n, step / 2
+    return n
+
+
+def _converge(design, model, settings, sims, found, verify_found, probe,
+              max_check) -> tuple[dict, list]:
+    """The converged_* fields of the answer (PreloadAnswer) and notes."""
+    n, dt = int(design.n_modes), probe.dt
     answer, finer = found.min_preload_lb, verify_found.min_preload_lb
     history = ((n, answer), (2 * n, finer))
     change = _change(answer, finer)
     if change is not None and abs(change) <= MARGIN:
         return dict(converged_min_preload_lb=answer, converged_n_modes=n,
                     converged_dt_s=dt, converged_check_n_modes=2 * n,
-                    converged=True, converge_history=history)
-    if not math.isfinite(finer) or 4 * n > max_check:
+                    converged=True, converge_history=history), []
+    reachable = _reachable(2 * n, dt / 2, probe.t_end_s, max_check)
+    notes = []
+    if reachable < max_check:
+        notes.append(f"converge: checks stop at N = {reachable}: a run at "
+                     f"N = {2 * reachable} and its step exceeds the "
+                     f"simulation's work budget over the "
+                     f"{probe.t_end_s:g} s window")
+    if not math.isfinite(finer) or reachable < 4 * n:
         return dict(converged_min_preload_lb=finer,
                     converged_n_modes=2 * n, converged_dt_s=dt / 2,
                     converged_check_n_modes=2 * n, converged=False,
-                    converge_history=history)
+                    converge_history=history), notes
     row, = converge_rows(
         lambda m, rows: [design.replace(n_modes=m) for _ in rows],
         [finer], 2 * n, dt / 2, model,
-        {k: v for k, v in settings.items() if k != "dt"}, sims, max_check,
+        {k: v for k, v in settings.items() if k != "dt"}, sims, reachable,
         search_again=min_preloads)
     return dict(converged_min_preload_lb=row.min_preload_lb,
                 converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,
                 converged_check_n_modes=row.check_n_modes,
                 converged=row.converged,
-                converge_history=((n, answer),) + row.history)
+                converge_history=((n, answer),) + row.history), notes
 
 
 def _search(design, model, settings, sims, ceiling, start=None):
