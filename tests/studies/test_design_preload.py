@@ -472,3 +472,24 @@ def test_converge_stops_where_the_work_budget_does(planted, monkeypatch):
     assert [n for n, _ in answer.converge_history] == [8, 16]
     assert any(note.startswith("converge: checks stop at N = 32")
                for note in answer.notes)
+
+
+def test_a_verify_run_the_simulation_refuses_is_refused_before_the_search(
+        planted, monkeypatch):
+    """The run at 2N, dt/2 is probed before the search at N: a refusal
+    (the work budget) costs no search."""
+    planted()
+    plain = design_preload.simulate
+    searched = []
+    monkeypatch.setattr(preload, "_simulate_event",
+                        lambda task: searched.append(task) or True)
+
+    def refuse_2n(design, model, **settings):
+        if design.n_modes > 8:
+            raise InputError("dt: found 2.5e-08, expected at least 3e-08 s "
+                             "at N = 16")
+        return plain(design, model, **settings)
+    monkeypatch.setattr(design_preload, "simulate", refuse_2n)
+    with pytest.raises(InputError, match="at N = 16"):
+        contactsep.preload(FAMILY["thesis"].replace(n_modes=8), workers=1)
+    assert searched == []

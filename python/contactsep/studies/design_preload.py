@@ -311,14 +311,17 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     max_check = _check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
     notes = []
+    if verify:
+        # refused here (the work budget at 2N, dt/2) rather than after
+        # the search at N has run
+        finer = design.replace(n_modes=_doubled(design.n_modes))
+        verify_settings = {**settings, "dt": probe.dt / 2}
+        _probe(finer, model, verify_settings)
     with Simulations(workers, progress=progress) as sims:
         found = _search(design, model, settings, sims, ceiling)
         answer = found.min_preload_lb
         verify_found = None
         if verify:
-            finer = design.replace(n_modes=_doubled(design.n_modes))
-            verify_settings = {**settings, "dt": probe.dt / 2}
-            _probe(finer, model, verify_settings)
             verify_found = _search(finer, model, verify_settings, sims,
                                    largest_preload(finer), start=answer)
         converged = None

@@ -264,6 +264,10 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
             shutil.rmtree(directory, ignore_errors=True)
 
 
+#: Chunks in flight per Dask worker thread when only summaries come back.
+DASK_WINDOW_PER_WORKER = 4
+
+
 def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                   store):
     """As :func:`_results_local`, the chunks on a Dask cluster
@@ -332,10 +336,6 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                 pass
             if client is not address:
                 client.close()
-
-
-#: Chunks in flight per Dask worker thread when only summaries come back.
-DASK_WINDOW_PER_WORKER = 4
 
 
 def check_run(*, chunk_size=None, workers=None, threshold=None
