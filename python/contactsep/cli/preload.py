@@ -184,18 +184,6 @@ def _g(value, unit="") -> str:
     return f"{value:.5g}{unit}"
 
 
-def _converged_lines(answer) -> list:
-    if answer.converged is None:
-        return []
-    steps = ", ".join(f"{_g(p)} at N = {n}"
-                      for n, p in answer.converge_history)
-    return [f"  converged to 2 %         "
-            f"{_g(answer.converged_min_preload_lb, ' lb')} (N = "
-            f"{answer.converged_n_modes}, dt = {answer.converged_dt_s:g} s; "
-            f"{'held' if answer.converged else 'NOT held'} at N = "
-            f"{answer.converged_check_n_modes}; searches: {steps})"]
-
-
 def summary_text(answer) -> str:
     """The answer, its change, the windows and the robust answer."""
     change = answer.min_preload_change
@@ -205,7 +193,8 @@ def summary_text(answer) -> str:
              f"  at dt/2 and 2N           "
              f"{_g(answer.verify_min_preload_lb, ' lb')} (change "
              f"{'none' if change is None else f'{change:+.2%}'})",
-             *_converged_lines(answer),
+             *([] if answer.converged is None else
+               [f"  converged to 2 %         {answer.converged_text()}"]),
              f"  longest opening there    "
              f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
              f"openings >= min_open)",

@@ -194,16 +194,22 @@ class PreloadAnswer:
         return "\n".join(lines) + "\n"
 
 
-    def _converged_lines(self) -> list:
+    def converged_text(self) -> str | None:
+        """The converged answer in words (None: not asked): its N and
+        step, its check, every search's answer."""
         if self.converged is None:
-            return []
+            return None
         steps = ", ".join(f"{_g(p)} lb at N = {n}"
                           for n, p in self.converge_history)
-        return [f"# converged_min_preload_lb = "
-                f"{_g(self.converged_min_preload_lb)} (N = "
+        return (f"{_g(self.converged_min_preload_lb)} lb (N = "
                 f"{self.converged_n_modes}, dt {_g(self.converged_dt_s)} s;"
-                f" {'held' if self.converged else 'FAILED'} its check at "
-                f"N = {self.converged_check_n_modes}; searches: {steps})"]
+                f" {'held' if self.converged else 'NOT held'} at N = "
+                f"{self.converged_check_n_modes}; searches: {steps})")
+
+    def _converged_lines(self) -> list:
+        text = self.converged_text()
+        return [] if text is None else \
+            [f"# converged_min_preload_lb = {text}"]
 
 
 def _plain(value):
