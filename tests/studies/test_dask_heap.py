@@ -55,7 +55,31 @@ def test_dask_workers_heap_no_longer_faults_every_array():
                     reason="glibc's malloc")
 def test_plain_process_keeps_its_malloc():
     """Without Dask's variable glibc's dynamic threshold already reuses
-    the array, and the call leaves the process alone."""
+    the array (the premise: there is nothing to give back)."""
     before, after = _faults({})
     assert before < 50 * 256 * 0.05
     assert after < 50 * 256 * 0.05
+
+
+def test_only_a_static_heap_is_changed(monkeypatch):
+    """mallopt is called only where a MALLOC_*_ variable turned the
+    dynamic threshold off, with glibc's own largest thresholds, once."""
+    from contactsep.studies import dask_run
+    calls = []
+
+    class Libc:
+        def mallopt(self, parameter, value):
+            calls.append((parameter, value))
+            return 1
+
+    monkeypatch.setattr(dask_run.ctypes, "CDLL", lambda name: Libc())
+    for name in dask_run._STATIC_HEAP:
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setattr(dask_run, "_heap_set", False)
+    dask_run.heap_as_glibc_default()
+    assert calls == []
+    monkeypatch.setattr(dask_run, "_heap_set", False)
+    monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "65536")
+    dask_run.heap_as_glibc_default()
+    dask_run.heap_as_glibc_default()
+    assert calls == [(-3, 32 * 1024 * 1024), (-1, 64 * 1024 * 1024)]
