@@ -11,9 +11,15 @@ rows are the preload chart's, docs/studies/preload.csv, checked there),
 N = DEFAULT_MODES, the design's own step and window, the static
 correction on, its whole search, then the same search at 2N and half
 the step (``verify``: ``min_preload_change``).  Prints one row a design:
-the answer, the answer at 2N, dt/2, their relative change, the
-simulations and the seconds; ``--json`` writes the rows (strict JSON)
-as they finish.  Tens of minutes a relay on two cores.
+the answer, the answer at 2N, dt/2, their relative change, then with
+``converge=True`` the answer converged to 2 % (where the change exceeds
+2 %, the answer at 2N checked at 4N and a quarter of the step, searched
+again there if it fails, up to checks at N = 128), the N it was found
+and checked at, the default answer's difference from it, the
+simulations and the seconds.  ``--json`` writes the rows (strict JSON)
+as they finish, ``--csv`` at the end (``--from-json F --csv G``: the
+CSV of an earlier ``--json``, no runs).  Tens of minutes a relay on two
+cores.
 """
 
 from __future__ import annotations
@@ -21,7 +27,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import os
 import sys
 import time
 import warnings
@@ -31,6 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from design_family import FAMILY  # noqa: E402
 
+from contactsep import output  # noqa: E402
 from contactsep.studies.design_preload import preload  # noqa: E402
 from contactsep.studies.preload import DEFAULT_MODES  # noqa: E402
 
@@ -102,10 +108,8 @@ def main() -> None:
               f"{error(answer)} | "
               f"{answer.simulations} | {seconds:.0f} |", flush=True)
         if args.json:
-            partial = args.json + ".part"
-            with open(partial, "w") as out:
-                json.dump(rows, out, indent=1, allow_nan=False)
-            os.replace(partial, args.json)
+            with output.open_output(args.json) as out:
+                output.write_json(out, rows, indent=1)
     if args.csv:
         write_csv(rows, args.csv)
 
@@ -131,8 +135,7 @@ def write_csv(rows, path) -> None:
     for row in rows:
         cells = []
         for column in COLUMNS:
-            value = row[column if column in row or column != "wall_s"
-                        else "seconds"]
+            value = row[column]
             if value is None:
                 cells.append("")
             elif isinstance(value, bool):
@@ -142,10 +145,8 @@ def write_csv(rows, path) -> None:
             else:
                 cells.append(str(value))
         lines.append(",".join(cells))
-    partial = path + ".part"
-    with open(partial, "w") as out:
-        out.write("\n".join(lines) + "\n")
-    os.replace(partial, path)
+    with output.open_output(path) as out:
+        output.write_text(out, "\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":
