@@ -283,7 +283,6 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     client = address if hasattr(address, "submit") else connect(address)
     task_mode = "summary" if mode == "summary" else "columns"
     bounds.workers = dask_run.threads(client)
-    futures = []
     pending = {}        # key -> future, submitted and not yet taken
     fetched = {}        # key -> result, gathered ahead of its turn
     done = 0
@@ -296,7 +295,6 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     def submit(first, last):
         future = client.submit(chunk_result_on_dask, shared, first, last,
                                threshold, task_mode, pure=False)
-        futures.append(future)
         pending[future.key] = future
         return future
 
@@ -331,7 +329,7 @@ def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     finally:
         with dask_run.quiet_dask():
             try:
-                client.cancel([f for f in futures if not f.done()])
+                client.cancel([f for f in pending.values() if not f.done()])
             except Exception:    # noqa: BLE001 - a lost scheduler
                 pass
             if client is not address:
