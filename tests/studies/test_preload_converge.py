@@ -44,11 +44,17 @@ def designs_at(n, rows):
     return [thesis_design(d=ROWS[i], n_modes=n) for i in rows]
 
 
-def converge(thresholds, answers, max_modes=pc.MAX_MODES):
+def converge(thresholds, answers, max_modes=pc.MAX_MODES, t_end=None):
     sims = Thresholds(thresholds)
     return pc.converge_rows(designs_at, answers, 32, DT, "hertz",
                             {"damping": "none"}, sims, max_modes,
-                            search_again=min_preloads), sims
+                            search_again=min_preloads, t_end=t_end), sims
+
+
+def budget_steps_x_modes(n_modes, dt, t_end):
+    """A run's work as the simulation counts it against its budget of
+    1e10 (docs/chatter.md): window / step steps over 3N modes."""
+    return t_end / dt * 3 * n_modes
 
 
 def test_an_answer_that_holds_at_2n_is_converged_at_n():
@@ -124,6 +130,52 @@ def test_a_row_failing_its_last_check_keeps_its_answer_unconverged():
     a = found[0]
     assert (a.n_modes, a.check_n_modes, a.converged) == (64, 128, False)
     assert 9.0 <= a.min_preload_lb <= 9.09
+
+
+def test_a_check_the_budget_refuses_at_half_the_step_runs_at_its_finest():
+    """A window of 0.4 s: at N = 128 half of 2.5e-8 s is 3.1e7 steps x
+    384 modes = 1.2e10, over the budget of 1e10; the check runs at the
+    finest step within it, 1.5e-8 s (0.62 of the last step)."""
+    found, sims = converge({64: {0.25: 9.0, 0.5: 4.0},
+                            128: {0.25: 9.05, 0.5: 4.0}}, [10.0, 4.0],
+                           t_end=0.4)
+    a = found[0]
+    assert (a.n_modes, a.dt_s, a.check_n_modes, a.converged) == (
+        64, DT / 2, 128, True)
+    steps = {step for n, step in sims.runs if n == 128}
+    assert len(steps) == 1
+    step, = steps
+    assert budget_steps_x_modes(128, DT / 4, 0.4) > 1e10
+    assert 0.97e10 < budget_steps_x_modes(128, step, 0.4) <= 1e10
+    assert DT / 4 < step <= 0.75 * DT / 2
+
+
+def test_checks_stop_where_not_even_the_finest_step_refines():
+    """A window of 0.6 s: at N = 128 the budget's finest step, 2.3e-8 s,
+    is 0.93 of the last step, 2.5e-8 s: no check there, so a row failing
+    at N = 64 is not searched again and keeps its answer, unconverged."""
+    assert budget_steps_x_modes(128, 0.75 * DT / 2, 0.6) > 1e10
+    found, sims = converge({64: {0.25: 9.0, 0.5: 4.0},
+                            128: {0.25: 9.05, 0.5: 4.0}}, [10.0, 4.0],
+                           t_end=0.6)
+    a = found[0]
+    assert (a.min_preload_lb, a.n_modes, a.check_n_modes, a.converged) == (
+        10.0, 32, 64, False)
+    assert {n for n, _ in sims.runs} == {64}
+    assert pc.reachable(32, DT, 0.6, 128) == 64
+    assert pc.reachable(32, DT, 0.4, 128) == 128
+    assert pc.reachable(32, DT, None, 128) == 128
+
+
+def test_the_refined_step_is_half_where_the_budget_allows():
+    assert pc.refined_step(64, DT) == DT / 2
+    assert pc.refined_step(64, DT, t_end=0.06) == DT / 2
+    # becu_light's window at N = 128 after its N = 64 step
+    step = pc.refined_step(128, 3.13e-9, t_end=0.0486)
+    assert budget_steps_x_modes(128, 3.13e-9 / 2, 0.0486) > 1e10
+    assert budget_steps_x_modes(128, step, 0.0486) <= 1e10
+    assert step < 0.75 * 3.13e-9
+    assert pc.refined_step(128, 2.4e-9, t_end=0.0486) is None
 
 
 def test_a_row_without_an_answer_is_not_simulated():

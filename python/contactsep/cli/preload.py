@@ -92,8 +92,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=integer(2, 1024), metavar="N",
         help="also the answer converged to 2 %%: where it moves more "
              "than 2 %% at 2N, the answer at 2N checked at 4N and a "
-             "quarter of the step, searched again there if it fails, up "
-             "to checks at N = 128 (or the N given)")
+             "quarter of the step (or the finest step the work budget "
+             "takes), searched again there if it fails, up to checks at "
+             "N = 128 (or the N given)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")

@@ -21,7 +21,7 @@ import warnings
 from dataclasses import dataclass
 
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload, smallest_dt
+from contactsep.chatter.simulate import largest_preload
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies.preload import (
     BAND_HIGH,
@@ -35,9 +35,11 @@ from contactsep.studies.preload import (
     search,
 )
 from contactsep.studies.preload_converge import (
+    LEAST_REFINEMENT,
     MARGIN,
     converge_rows,
     largest_check,
+    reachable,
 )
 from contactsep.studies.preload_robust import (
     DEFAULT_P_TARGET,
@@ -284,7 +286,9 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     converge : bool or int
         Also the answer converged to 2 % (``converged_*`` fields;
         default False): where ``min_preload_change`` exceeds 2 %, the
-        answer at 2N is checked at 4N and a quarter of the step (no
+        answer at 2N is checked at 4N and a quarter of the step (or,
+        where the work budget refuses that, the finest step it takes if
+        at most 0.75 of the last: preload_converge.refined_step; no
         event 2 % above, one within 2 % below) and searched again there
         if the check fails, and so on up to checks at N = 128 (True) or
         at the N given (contactsep.studies.preload_converge).  Needs
@@ -397,17 +401,6 @@ def _check_converge(converge, verify, n_modes):
     return largest_check(converge, int(n_modes))
 
 
-def _reachable(n_modes: int, dt: float, t_end: float, max_check: int
-               ) -> int:
-    """The largest N, doubling from ``n_modes`` at ``dt`` (halved with
-    each doubling), up to ``max_check``, whose runs the simulation's
-    work budget takes (chatter.simulate.smallest_dt)."""
-    n, step = n_modes, dt
-    while 2 * n <= max_check and step / 2 >= smallest_dt(2 * n, t_end):
-        n, step = 2 * n, step / 2
-    return n
-
-
 def _converge(design, model, settings, sims, found, verify_found, probe,
               max_check) -> tuple[dict, list]:
     """The converged_* fields of the answer (PreloadAnswer) and notes."""
@@ -419,14 +412,14 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
         return dict(converged_min_preload_lb=answer, converged_n_modes=n,
                     converged_dt_s=dt, converged_check_n_modes=2 * n,
                     converged=True, converge_history=history), []
-    reachable = _reachable(2 * n, dt / 2, probe.t_end_s, max_check)
+    last = reachable(2 * n, dt / 2, probe.t_end_s, max_check)
     notes = []
-    if reachable < max_check:
-        notes.append(f"converge: checks stop at N = {reachable}: a run at "
-                     f"N = {2 * reachable} and its step exceeds the "
-                     f"simulation's work budget over the "
-                     f"{probe.t_end_s:g} s window")
-    if not math.isfinite(finer) or reachable < 4 * n:
+    if last < max_check:
+        notes.append(f"converge: checks stop at N = {last}: a run at "
+                     f"N = {2 * last} exceeds the simulation's work budget "
+                     f"over the {probe.t_end_s:g} s window even at "
+                     f"{LEAST_REFINEMENT:g} of the last step")
+    if not math.isfinite(finer) or last < 4 * n:
         return dict(converged_min_preload_lb=finer,
                     converged_n_modes=2 * n, converged_dt_s=dt / 2,
                     converged_check_n_modes=2 * n, converged=False,
@@ -434,8 +427,8 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
     row, = converge_rows(
         lambda m, rows: [design.replace(n_modes=m) for _ in rows],
         [finer], 2 * n, dt / 2, model,
-        {k: v for k, v in settings.items() if k != "dt"}, sims, reachable,
-        search_again=min_preloads)
+        {k: v for k, v in settings.items() if k != "dt"}, sims, last,
+        search_again=min_preloads, t_end=probe.t_end_s)
     return dict(converged_min_preload_lb=row.min_preload_lb,
                 converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,
                 converged_check_n_modes=row.check_n_modes,

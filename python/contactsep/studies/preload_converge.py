@@ -18,7 +18,11 @@ MAX_MODES, so a row that fails its last possible check keeps its
 answer, marked not converged.  Convergence in N at a halved step:
 the chart's step (5e-8 s) is converged in dt on the thesis rig (the
 same answer to 4 digits at 2.5e-8 s), and halving it with N keeps the
-check a check of both.
+check a check of both.  Where a window is long for its N (a design's
+own window, ``t_end``), a halved step can exceed the simulation's work
+budget; the check then runs at the finest step the budget takes, as
+long as that is at most LEAST_REFINEMENT of the last step (still a
+check of both), and the checks stop where it is not.
 """
 
 from __future__ import annotations
@@ -28,12 +32,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactsep.chatter.simulate import smallest_dt
 from contactsep.errors import InputError
 
 #: How close the threshold at 2N, dt/2 must lie to a converged answer.
 MARGIN = 0.02
 #: The largest N a check runs at (a search runs at most at half of it).
 MAX_MODES = 128
+#: A check's step where half the last one exceeds the simulation's work
+#: budget: the smallest step the budget takes, if at most this fraction of
+#: the last step (still a refinement in dt as well as in N).
+LEAST_REFINEMENT = 0.75
+#: Room left below the budget's smallest step for the window's own
+#: dependence on N (the first impact moves by parts per million with N).
+WINDOW_ROOM = 1.01
 #: Where the preload MARGIN below is closed: the factors between it and
 #: the answer (every MARGIN / 8).
 BETWEEN = tuple(1.0 - MARGIN * k / 8 for k in range(1, 8))
@@ -54,6 +66,36 @@ def largest_check(converge, n_modes: int) -> int | None:
                          f"False or the largest N of a check (an integer "
                          f"from 2N = {2 * int(n_modes)} to 1024)")
     return int(converge)
+
+
+def refined_step(n_modes: int, dt: float, t_end: float | None = None
+                 ) -> float | None:
+    """The step (s) of a check at N = ``n_modes`` after a run at ``dt``:
+    dt / 2; where the simulation's work budget over the window ``t_end``
+    (s; None: no budget, as on the chart's fixed window) refuses that,
+    the smallest step it takes, if at most LEAST_REFINEMENT dt; None
+    where not even that is a refinement."""
+    half = dt / 2.0
+    if t_end is None:
+        return half
+    least = smallest_dt(int(n_modes), t_end) * WINDOW_ROOM
+    if half >= least:
+        return half
+    return least if least <= LEAST_REFINEMENT * dt else None
+
+
+def reachable(n_modes: int, dt: float, t_end: float | None,
+              max_modes: int) -> int:
+    """The largest N, doubling from ``n_modes`` at ``dt`` (the step
+    refined with each doubling, :func:`refined_step`), up to
+    ``max_modes``, that a check can run at."""
+    n, step = int(n_modes), dt
+    while 2 * n <= max_modes:
+        step = refined_step(2 * n, step, t_end)
+        if step is None:
+            break
+        n *= 2
+    return n
 
 
 @dataclass(frozen=True)
@@ -93,10 +135,14 @@ def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
 
 
 def converge_rows(make_designs, answers, n_modes, dt, model, settings,
-                  sims, max_modes=MAX_MODES, *, search_again
-                  ) -> list[RowAnswer]:
+                  sims, max_modes=MAX_MODES, *, search_again,
+                  t_end=None) -> list[RowAnswer]:
     """Each row's answer checked at twice its N and half its step, and
     searched again there where the check fails (module docstring).
+    With ``t_end`` (s, the window) a check whose half step the work
+    budget refuses runs at the smallest step it takes where that is
+    still a refinement (:func:`refined_step`), and the checks stop where
+    none is.
 
     ``make_designs(n, rows)`` gives the designs of the rows (indices) at
     N = n; ``answers`` the chart's at ``n_modes`` and ``dt``;
@@ -109,8 +155,9 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
               "history": ((int(n_modes), float(a)),)} for a in answers]
     pending = [i for i, a in enumerate(answers) if math.isfinite(a)]
     n, step = int(n_modes), float(dt)
-    while pending and 2 * n <= max_modes:
-        n, step = 2 * n, step / 2.0
+    last = reachable(n, step, t_end, max_modes)
+    while pending and 2 * n <= last:
+        n, step = 2 * n, refined_step(2 * n, step, t_end)
         finer = {**settings, "dt": step}
         designs = make_designs(n, pending)
         held = brackets_hold(designs, [state[i]["answer"] for i in pending],
@@ -121,7 +168,7 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
             if not ok:
                 failing.append((i, design))
         # search again only where the new answer can itself be checked
-        if not failing or 2 * n > max_modes:
+        if not failing or 2 * n > last:
             break
         found = search_again([design for _, design in failing], model,
                              finer, simulations=sims)
