@@ -13,8 +13,9 @@ correction on, its whole search, then the same search at 2N and half
 the step (``verify``: ``min_preload_change``).  Prints one row a design:
 the answer, the answer at 2N, dt/2, their relative change, then with
 ``converge=True`` the answer converged to 2 % (where the change exceeds
-2 %, the answer at 2N checked at 4N and a quarter of the step, searched
-again there if it fails, up to checks at N = 128), the N it was found
+2 %, the answer at 2N checked at 4N and a quarter of the step or the
+finest step the work budget takes, searched again there if it fails, up
+to checks at N = 128), the N it was found
 and checked at, the default answer's difference from it, the
 simulations and the seconds.  ``--json`` writes the rows (strict JSON)
 as they finish, ``--csv`` at the end (``--from-json F --csv G``: the
@@ -129,7 +130,8 @@ def write_csv(rows, path) -> None:
              "against the answer (a full second search)",
              "# converged_*: the answer converged to 2 % (where the change "
              "exceeds 2 %, the answer at 2N checked at 4N and a quarter of "
-             "the step); converged 1: its check held",
+             "the step, or the finest step the work budget takes); "
+             "converged 1: its check held",
              "# units: lb, s; wall_s: wall time on two worker processes",
              ",".join(COLUMNS)]
     for row in rows:
