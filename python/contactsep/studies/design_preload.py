@@ -3,7 +3,7 @@
 preload command").
 
 :func:`preload` runs the preload search of :mod:`contactsep.studies.preload`
-(scan, bisection to 1 %, every 0.99 % step from 0.7 to 1.5 times the
+(scan, bisection to 1 %, every 0.99 % step from 0.7 to 2 times the
 answer simulated) on one design, then the same search at half the step
 and twice the modes (the answer's own error estimate,
 ``min_preload_change``), and, given tolerances, the robust answer

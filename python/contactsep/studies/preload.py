@@ -2,37 +2,12 @@
 and the chart built on it (``contactsep study preload``): the smallest
 lower-contact preload with no discontinuity event in the window.
 
-For each design (the chart: the thesis rig for d = 0.125 ... 0.75 in and
-y_s = 0.25, 0.5, 0.75 in) the search
-
-1. **scans** the grid of preloads 2^(k/4) lb (19 % apart) upward from
-   1/16 lb (or from a row's ``start``), an octave (four values) at a
-   time, until the four values above the highest preload with an event
-   are all closed (no event), or those of them up to the row's ceiling
-   (the largest preload the simulation takes: it bends the lower
-   contact by its length); if the first octave has no event it scans
-   down instead, to 2^-20 lb, then tries 0;
-2. **bisects** (geometric midpoints) between that highest event and the
-   next grid value until they are within 1 %;
-3. **checks finely** every preload of the fine grid FINE_RATIO^j lb
-   (steps of 0.99 %: a window of events 1 % wide holds one of them)
-   from 0.7 to 1.5 times the answer: if one above the answer has an
-   event, the highest such is the new lower end, the next tested
-   preload above it the upper end, and 2-3 repeat (preloads above the
-   ceiling are not tested; the fine grid is fixed, so a repeat tests
-   only the preloads the last band did not).
-
-"Closed" is not monotone in preload (docs/chatter.md, "The preload
-chart"): below the highest preload with an event a smaller one may be
-closed, and short open windows lie between the scan's values.  The
-answer is therefore the smallest tested preload above which every
-tested preload stays closed: closed at every fine step to 1.5 times it
-and at the scan's steps to an octave above its last event (or to the
-ceiling).  Each step keeps that true (a closed midpoint becomes the
-upper end, an open one the lower end), and the answer is itself
-closed.  A window of events narrower than 1 % may fall between two
-fine steps, and one beyond 1.5 times the answer between two of the
-scan's steps, unseen.
+The search itself (scan, bisection to 1 %, the fine check from 0.7 to 2
+times the answer) is :func:`contactsep.studies.preload_search.search`;
+this module runs it on simulations (:class:`Simulations`,
+:func:`min_preloads`) and builds the chart (:func:`preload_chart`; the
+chart: the thesis rig for d = 0.125 ... 0.75 in and y_s = 0.25, 0.5,
+0.75 in).
 
 Every scan step, bisection step and band is one batch of simulations
 over all the rows, run on worker processes.
@@ -43,7 +18,6 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -54,6 +28,22 @@ from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload_converge import chart_columns, largest_check
+from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
+    BAND_HIGH,
+    BAND_LOW,
+    FINE_RATIO,
+    FIRST_K,
+    HIGHEST_K,
+    LOWEST_K,
+    PER_OCTAVE,
+    TOLERANCE,
+    PreloadSearch,
+    fine_band,
+    grid,
+    search,
+    start_index,
+    top_index,
+)
 from contactsep.studies.pool import (
     map_longest_first,
     stop_pool,
@@ -69,230 +59,9 @@ HEIGHTS = (0.25, 0.5, 0.75)
 #: docs/chatter.md).
 MODELS = ("hertz", "newton")
 DEFAULT_MODES = 32
-#: The scan's grid: preload k is 2^(k / PER_OCTAVE) lb; the scan starts
-#: at FIRST_K (1/16 lb), goes down to LOWEST_K (2^-20 lb, ~1e-6 lb: a
-#: preload that small is none) and up to HIGHEST_K (1024 lb), or a
-#: row's ceiling below it: an event at the highest grid value tested
-#: leaves the row without an answer (NaN).
-PER_OCTAVE = 4
-FIRST_K = -16
-LOWEST_K = -80
-HIGHEST_K = 40
-#: The bisection stops when the bracket's ends are within this ratio - 1.
-TOLERANCE = 0.01
-#: The fine check around an answer: every preload FINE_RATIO^j lb
-#: (j integer; steps of 0.99 %, so that any window 1 % wide holds one)
-#: from BAND_LOW to BAND_HIGH times the answer (to 2: the whole octave
-#: the scan checked closed above it; issue 25 saw a window 1.2 % wide at
-#: 1.86 times an answer).
-FINE_RATIO = 1.0099
-BAND_LOW = 0.7
-BAND_HIGH = 2.0
 #: The fields the chart sets itself.
 FIXED = {"h2": "its rows, d = 0.125-0.75 in",
          "ys": "its curves, y_s = 0.25, 0.5, 0.75 in"}
-
-
-def grid(k: int) -> float:
-    """Preload k of the scan's grid (lb)."""
-    return 2.0 ** (k / PER_OCTAVE)
-
-
-@dataclass(frozen=True)
-class PreloadSearch:
-    """One design's search: the answer and every preload it tested."""
-
-    #: The smallest tested preload (lb) above which every tested preload
-    #: has no discontinuity event (NaN: an event up to the grid's top).
-    min_preload_lb: float
-    #: (preload lb, has an event) of every simulation, by preload.
-    tested: tuple
-    #: The largest preload the search could test (lb; inf: the grid's
-    #: top): the simulation's limit, :func:`largest_preload`.
-    ceiling_lb: float = math.inf
-
-    @property
-    def closed_below(self) -> tuple:
-        """Tested preloads below the answer without an event: where
-        "closed" is not monotone in preload."""
-        return tuple(p for p, event in self.tested
-                     if not event and p < self.min_preload_lb)
-
-
-def _next_scan(scan: dict, zero, top_k: int) -> list:
-    """The preloads a row's scan still needs (empty: done).  ``scan``
-    maps grid index -> has an event; ``zero`` whether 0 lb has one
-    (None: not tried); ``top_k`` the highest grid index the row may
-    test."""
-    events = [k for k, event in scan.items() if event]
-    if events:
-        top = max(events)
-        return [grid(k) for k in range(top + 1, min(top + PER_OCTAVE,
-                                                     top_k) + 1)
-                if k not in scan]
-    low = min(scan)
-    if low > LOWEST_K:
-        return [grid(k) for k in range(max(LOWEST_K, low - PER_OCTAVE),
-                                       low)]
-    return [0.0] if zero is None else []
-
-
-def _bracket(scan: dict, zero) -> tuple:
-    """(highest preload with an event, the next tested one above): the
-    scan's bracket of the answer; (nan, nan) if it has no closed top."""
-    events = [k for k, event in scan.items() if event]
-    if events:
-        top = max(events)
-        if top + 1 not in scan:
-            return math.nan, math.nan
-        return grid(top), grid(top + 1)
-    if zero:
-        return 0.0, grid(min(scan))
-    return -math.inf, 0.0               # closed even without a preload
-
-
-def top_index(ceiling: float) -> int:
-    """The highest grid index at or below ``ceiling`` lb (and the grid's
-    top, HIGHEST_K)."""
-    if ceiling >= grid(HIGHEST_K):
-        return HIGHEST_K
-    k = math.floor(PER_OCTAVE * math.log2(ceiling))
-    return k - 1 if grid(k) > ceiling else k
-
-
-def start_index(preload: float) -> int:
-    """The grid index a scan starting near ``preload`` lb begins at: the
-    octave whose top is the grid value at or just above it."""
-    if not (preload > 0.0 and math.isfinite(preload)):
-        return FIRST_K
-    k = math.ceil(PER_OCTAVE * math.log2(preload) - 1e-9)
-    return min(max(k - PER_OCTAVE + 1, LOWEST_K), HIGHEST_K)
-
-
-def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
-           ceilings=None, starts=None, band=True
-           ) -> list[PreloadSearch]:
-    """Run the scan, the bisection and the fine check around the answer
-    for ``n_rows`` designs at once (module docstring).
-
-    ``has_event(tasks)`` takes a list of (row, preload lb) and returns,
-    in order, whether each has a discontinuity event (one batch).
-    ``ceilings``: each row's largest preload to test (lb; default the
-    grid's top, 1024 lb): the scan above the last event stops there,
-    even short of an octave, and an event at the highest grid value
-    below it leaves the row without an answer (NaN).  ``starts``: each
-    row's guess of its answer (lb; None: scan from 1/16 lb): the scan
-    begins at the octave that ends there.  ``band`` True: the fine
-    check (:func:`fine_band`); a callable: ``band(row, answer)`` lists
-    the preloads to check instead (the robust answer checks only where
-    the nominal design had events: each preload there is a whole
-    tolerance study); False: none, the answer is then closed at the
-    scan's steps to an octave above its last event.
-    """
-    limits = list(ceilings) if ceilings else [math.inf] * n_rows
-    tops = [top_index(c) for c in limits]
-    # a row's first octave lies below its top (at least one preload)
-    firsts = [min(start_index(s) if s is not None else FIRST_K,
-                  top - PER_OCTAVE + 1)
-              for s, top in zip(starts or [None] * n_rows, tops)]
-    scans = [{} for _ in range(n_rows)]
-    zeros = [None] * n_rows
-    tested = [{} for _ in range(n_rows)]
-
-    def run(tasks, on_grid=False):
-        for (row, preload), event in zip(tasks, has_event(tasks)):
-            tested[row][preload] = bool(event)
-            if on_grid and preload == 0.0:
-                zeros[row] = bool(event)
-            elif on_grid:
-                k = round(PER_OCTAVE * math.log2(preload))
-                scans[row][k] = bool(event)
-
-    run([(row, grid(k)) for row in range(n_rows)
-         for k in range(firsts[row], firsts[row] + PER_OCTAVE)
-         if k <= tops[row]],
-        on_grid=True)
-    while True:
-        tasks = [(row, p) for row in range(n_rows)
-                 for p in _next_scan(scans[row], zeros[row], tops[row])]
-        if not tasks:
-            break
-        run(tasks, on_grid=True)
-    brackets = [list(_bracket(scans[row], zeros[row]))
-                for row in range(n_rows)]
-    checked = [None] * n_rows
-    while True:
-        _bisect(brackets, tested, has_event, tolerance)
-        if not band:
-            break
-        # the band around each new answer: an event above it moves the
-        # bracket up to it (every tested preload above stays closed)
-        # (not below the grid's floor, 2^-20 lb: a preload that small
-        # is none, and a band there would creep down a band at a time)
-        rows = [row for row, (lo, hi) in enumerate(brackets)
-                if lo > 0.0 and math.isfinite(hi) and checked[row] != hi]
-        if not rows:
-            break
-        checks = band if callable(band) else (
-            lambda row, answer: fine_band(answer))
-        run([(row, p) for row in rows for p in checks(row, brackets[row][1])
-             if p not in tested[row] and p <= limits[row]])
-        # an event the band found near its top: the scan's grid values
-        # to an octave above it are tested too (as the scan did above
-        # its last event), until they are all closed
-        while True:
-            tasks = [(row, p) for row in rows
-                     for p in _octave_above(tested[row], tops[row])]
-            if not tasks:
-                break
-            run(tasks)
-        for row in rows:
-            checked[row] = brackets[row][1]
-            # the highest event now (above the answer if the band found
-            # one), and the smallest tested preload above it (the band
-            # may have put one between the bisection's ends)
-            top = max(p for p, event in tested[row].items() if event)
-            above = [p for p in tested[row] if p > top]
-            brackets[row] = [top, min(above) if above else math.nan]
-    return [PreloadSearch(min_preload_lb=hi,
-                          tested=tuple(sorted(tested[row].items())),
-                          ceiling_lb=limits[row])
-            for row, (_, hi) in enumerate(brackets)]
-
-
-def _octave_above(tested: dict, top_k: int) -> list:
-    """The scan's grid values above a row's highest event, to an octave
-    above it (and the row's top, ``top_k``), not yet tested."""
-    top = max(p for p, event in tested.items() if event)
-    if top <= 0.0:
-        return []
-    first = math.floor(PER_OCTAVE * math.log2(top) + 1e-9) + 1
-    return [grid(k) for k in range(first, min(first + PER_OCTAVE - 1,
-                                              top_k) + 1)
-            if grid(k) not in tested]
-
-
-def fine_band(answer: float) -> list:
-    """The preloads of the fine grid, FINE_RATIO^j lb, from BAND_LOW to
-    BAND_HIGH times ``answer`` (the fine check, module docstring)."""
-    step = math.log(FINE_RATIO)
-    low = math.ceil(math.log(BAND_LOW * answer) / step - 1e-9)
-    high = math.floor(math.log(BAND_HIGH * answer) / step + 1e-9)
-    return [FINE_RATIO ** j for j in range(low, high + 1)]
-
-
-def _bisect(brackets, tested, has_event, tolerance) -> None:
-    """Geometric bisection of every bracket (event, closed) until its
-    ends are within ``tolerance``, one batch per step for all rows."""
-    while True:
-        tasks = [(row, math.sqrt(lo * hi))
-                 for row, (lo, hi) in enumerate(brackets)
-                 if lo > 0.0 and hi > lo * (1.0 + tolerance)]
-        if not tasks:
-            return
-        for (row, preload), event in zip(tasks, has_event(tasks)):
-            tested[row][preload] = bool(event)
-            brackets[row][0 if event else 1] = preload
 
 
 def _preload_of(task) -> float:

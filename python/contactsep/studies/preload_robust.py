@@ -35,7 +35,7 @@ import numpy as np
 from contactsep.errors import InputError
 from contactsep.studies import fields as design_fields
 from contactsep.studies.chatter_sweep import simulate_design
-from contactsep.studies.preload import search
+from contactsep.studies.preload_search import search
 from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep import chunk_inputs, make_spec
 
