@@ -90,6 +90,44 @@ def test_python_api_and_csv(capsys):
     assert float(lines[2].split(",")[2]) == result.f_hz[0]
 
 
+def published_clamped_mode(j, xi):
+    """X_j(xi L) of the clamped-clamped beam from the published k_jL and
+    sigma_j (beam-constants.md: Blevins Table 8-1), normalised to a
+    mean square of 1 over the span."""
+    kl, sigma = {1: (4.73004074, 0.982502215),
+                 2: (7.85320462, 1.000777312),
+                 3: (10.9956078, 0.999966450)}[j]
+    z = kl * xi
+    return np.cosh(z) - np.cos(z) - sigma * (np.sinh(z) - np.sin(z))
+
+
+def test_the_separator_s_lower_contact_point_has_its_own_values(capsys):
+    """--x2-lower 0.8 (L2 = 2.5 in, the upper contact at mid-span): the
+    mode values at both points against the published mode shapes."""
+    design = contactsep.thesis_design(x2_lower=0.8)
+    result = contactsep.modes(design, 2, 3)
+    assert result.x_in == (1.25, 0.8) and result.values.shape == (3, 2)
+    for j in (1, 2, 3):
+        np.testing.assert_allclose(
+            result.values[j - 1],
+            [published_clamped_mode(j, 0.5), published_clamped_mode(j, 0.32)],
+            rtol=1e-7, atol=1e-7)
+    assert main(["modes", "--member", "2", "--x2-lower", "0.8", "--count",
+                 "3", "--csv"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "x2_lower = 0.8 in" in lines[0]
+    assert lines[1] == "j,p_rad_s,f_hz,X_contact,X_lower"
+    assert float(lines[3].split(",")[4]) == result.values[1, 1]
+    assert main(["modes", "--member", "2", "--x2-lower", "0.8", "--count",
+                 "2"]) == 0
+    text = capsys.readouterr().out.splitlines()
+    assert text[1].split() == ["j", "p_rad_s", "f_hz", "X_contact",
+                               "X_lower"]
+    # without x2_lower (or with it at x2) one point, as before
+    assert contactsep.modes(contactsep.thesis_design(x2_lower=1.25), 2,
+                            2).x_in == (1.25,)
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--member", "2", "--count", "0"], "count"),
     (["--member", "2", "--beam2", "timoshenko", "--count", "500"], "count"),

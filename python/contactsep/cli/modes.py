@@ -36,7 +36,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     form.add_argument("--json", action="store_true",
                       help="a JSON object (keys p_rad_s, f_hz, X_contact)")
     form.add_argument("--csv", action="store_true",
-                      help="CSV: j, p_rad_s, f_hz, X at the contact point")
+                      help="CSV: j, p_rad_s, f_hz, X at the contact point "
+                         "(and X_lower at --x2-lower on member 2)")
     add_design_options(parser)
     parser.set_defaults(handler=run)
 
@@ -53,21 +54,27 @@ def run(args: argparse.Namespace) -> int:
         data = {"design": describe(overrides), **result.to_json_dict()}
         output.write_json(sys.stdout, data)
         return 0
-    point = ",".join(f"{x:.6g}" for x in result.x_in)
+    lower = len(result.x_in) > 1
+    point = f"x = {result.x_in[0]:.6g} in" + (
+        f" (upper contact), x2_lower = {result.x_in[1]:.6g} in (lower "
+        f"contact)" if lower else "")
     if args.csv:
         lines = [f"# contactsep modes: member {result.member} "
-                 f"({result.theory}), contact point x = {point} in",
-                 "j,p_rad_s,f_hz,X_contact"]
-        lines += [f"{j + 1},{p!r},{f!r},{x!r}" for j, (p, f, x) in
-                  enumerate(zip(result.p_rad_s.tolist(),
-                                result.f_hz.tolist(),
-                                result.values[:, 0].tolist()))]
+                 f"({result.theory}), contact point {point}",
+                 "j,p_rad_s,f_hz,X_contact" + (",X_lower" if lower else "")]
+        lines += [",".join([str(j + 1), repr(p), repr(f)]
+                           + [repr(x) for x in row])
+                  for j, (p, f, row) in enumerate(zip(
+                      result.p_rad_s.tolist(), result.f_hz.tolist(),
+                      result.values.tolist()))]
         output.write_text(sys.stdout, "\n".join(lines) + "\n")
         return 0
     print(f"member {result.member} ({result.theory}), contact point "
-          f"x = {point} in")
-    print(f"{'j':>3} {'p_rad_s':>14} {'f_hz':>12} {'X_contact':>12}")
-    for j, (p, f, x) in enumerate(zip(result.p_rad_s, result.f_hz,
-                                      result.values[:, 0])):
-        print(f"{j + 1:>3} {p:>14.7g} {f:>12.7g} {x:>12.6g}")
+          f"{point}")
+    print(f"{'j':>3} {'p_rad_s':>14} {'f_hz':>12} {'X_contact':>12}"
+          + (f" {'X_lower':>12}" if lower else ""))
+    for j, (p, f, row) in enumerate(zip(result.p_rad_s, result.f_hz,
+                                        result.values)):
+        print(f"{j + 1:>3} {p:>14.7g} {f:>12.7g} "
+              + " ".join(f"{x:>12.6g}" for x in row))
     return 0

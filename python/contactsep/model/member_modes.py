@@ -5,7 +5,8 @@ The member's beam theory, supports and added mass are the design's
 (:mod:`contactsep.model.physics`); the frequencies are p_j (rad/s) and
 f_j = p_j / 2 pi (cps), the mode values X_j those at the member's contact
 point (the upper contact's x1, the separator's x2, which both contacts
-strike, the lower contact's x3), normalised as every mode of the package
+strike, and its x2_lower where the lower contact touches elsewhere, the
+lower contact's x3), normalised as every mode of the package
 (:mod:`contactsep.beams.member`: generalised mass = the bare member's
 mass).
 """
@@ -20,6 +21,7 @@ from contactsep.beams import member as member_beams
 from contactsep.beams.timoshenko import MAX_GENERAL_MODES
 from contactsep.errors import InputError
 from contactsep.model import physics
+from contactsep.model.contact_points import lower_point_differs
 from contactsep.model.design import MAX_MODES, Design
 
 #: The members by number.
@@ -40,7 +42,9 @@ class Modes:
     p_rad_s: np.ndarray
     #: Frequencies f_j (cps), (count,).
     f_hz: np.ndarray
-    #: X_j at the contact point(s), (count, len(x_in)).
+    #: X_j at the contact point(s), (count, len(x_in)): the separator's
+    #: upper contact point x2, then x2_lower where the lower contact
+    #: touches elsewhere.
     values: np.ndarray
     #: Generalised mass of each mode, the bare member's (lb s^2/in).
     mass_lb_s2_in: float
@@ -85,8 +89,11 @@ def modes(design: Design, member: int, count: int | None = None) -> Modes:
     x = getattr(design, "x" + m)
     if x is None:
         x = spec.length / 2.0 if m == "2" else spec.length
-    model = member_beams.modal_model(spec, int(count), [float(x)])
+    points = [float(x)]
+    if m == "2" and lower_point_differs(design):
+        points.append(float(design.x2_lower))
+    model = member_beams.modal_model(spec, int(count), points)
     return Modes(member=int(member), theory=spec.theory,
-                 x_in=(float(x),), p_rad_s=np.array(model.p),
+                 x_in=tuple(points), p_rad_s=np.array(model.p),
                  f_hz=np.array(model.f_hz), values=np.array(model.values),
                  mass_lb_s2_in=float(model.mass))
