@@ -268,29 +268,38 @@ def _in_pieces(backend, packed: Packed) -> dict:
     size = 1 if forked else max(1, FIRST_PIECE_COST // max(n_max, 1))
     if size >= m and not forked:
         return backend.evaluate_packed(packed)
-    parts, first = [], 0
+    out, first = {}, 0
     while first < m:
         last = min(m, first + size)
         start = time.perf_counter()
         piece = packed.ints[first:last, 3:]
         modes = None if packed.modes is None else packed.modes.rows(
             first, last, int(piece.max()))
-        parts.append(output.interruptible(
+        part = output.interruptible(
             forked, backend.evaluate_packed, Packed(
                 real=packed.real[first:last], ints=packed.ints[first:last],
                 options=packed.options, shape=(last - first,),
-                modes=modes)))
+                modes=modes))
+        # each piece copied into the batch's arrays as it comes: keeping
+        # the pieces to concatenate at the end held the results twice
+        # (1e6 designs: 710 MB peak against 470 MB)
+        for key, value in part.items():
+            value = np.asarray(value)
+            per_mode = value.ndim == 2
+            if key not in out:
+                # per mode: padded with NaN to the batch's N
+                out[key] = np.full((m, n_max), np.nan, dtype=value.dtype) \
+                    if per_mode else np.empty((m,) + value.shape[1:],
+                                              dtype=value.dtype)
+            if per_mode:
+                out[key][first:last, :value.shape[1]] = value
+            else:
+                out[key][first:last] = value
+        del part
         seconds = time.perf_counter() - start
         size = int(max(1, min(8 * size,
                               size * PIECE_S / max(seconds, 1e-6))))
         first = last
-    out = {}
-    for key in parts[0]:
-        values = [np.asarray(part[key]) for part in parts]
-        if values[0].ndim == 2:       # per mode: pad to the batch's N
-            values = [np.pad(v, ((0, 0), (0, n_max - v.shape[1])),
-                             constant_values=np.nan) for v in values]
-        out[key] = np.concatenate(values)
     return out
 
 
