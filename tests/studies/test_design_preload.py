@@ -78,7 +78,8 @@ def test_the_answer_and_its_change_on_a_planted_threshold(name, planted):
     planted()
     design = FAMILY[name].replace(n_modes=8)
     with pytest.warns(UserWarning, match="moves by -"):
-        answer = contactsep.preload(design, workers=1)
+        answer = contactsep.preload(design, workers=1, converge=False)
+    assert answer.converged is None
     t = _threshold(design, {})
     assert t <= answer.min_preload_lb <= t * 1.01
     finer = _threshold(design.replace(n_modes=16), {"dt": 2.5e-8})
@@ -124,11 +125,22 @@ def test_the_progress_callback_counts_every_simulation(planted,
         answer = contactsep.preload(
             FAMILY["becu_light"].replace(n_modes=8), workers=1,
             tolerance=["ys=normal(0.03,0.001)"], samples=7,
-            progress=counted.append)
+            progress=counted.append, converge=False)
     robust_runs = 7 * len(answer.robust.tested)
     assert sum(counted) == answer.simulations + robust_runs
     assert answer.simulations == len(answer.tested) + len(
         answer.verify_tested)
+    # by default the check's runs at 4N too: 2 preloads, and the 7
+    # between them where the one below is closed
+    counted.clear()
+    with pytest.warns(UserWarning, match="not converged"):
+        checked = contactsep.preload(
+            FAMILY["becu_light"].replace(n_modes=8), workers=1,
+            progress=counted.append)
+    extra = checked.simulations - len(checked.tested) - len(
+        checked.verify_tested)
+    assert sum(counted) == checked.simulations
+    assert 2 <= extra <= 2 + 7
 
 
 def test_windows_are_runs_of_tested_preloads():
@@ -429,6 +441,50 @@ def test_converge_says_so_where_the_answer_never_settles(planted):
     assert data["converge_history"][-1]["n_modes"] == 64
 
 
+def test_by_default_the_answer_at_2n_is_checked_once_at_4n(monkeypatch):
+    """converge not given: where the answer moves more than 2 % at 2N,
+    the 2N answer is checked at 4N (and a quarter of the step), never
+    searched again; the planted threshold converging as 1/N^3 holds."""
+    threshold = _converging(monkeypatch)
+    design = FAMILY["steel_relay"].replace(n_modes=8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        answer = contactsep.preload(design, workers=1)
+    t16 = threshold(design.replace(n_modes=16))
+    assert answer.converged is True
+    assert (answer.converged_n_modes, answer.converged_check_n_modes) == \
+        (16, 32)
+    assert t16 <= answer.converged_min_preload_lb <= 1.01 * t16
+    assert answer.simulations - len(answer.tested) - len(
+        answer.verify_tested) == 2
+
+
+def test_by_default_a_failed_check_is_not_searched_again(planted):
+    """The planted answer never settles: the check at 4N fails, the
+    warning says so and how to search again; no search at 4N."""
+    planted()
+    design = FAMILY["thesis"].replace(n_modes=8)
+    with pytest.warns(UserWarning, match=r"not converged to 2% by N = 32: "
+                      r"its check there failed \(converge=True"):
+        answer = contactsep.preload(design, workers=1)
+    assert answer.converged is False
+    assert [n for n, _ in answer.converge_history] == [8, 16]
+    assert answer.converged_n_modes == 16
+    assert answer.simulations - len(answer.tested) - len(
+        answer.verify_tested) <= 2 + 7
+
+
+def test_no_check_without_verify_or_with_one_n_per_member(planted):
+    planted()
+    design = FAMILY["thesis"].replace(n_modes=8)
+    answer = contactsep.preload(design, workers=1, verify=False)
+    assert answer.converged is None and answer.min_preload_change is None
+    with pytest.warns(UserWarning, match="moves by"):
+        answer = contactsep.preload(design.replace(n_modes=(8, 8, 8)),
+                                    workers=1)
+    assert answer.converged is None
+
+
 @pytest.mark.parametrize("kwargs, message", [
     ({"converge": True, "verify": False}, "converge: starts from the"),
     ({"converge": 8}, "converge: found 8"),
@@ -450,6 +506,22 @@ def test_the_command_converges_on_request(planted, capsys):
                  "--workers", "1", "--progress", "never"]) == 0
     out = capsys.readouterr().out
     assert "converged to 2 %" in out and "NOT held at N = 32" in out
+
+
+def test_the_command_checks_by_default_and_not_with_no_converge(planted,
+                                                               capsys):
+    planted()
+    argv = ["preload", "--n-modes", "8", "--workers", "1", "--progress",
+            "never"]
+    assert main(argv) == 0
+    out, err = capsys.readouterr()
+    assert "converged to 2 %" in out and "NOT held at N = 32" in out
+    assert "warning: the smallest preload is not converged" in err
+    assert main(argv + ["--no-converge"]) == 0
+    out, err = capsys.readouterr()
+    assert "converged to 2 %" not in out and "moves by" in err
+    assert main(argv + ["--no-converge", "--converge"]) == 2
+    assert "not allowed with" in capsys.readouterr().err
 
 
 def test_converge_stops_where_the_work_budget_does(planted, monkeypatch):

@@ -87,14 +87,19 @@ def register(commands: argparse._SubParsersAction) -> None:
     robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
                         help="seed of the draws (default 0; the same "
                              "designs as sweep --sample with that seed)")
-    run_group.add_argument(
-        "--converge", nargs="?", const=True, default=False,
+    converging = run_group.add_mutually_exclusive_group()
+    converging.add_argument(
+        "--converge", nargs="?", const=True, default=None,
         type=integer(2, 1024), metavar="N",
-        help="also the answer converged to 2 %%: where it moves more "
-             "than 2 %% at 2N, the answer at 2N checked at 4N and a "
-             "quarter of the step (or the finest step the work budget "
-             "takes), searched again there if it fails, up to checks at "
-             "N = 128 (or the N given)")
+        help="search again where the check of the answer fails, up to "
+             "checks at N = 128 (or the N given). By default the answer "
+             "is converged to 2 %% as far as one check goes: where it "
+             "moves more than 2 %% at 2N, the answer at 2N is checked at "
+             "4N and a quarter of the step (or the finest step the work "
+             "budget takes)")
+    converging.add_argument(
+        "--no-converge", dest="converge", action="store_const", const=False,
+        help="no check at 4N (the answer and its change at 2N only)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")

@@ -37,6 +37,7 @@ from contactsep.studies.preload import (
 from contactsep.studies.preload_converge import (
     LEAST_REFINEMENT,
     MARGIN,
+    MAX_MODES,
     converge_rows,
     largest_check,
     reachable,
@@ -258,7 +259,7 @@ def _change(answer: float, other: float) -> float | None:
 
 def preload(design, model: str = "hertz", *, tolerance=(),
             p_target: float = DEFAULT_P_TARGET, samples: int | None = None,
-            seed: int = 0, verify: bool = True, converge=False,
+            seed: int = 0, verify: bool = True, converge=None,
             workers: int | None = None, progress=None,
             **settings) -> PreloadAnswer:
     """The smallest lower-contact preload (lb) with no discontinuity
@@ -283,16 +284,19 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     verify : bool
         Search again at half the step and twice the modes for
         ``min_preload_change`` (default True).
-    converge : bool or int
-        Also the answer converged to 2 % (``converged_*`` fields;
-        default False): where ``min_preload_change`` exceeds 2 %, the
-        answer at 2N is checked at 4N and a quarter of the step (or,
-        where the work budget refuses that, the finest step it takes if
-        at most 0.75 of the last: preload_converge.refined_step; no
-        event 2 % above, one within 2 % below) and searched again there
-        if the check fails, and so on up to checks at N = 128 (True) or
-        at the N given (contactsep.studies.preload_converge).  Needs
-        ``verify`` and one N for every member.
+    converge : None, bool or int
+        The answer converged to 2 % (``converged_*`` fields): where
+        ``min_preload_change`` exceeds 2 %, the answer at 2N is checked
+        at 4N and a quarter of the step (or, where the work budget
+        refuses that, the finest step it takes if at most 0.75 of the
+        last: preload_converge.refined_step; no event 2 % above, one
+        within 2 % below).  The default (None) stops there: a few runs
+        at 4N, and ``converged`` says whether the check held (where
+        ``verify`` is on and every member has the same N; otherwise no
+        check).  True also searches again at 4N where the check fails,
+        and so on up to checks at N = 128; an integer: up to checks at
+        that N (contactsep.studies.preload_converge); False: no check.
+        Needs ``verify`` and one N for every member.
     workers : int, optional
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
@@ -364,10 +368,17 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     change = None if verify_found is None else _change(answer,
                                                        verify_answer)
     if converged is not None and not converged["converged"]:
+        checked = converged["converged_check_n_modes"]
+        if checked > converged["converged_n_modes"]:
+            why = "its check there failed" + (
+                f" (converge=True, --converge: search again, up to checks "
+                f"at N = {MAX_MODES})" if max_check < MAX_MODES else "")
+        else:
+            why = (f"no check at N = {2 * checked} fits the simulation's "
+                   f"work budget")
         warnings.warn(f"the smallest preload is not converged to "
-                      f"{MARGIN:.0%} by N = "
-                      f"{converged['converged_check_n_modes']}: its check "
-                      f"there failed", ContactsepWarning)
+                      f"{MARGIN:.0%} by N = {checked}: {why}",
+                      ContactsepWarning)
     if change is not None and abs(change) > 0.02:
         if max_check is None:
             warnings.warn(f"the smallest preload moves by {change:+.1%} "
@@ -388,9 +399,14 @@ def preload(design, model: str = "hertz", *, tolerance=(),
 
 
 def _check_converge(converge, verify, n_modes):
-    """The largest N of a convergence check (None: not asked), or an
-    InputError in one line."""
-    if converge is False or converge is None:
+    """The largest N of a convergence check (None: none), or an
+    InputError in one line.  The default (``converge`` None): the
+    answer at 2N checked once at 4N, where there is one N and verify."""
+    if converge is None:
+        if not verify or isinstance(n_modes, (tuple, list)):
+            return None
+        return 4 * int(n_modes)
+    if converge is False:
         return None
     if not verify:
         raise InputError("converge: starts from the search at twice the "
