@@ -459,6 +459,18 @@ def test_by_default_the_answer_at_2n_is_checked_once_at_4n(monkeypatch):
         answer.verify_tested) == 2
 
 
+def test_the_summary_leads_with_the_converged_answer(monkeypatch, capsys):
+    threshold = _converging(monkeypatch)
+    assert main(["preload", "--n-modes", "8", "--workers", "1",
+                 "--progress", "never"]) == 0
+    first = capsys.readouterr().out.splitlines()[1]
+    t16 = threshold(contactsep.thesis_design(n_modes=16))
+    assert first.startswith("  answer (converged to 2 %) ")
+    assert first.endswith(" lb (N = 16, held at N = 32)")
+    shown = float(first.split(")")[1].split()[0])
+    assert t16 <= shown <= 1.01 * t16 * (1 + 1e-4)
+
+
 def test_by_default_a_failed_check_is_not_searched_again(planted):
     """The planted answer never settles: the check at 4N fails, the
     warning says so and how to search again; no search at 4N."""
@@ -517,6 +529,10 @@ def test_the_command_checks_by_default_and_not_with_no_converge(planted,
     out, err = capsys.readouterr()
     assert "converged to 2 %" in out and "NOT held at N = 32" in out
     assert "warning: the smallest preload is not converged" in err
+    assert out.splitlines()[1].split() == [
+        "answer", "not", "converged", "to", "2", "%", "by", "N", "=", "32",
+        "(below)"]
+    assert out.splitlines()[2].startswith("  min preload at N = 8 ")
     assert main(argv + ["--no-converge"]) == 0
     out, err = capsys.readouterr()
     assert "converged to 2 %" not in out and "moves by" in err

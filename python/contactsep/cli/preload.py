@@ -190,12 +190,28 @@ def _g(value, unit="") -> str:
     return f"{value:.5g}{unit}"
 
 
+def _answer_line(answer) -> list:
+    """The answer to use first, where a check says which: the converged
+    one where it held (its N), none otherwise."""
+    if answer.converged is None:
+        return []
+    if answer.converged:
+        return [f"  answer (converged to 2 %) "
+                f"{_g(answer.converged_min_preload_lb, ' lb')} (N = "
+                f"{answer.converged_n_modes}, held at N = "
+                f"{answer.converged_check_n_modes})"]
+    return [f"  answer                   not converged to 2 % by N = "
+            f"{answer.converged_check_n_modes} (below)"]
+
+
 def summary_text(answer) -> str:
     """The answer, its change, the windows and the robust answer."""
     change = answer.min_preload_change
+    at_n = f"min preload at N = {answer.n_modes}"
     lines = [f"model {answer.model}, N = {answer.n_modes}, dt = "
              f"{answer.dt_s:g} s; {answer.simulations} simulations",
-             f"  min preload              {_g(answer.min_preload_lb, ' lb')}",
+             *_answer_line(answer),
+             f"  {at_n:<24} {_g(answer.min_preload_lb, ' lb')}",
              f"  at dt/2 and 2N           "
              f"{_g(answer.verify_min_preload_lb, ' lb')} (change "
              f"{'none' if change is None else f'{change:+.2%}'})",
