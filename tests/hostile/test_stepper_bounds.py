@@ -55,6 +55,7 @@ def test_a_blown_up_hertz_run_stops_with_no_circuit_figures(stepper):
     assert result.status == status.ENERGY_BOUND
     assert math.isnan(result.circuit_open_s)
     assert math.isnan(result.max_lower_gap_in)
+    assert math.isnan(result.first_lift_in)
     assert math.isnan(result.first_circuit_open_s)
     assert result.n_events == -1 and not result.chatters
     data = result.to_json_dict()

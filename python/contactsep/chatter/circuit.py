@@ -23,6 +23,28 @@ import numpy as np
 OPEN_THRESHOLD = 1e-6
 #: Shortest opening (s) that counts as a discontinuity event.
 MIN_OPEN = 1e-5
+#: Fewest samples in the lower contact's first swing for its first lift
+#: (else NaN): at 100 the largest sampled gap is within ~(pi/100)^2 / 2
+#: = 5e-4 of the swing's own peak.
+FIRST_LIFT_SAMPLES = 100
+
+
+def first_lift(t, gap_lower, first_impact: float, half_period: float
+               ) -> float:
+    """The lower contact's largest gap (in) in its first swing: from the
+    upper contact's first impact to half a period of the lower contact's
+    first mode after it, at the samples.  The chatter model's
+    counterpart of eq. 23's y3_max, and, unlike the largest gap over the
+    window, it converges in N and dt (the rattle after the first swing is
+    chaotic; docs/chatter.md).  NaN without an impact, or with fewer
+    than FIRST_LIFT_SAMPLES samples in the swing."""
+    if not (np.isfinite(first_impact) and half_period > 0.0):
+        return float("nan")
+    t = np.asarray(t)
+    inside = (t >= first_impact) & (t <= first_impact + half_period)
+    if np.count_nonzero(inside) < FIRST_LIFT_SAMPLES:
+        return float("nan")
+    return float(np.max(np.asarray(gap_lower)[inside]))
 
 
 def crossings_from_samples(t, gap, threshold=OPEN_THRESHOLD):

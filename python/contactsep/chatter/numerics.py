@@ -76,7 +76,8 @@ ENERGY_TOLERANCE = 1e-6
 MAX_HALVINGS = 3
 #: Headline quantities that --verify compares (field -> its *_change).
 HEADLINES = ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",
-             "circuit_open_s", "longest_open_s", "n_events")
+             "first_lift_in", "circuit_open_s", "longest_open_s",
+             "n_events")
 
 
 @dataclass(frozen=True)

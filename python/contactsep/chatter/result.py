@@ -74,6 +74,12 @@ class ChatterResult:
     energy_ratio: float
     #: The thesis's single-impulse predictions for the same design.
     single_impulse: dict = field(default_factory=dict)
+    #: The lower contact's largest gap (in) in its first swing: from the
+    #: first impact to half a period of its first mode after it, at the
+    #: samples (NaN: no impact, or fewer than 100 samples in the swing;
+    #: circuit.first_lift).  Converges in N and dt where
+    #: max_lower_gap_in, over the whole window, does not.
+    first_lift_in: float = math.nan
     #: Force pressing the lower contact on the separator at the start (lb);
     #: the energies then include the preload's strain energy.
     preload_lb: float = 0.0
@@ -112,7 +118,8 @@ class ChatterResult:
     numerics: dict = field(default_factory=dict)
     #: verify=True: the relative change of each headline quantity at half
     #: the step and twice the modes (first_impact_change,
-    #: first_impulse_change, max_lower_gap_change, circuit_open_change,
+    #: first_impulse_change, max_lower_gap_change, first_lift_change,
+    #: circuit_open_change,
     #: longest_open_change, n_events_change) and the rerun's dt, N and
     #: status (verify_dt_s, verify_n_modes, verify_status); empty without.
     changes: dict = field(default_factory=dict)
@@ -177,6 +184,7 @@ class ChatterResult:
             "status": self.status,
             **self.changes,
             "max_lower_gap_in": self.max_lower_gap_in,
+            "first_lift_in": self.first_lift_in,
             "chatters": self.chatters,
             "n_events": self.n_events,
             "events": self.events,

@@ -373,11 +373,15 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     if not checked.converged:
         warnings.warn(checked.message(), UnconvergedWarning, stacklevel=2)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
+    stack_members = members(design)
     result = ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=checked.dt, t=run.t,
         gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
         energy=run.energy, **found,
         max_lower_gap_in=run.max_lower_gap_in,
+        first_lift_in=circuit.first_lift(
+            run.t, run.gaps[:, 1], run.first[0],
+            math.pi / float(stack_members[2].p[0])),
         first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
         energy_ratio=ratio, preload_lb=float(preload), damping=damping,
         stepper=stepper if backend == "compiled" else "fixed",

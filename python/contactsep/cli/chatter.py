@@ -284,6 +284,7 @@ def summary_text(result, listed: int | None = 10) -> str:
     rows = [("first impact", result.first_impact_s, "s"),
             ("first impulse", result.first_impulse_lb_s, "lb s"),
             ("max lower gap", result.max_lower_gap_in, "in"),
+            ("first lift (1st swing)", result.first_lift_in, "in"),
             ("energy end / start", result.energy_ratio, ""),
             ("status", f"{result.status} ("
              f"{_STATUS_WORDS.get(result.status, 'see contactsep.chatter.status')})"
