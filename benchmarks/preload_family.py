@@ -67,7 +67,16 @@ def main() -> None:
                         help="the rows as CSV ('#' comments first)")
     parser.add_argument("--from-json", default=None,
                         help="no runs: the CSV of an earlier --json")
+    parser.add_argument("--search-at", type=int, default=None, metavar="N",
+                        help="instead: each design's whole search at N "
+                             "and half its own step there, or the finest "
+                             "step the work budget takes (--csv: every "
+                             "preload tried)")
     args = parser.parse_args()
+    if args.search_at:
+        search_at(args.designs.split(","), args.search_at, args.workers,
+                  args.csv)
+        return
     if args.from_json:
         with open(args.from_json) as rows:
             write_csv(json.load(rows), args.csv)
@@ -113,6 +122,45 @@ def main() -> None:
                 output.write_json(out, rows, indent=1)
     if args.csv:
         write_csv(rows, args.csv)
+
+
+def search_at(names, n_modes, workers, path) -> None:
+    """The whole search (no verify) of each design at ``n_modes``: the
+    check of a converged answer looks at 2 % either side only, the
+    search at every 0.99 % to twice the answer."""
+    from contactsep.chatter import simulate
+    from contactsep.chatter.simulate import smallest_dt
+    for name in names:
+        design = FAMILY[name].replace(n_modes=n_modes)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            probe = simulate(design, samples=1, single_impulse=False)
+            dt = max(probe.dt / 2,
+                     smallest_dt(n_modes, probe.t_end_s) * 1.0001)
+            start = time.perf_counter()
+            answer = preload(design, verify=False, dt=dt, workers=workers)
+        seconds = time.perf_counter() - start
+        print(f"{name}: N = {n_modes}, dt {dt:.6g} s: "
+              f"{answer.min_preload_lb:.6g} lb, {answer.simulations} "
+              f"simulations, {seconds:.0f} s", flush=True)
+        if path:
+            lines = [f"# {name} (tests/design_family.py) at N = {n_modes} "
+                     f"and dt = {dt:.6g} s (half its own step there, or "
+                     f"the work budget's finest step over its "
+                     f"{probe.t_end_s:.3g} s window), elastic Hertz, "
+                     f"static correction on: the whole preload search of "
+                     f"contactsep.preload(design, verify=False, dt=...) "
+                     f"(benchmarks/preload_family.py --designs {name} "
+                     f"--search-at {n_modes})",
+                     f"# answer: {answer.min_preload_lb:.6g} lb "
+                     f"({answer.simulations} simulations); event: 1 where "
+                     f"the circuit opened for at least "
+                     f"{probe.min_open_s:g} s",
+                     "preload_lb,event"]
+            lines += [f"{p!r},{int(bool(e))}"
+                      for p, e in sorted(answer.tested)]
+            with output.open_output(path) as out:
+                output.write_text(out, "\n".join(lines) + "\n")
 
 
 COLUMNS = ("design", "n_modes", "dt_s", "min_preload_lb",

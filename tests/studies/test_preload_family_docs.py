@@ -79,7 +79,8 @@ def test_every_relay_s_answer_held_its_check():
     default (one check at 4N) converges each of them; the two whose
     answer moved more than 2 % at 2N were checked at 4N = 128."""
     text = section(TITLE)
-    assert "within 2 % of the answer at 4N on every relay" in text
+    assert "On every relay of the family\n  `converged_min_preload_lb` " \
+        "then held its check at 4N" in text
     for r in rows():
         assert r["converged"] == "1", r["design"]
         assert int(r["converged_check_n_modes"]) == \
@@ -87,6 +88,37 @@ def test_every_relay_s_answer_held_its_check():
     moved = {r["design"] for r in rows()
              if abs(float(r["min_preload_change"])) > 0.02}
     assert moved == {"steel_relay", "becu_light"}
+
+
+def search_rows(path):
+    body = [line for line in path.read_text().splitlines()
+            if not line.startswith("#")]
+    return [(float(r["preload_lb"]), r["event"] == "1")
+            for r in csv.DictReader(body)]
+
+
+def test_becu_light_s_search_at_128_finds_a_window_the_check_missed():
+    """docs/studies/preload_family_becu128.csv (the whole search at
+    N = 128): its answer, recomputed here from the tried preloads as the
+    search defines it (the smallest tried preload above which every tried
+    one is closed), is 4.7 % above the N = 64 answer the check let hold,
+    because of an event 3.6 % above that answer (beyond the check's 2 %)
+    and none within 2 % above it."""
+    path = ROOT / "docs" / "studies" / "preload_family_becu128.csv"
+    tried = sorted(search_rows(path))
+    last_event = max(p for p, event in tried if event)
+    answer = min(p for p, event in tried if p > last_event)
+    assert f"# answer: {answer:.6g} lb" in path.read_text()
+    becu = next(r for r in rows() if r["design"] == "becu_light")
+    at_64 = float(becu["converged_min_preload_lb"])
+    assert (becu["converged"], becu["converged_check_n_modes"]) == (
+        "1", "128")
+    assert round(100 * (answer / at_64 - 1), 1) == 4.7
+    assert round(100 * (last_event / at_64 - 1), 1) == 3.6
+    assert not any(event for p, event in tried
+                   if at_64 < p <= 1.02 * at_64)
+    text = section(TITLE)
+    assert "answers\n  0.04625 lb, 4.7 % above the N = 64 answer" in text
 
 
 @pytest.mark.slow
