@@ -457,6 +457,9 @@ def test_by_default_the_answer_at_2n_is_checked_once_at_4n(monkeypatch):
     assert t16 <= answer.converged_min_preload_lb <= 1.01 * t16
     assert answer.simulations - len(answer.tested) - len(
         answer.verify_tested) == 2
+    assert any(note.startswith("converged: the answer at N = 16 held its "
+                               "check at N = 32, which tries the preloads "
+                               "2% either side") for note in answer.notes)
 
 
 def test_the_summary_leads_with_the_converged_answer(monkeypatch, capsys):

@@ -445,6 +445,14 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
         [finer], 2 * n, dt / 2, model,
         {k: v for k, v in settings.items() if k != "dt"}, sims, last,
         search_again=min_preloads, t_end=probe.t_end_s)
+    if row.converged:
+        notes.append(f"converged: the answer at N = {row.n_modes} held "
+                     f"its check at N = {row.check_n_modes}, which tries "
+                     f"the preloads {MARGIN:.0%} either side of it (and "
+                     f"between, below) only: a window of events further "
+                     f"above it there is not seen (docs/chatter.md, \"The "
+                     f"preload command on the family\"); a whole search at "
+                     f"N = {row.check_n_modes} is the stronger test")
     return dict(converged_min_preload_lb=row.min_preload_lb,
                 converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,
                 converged_check_n_modes=row.check_n_modes,
