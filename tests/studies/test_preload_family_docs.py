@@ -97,6 +97,25 @@ def search_rows(path):
             for r in csv.DictReader(body)]
 
 
+def search_at_128(name):
+    """The whole search at N = 128 (docs/studies/preload_family_<short>
+    128.csv): its tried preloads, their highest event, the answer
+    recomputed from them as the search defines it (the smallest tried
+    preload above which every tried one is closed; the file's own
+    comment must say the same), and the family row's N = 64 answer,
+    which held its check at N = 128."""
+    short = {"becu_light": "becu", "steel_relay": "steel"}[name]
+    path = ROOT / "docs" / "studies" / f"preload_family_{short}128.csv"
+    tried = sorted(search_rows(path))
+    last_event = max(p for p, event in tried if event)
+    answer = min(p for p, event in tried if p > last_event)
+    assert f"# answer: {answer:.6g} lb" in path.read_text()
+    row = next(r for r in rows() if r["design"] == name)
+    assert (row["converged"], row["converged_check_n_modes"]) == (
+        "1", "128")
+    return tried, last_event, answer, float(row["converged_min_preload_lb"])
+
+
 def test_becu_light_s_search_at_128_finds_a_window_the_check_missed():
     """docs/studies/preload_family_becu128.csv (the whole search at
     N = 128): its answer, recomputed here from the tried preloads as the
@@ -104,15 +123,7 @@ def test_becu_light_s_search_at_128_finds_a_window_the_check_missed():
     one is closed), is 4.7 % above the N = 64 answer the check let hold,
     because of an event 3.6 % above that answer (beyond the check's 2 %)
     and none within 2 % above it."""
-    path = ROOT / "docs" / "studies" / "preload_family_becu128.csv"
-    tried = sorted(search_rows(path))
-    last_event = max(p for p, event in tried if event)
-    answer = min(p for p, event in tried if p > last_event)
-    assert f"# answer: {answer:.6g} lb" in path.read_text()
-    becu = next(r for r in rows() if r["design"] == "becu_light")
-    at_64 = float(becu["converged_min_preload_lb"])
-    assert (becu["converged"], becu["converged_check_n_modes"]) == (
-        "1", "128")
+    tried, last_event, answer, at_64 = search_at_128("becu_light")
     assert round(100 * (answer / at_64 - 1), 1) == 4.7
     assert round(100 * (last_event / at_64 - 1), 1) == 3.6
     assert not any(event for p, event in tried
@@ -127,15 +138,7 @@ def test_steel_relay_s_search_at_128_is_4_percent_below_its_checked_answer():
     preloads is 3.9 % below the N = 64 answer that held its check (at
     twice that step), and the preload 2 % below that answer is closed
     there: the check's verdict depends on the step."""
-    path = ROOT / "docs" / "studies" / "preload_family_steel128.csv"
-    tried = sorted(search_rows(path))
-    last_event = max(p for p, event in tried if event)
-    answer = min(p for p, event in tried if p > last_event)
-    assert f"# answer: {answer:.6g} lb" in path.read_text()
-    steel = next(r for r in rows() if r["design"] == "steel_relay")
-    at_64 = float(steel["converged_min_preload_lb"])
-    assert (steel["converged"], steel["converged_check_n_modes"]) == (
-        "1", "128")
+    tried, _, answer, at_64 = search_at_128("steel_relay")
     assert round(100 * (answer / at_64 - 1), 1) == -3.9
     below = [event for p, event in tried
              if 0.975 * at_64 <= p <= 0.985 * at_64]
