@@ -315,7 +315,8 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                                      button=button, length=button_length,
                                      **flores)
     stack = _system(design, preload, law, static_correction)
-    choice = numerics.design_step(members(design),
+    parts = members(design)
+    choice = numerics.design_step(parts,
                                   None if law is None else law.k, preload,
                                   linear=law is not None and law.linear)
     dt_source = "given" if dt is not None else "design"
@@ -356,7 +357,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                                    design, theta, t_end / steps, steps,
                                    max(1, steps // samples), open_threshold)
     refine = None if law is None else (
-        lambda step: numerics.design_step(members(design), law.k, preload,
+        lambda step: numerics.design_step(parts, law.k, preload,
                                           largest=step,
                                           linear=law.linear).dt)
     checked = numerics.checked_run(
@@ -373,7 +374,6 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     if not checked.converged:
         warnings.warn(checked.message(), UnconvergedWarning, stacklevel=2)
     found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
-    stack_members = members(design)
     result = ChatterResult(
         model=model, n_modes=int(design.n_modes), dt=checked.dt, t=run.t,
         gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
@@ -381,12 +381,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         max_lower_gap_in=run.max_lower_gap_in,
         first_lift_in=circuit.first_lift(
             run.t, run.gaps[:, 1], run.first[0],
-            math.pi / float(stack_members[2].p[0])),
+            math.pi / float(parts[2].p[0])),
         first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
         energy_ratio=ratio, preload_lb=float(preload), damping=damping,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, status=status, dt_source=dt_source,
-        energy_book=laws.energy_book(run, stack, members(design)),
+        energy_book=laws.energy_book(run, stack, parts),
         end_state={"q": run.book["q"], "v": run.book["v"]}
         if run.book else {},
         numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
