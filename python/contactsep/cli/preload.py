@@ -12,7 +12,7 @@ from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
-from contactsep.studies.design_preload import spans_text
+from contactsep.studies.preload_answer import spans_text
 
 #: simulate()'s keywords that are options of the command.
 _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
@@ -97,6 +97,13 @@ def register(commands: argparse._SubParsersAction) -> None:
              "moves more than 2 %% at 2N, the answer at 2N is checked at "
              "4N and a quarter of the step (or the finest step the work "
              "budget takes)")
+    run_group.add_argument(
+        "--perturbation", default=None, metavar="R",
+        help="also search on y_s (1 + R) and y_s (1 - R) with the same "
+             "settings (0 < R <= 1e-3; 1e-9: round-off's scale): where "
+             "the answer moves far more than R, the threshold is "
+             "ill-conditioned and no N or step converges it closer "
+             "(min_preload_spread; two more searches)")
     converging.add_argument(
         "--no-converge", dest="converge", action="store_const", const=False,
         help="no check at 4N (the answer and its change at 2N only)")
@@ -162,12 +169,14 @@ def run(args: argparse.Namespace) -> int:
                          p_target=p_target, samples=args.samples,
                          seed=args.seed, workers=args.workers,
                          converge=args.converge,
+                         perturbation=args.perturbation,
                          progress=None if bar is None else bar.update,
                          **settings)
     except InputError as error:
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
-        if sep and (name in _OPTIONS or name == "converge"):
+        if sep and (name in _OPTIONS
+                    or name in ("converge", "perturbation")):
             raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
         raise
     finally:
@@ -217,6 +226,8 @@ def summary_text(answer) -> str:
              f"{'none' if change is None else f'{change:+.2%}'})",
              *([] if answer.converged is None else
                [f"  converged to 2 %         {answer.converged_text()}"]),
+             *([] if answer.perturbation is None else
+               [f"  spread, y_s (1 +- r)     {answer.perturbed_text()}"]),
              f"  longest opening there    "
              f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
              f"openings >= min_open)",

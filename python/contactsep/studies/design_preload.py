@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
 
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
@@ -34,6 +33,10 @@ from contactsep.studies.preload import (
     min_preloads,
     search,
 )
+from contactsep.studies.preload_answer import (  # noqa: F401 (old home)
+    PreloadAnswer,
+    spans_text,
+)
 from contactsep.studies.preload_converge import (
     LEAST_REFINEMENT,
     MARGIN,
@@ -45,12 +48,14 @@ from contactsep.studies.preload_converge import (
 from contactsep.studies.preload_robust import (
     DEFAULT_P_TARGET,
     DEFAULT_SAMPLES,
-    RobustPreload,
     check_p_target,
     parse_tolerances,
     robust_preload,
 )
 
+#: The largest ``perturbation``: a probe of the threshold's conditioning,
+#: not a tolerance (those are ``tolerance``'s).
+MAX_PERTURBATION = 1e-3
 #: simulate()'s keywords the search sets itself.
 _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
@@ -73,164 +78,6 @@ def windows(tested, below: float = math.inf, event: bool = True) -> tuple:
     if current is not None:
         runs.append(tuple(current))
     return tuple(runs)
-
-
-@dataclass(frozen=True)
-class PreloadAnswer:
-    """The smallest preload with no discontinuity event for one design
-    (:func:`preload`)."""
-
-    #: The design searched, as given.
-    design: object
-    model: str
-    #: simulate()'s keywords given (dt, damping, min_open, ...).
-    settings: dict
-    #: The step every run used (s; the nominal search's), and N.
-    dt_s: float
-    n_modes: object
-    #: The smallest tested preload (lb) above which every tested preload
-    #: has no event (NaN: an event up to the simulation's limit).
-    min_preload_lb: float
-    #: (answer at half the step and twice the modes - answer) / answer
-    #: (None: not verified, or no finite nonzero answer to compare).
-    min_preload_change: float | None
-    #: The answer at half the step and twice the modes (None: not run).
-    verify_min_preload_lb: float | None
-    #: (first, last) tested preloads of each run of events (lb).
-    event_windows: tuple
-    #: (first, last) of each run of closed preloads below the answer.
-    closed_windows: tuple
-    #: (preload lb, has an event) of every nominal run, by preload.
-    tested: tuple
-    #: The same for the runs at half the step and twice the modes.
-    verify_tested: tuple
-    #: The largest preload the simulation takes (lb).
-    ceiling_lb: float
-    #: The longest opening of the circuit at the answer (s): below
-    #: min_open, as the answer has no event; how near it is to one.
-    longest_open_at_answer_s: float | None
-    #: Simulations run, nominal and verify (the robust ones in robust).
-    simulations: int
-    #: The robust answer under tolerances (None: none given).
-    robust: RobustPreload | None
-    notes: tuple
-    #: With ``converge``: the answer converged to 2 % (lb), the N and
-    #: step (s) it was found at, the N of the check it passed, and
-    #: whether it passed one (None: not asked; False: the last check,
-    #: at the largest N allowed, failed).  The answer at N when its
-    #: change at 2N is within 2 %; else the answer at 2N, checked at 4N
-    #: and searched again there if it fails, and so on.
-    converged_min_preload_lb: float | None = None
-    converged_n_modes: int | None = None
-    converged_dt_s: float | None = None
-    converged_check_n_modes: int | None = None
-    converged: bool | None = None
-    #: ((N, answer lb), ...) of every search, coarsest first.
-    converge_history: tuple = ()
-
-    def to_json_dict(self) -> dict:
-        """JSON-ready (strict through contactsep.output: NaN -> null)."""
-        fields = {name: getattr(self.design, name)
-                  for name in type(self.design).__dataclass_fields__}
-        return {
-            "inputs": {"model": self.model, "n_modes": self.n_modes,
-                       "dt_s": self.dt_s,
-                       "settings": {k: _plain(v)
-                                    for k, v in self.settings.items()},
-                       "design": {k: _plain(v) for k, v in fields.items()}},
-            "min_preload_lb": self.min_preload_lb,
-            "min_preload_change": self.min_preload_change,
-            "verify_min_preload_lb": self.verify_min_preload_lb,
-            "event_windows_lb": [list(w) for w in self.event_windows],
-            "closed_windows_lb": [list(w) for w in self.closed_windows],
-            "ceiling_lb": self.ceiling_lb,
-            "longest_open_at_answer_s": self.longest_open_at_answer_s,
-            "simulations": self.simulations,
-            "robust": self.robust.to_json_dict() if self.robust else None,
-            "converged_min_preload_lb": self.converged_min_preload_lb,
-            "converged_n_modes": self.converged_n_modes,
-            "converged_dt_s": self.converged_dt_s,
-            "converged_check_n_modes": self.converged_check_n_modes,
-            "converged": self.converged,
-            "converge_history": [{"n_modes": n, "min_preload_lb": p}
-                                 for n, p in self.converge_history],
-            "tested": [{"preload_lb": p, "event": bool(e)}
-                       for p, e in self.tested],
-            "verify_tested": [{"preload_lb": p, "event": bool(e)}
-                              for p, e in self.verify_tested],
-            "notes": list(self.notes)}
-
-    def csv_text(self) -> str:
-        """'#' comments (the answer, its change, the windows, the robust
-        answer, the notes), then one row per preload tried: search
-        (nominal, verify, robust), preload_lb, n (designs run), n_open
-        (with an event), n_failed."""
-        lines = [f"# contactsep preload: the smallest lower-contact "
-                 f"preload with no discontinuity event ({self.model}, "
-                 f"N = {self.n_modes}, dt {self.dt_s:g} s)",
-                 f"# min_preload_lb = {_g(self.min_preload_lb)}",
-                 f"# min_preload_change = {_g(self.min_preload_change)} "
-                 f"(at half the step and twice the modes: "
-                 f"{_g(self.verify_min_preload_lb)} lb)",
-                 *self._converged_lines(),
-                 "# event windows (lb): " + spans_text(self.event_windows),
-                 "# closed windows below the answer (lb): "
-                 + spans_text(self.closed_windows)]
-        if self.robust is not None:
-            r = self.robust
-            ci = r.p_open_ci95
-            lines.append(
-                f"# robust min_preload_lb = {_g(r.min_preload_lb)}: "
-                f"p_open {_g(r.p_open)} (95 % Wilson "
-                f"{'-' if ci is None else f'{ci[0]:.4g} to {ci[1]:.4g}'}"
-                f"; {r.n_open} of {r.n}, {r.n_failed} failed) <= "
-                f"p_target {r.p_target:g}")
-        lines += [f"# {note}" for note in self.notes]
-        lines.append("search,preload_lb,n,n_open,n_failed")
-        for name, tested in (("nominal", self.tested),
-                             ("verify", self.verify_tested)):
-            lines += [f"{name},{p:.12g},1,{int(bool(e))},0"
-                      for p, e in tested]
-        if self.robust is not None:
-            lines += [f"robust,{p:.12g},{n},{k},{f}"
-                      for p, n, k, f in self.robust.tested]
-        return "\n".join(lines) + "\n"
-
-
-    def converged_text(self) -> str | None:
-        """The converged answer in words (None: not asked): its N and
-        step, its check, every search's answer."""
-        if self.converged is None:
-            return None
-        steps = ", ".join(f"{_g(p)} lb at N = {n}"
-                          for n, p in self.converge_history)
-        return (f"{_g(self.converged_min_preload_lb)} lb (N = "
-                f"{self.converged_n_modes}, dt {_g(self.converged_dt_s)} s;"
-                f" {'held' if self.converged else 'NOT held'} at N = "
-                f"{self.converged_check_n_modes}; searches: {steps})")
-
-    def _converged_lines(self) -> list:
-        text = self.converged_text()
-        return [] if text is None else \
-            [f"# converged_min_preload_lb = {text}"]
-
-
-def _plain(value):
-    if hasattr(value, "item"):
-        return value.item()
-    return list(value) if isinstance(value, tuple) else value
-
-
-def _g(value) -> str:
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "none"
-    return f"{value:.6g}"
-
-
-def spans_text(spans) -> str:
-    """Windows (lb) as text: '0.5; 0.7-0.9' ('none' for none)."""
-    return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
-                     for lo, hi in spans) or "none"
 
 
 def _doubled(n_modes):
@@ -260,6 +107,7 @@ def _change(answer: float, other: float) -> float | None:
 def preload(design, model: str = "hertz", *, tolerance=(),
             p_target: float = DEFAULT_P_TARGET, samples: int | None = None,
             seed: int = 0, verify: bool = True, converge=None,
+            perturbation: float | None = None,
             workers: int | None = None, progress=None,
             **settings) -> PreloadAnswer:
     """The smallest lower-contact preload (lb) with no discontinuity
@@ -297,6 +145,16 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         and so on up to checks at N = 128; an integer: up to checks at
         that N (contactsep.studies.preload_converge); False: no check.
         Needs ``verify`` and one N for every member.
+    perturbation : float, optional
+        A relative change r of y_s (0 < r <= 1e-3; 1e-9 is the scale of
+        round-off): the same search, with the same settings, on the
+        design with y_s (1 + r) and y_s (1 - r)
+        (``perturbed_min_preload_lb``, ``min_preload_spread``; a step
+        or window the simulation chooses from the design moves by
+        about r with it).  Where
+        the spread is far above r the threshold is ill-conditioned, and
+        no N or step converges it closer (docs/chatter.md, "How
+        well-posed the answer is").  Two more searches at N.
     workers : int, optional
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
@@ -321,6 +179,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     if samples is not None and not tolerance:
         raise InputError("--samples: the draws of --tolerance; give a "
                          "tolerance")
+    perturbation = check_perturbation(perturbation)
     probe = _probe(design, model, settings)
     max_check = _check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
@@ -338,6 +197,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         if verify:
             verify_found = _search(finer, model, verify_settings, sims,
                                    largest_preload(finer), start=answer)
+        perturbed = None
+        if perturbation is not None:
+            perturbed = _perturbed(design, model, settings, sims, ceiling,
+                                   perturbation, answer)
         converged = None
         if max_check is not None:
             converged, converge_notes = _converge(
@@ -379,6 +242,15 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         warnings.warn(f"the smallest preload is not converged to "
                       f"{MARGIN:.0%} by N = {checked}: {why}",
                       ContactsepWarning)
+    spread = perturbed_fields(perturbation, perturbed, answer)
+    if spread.get("min_preload_spread") is not None and \
+            spread["min_preload_spread"] > MARGIN:
+        warnings.warn(f"the smallest preload moves by "
+                      f"{spread['min_preload_spread']:.1%} when y_s "
+                      f"changes by {perturbation:g} of itself: the "
+                      f"threshold is ill-conditioned, no N or step "
+                      f"converges it closer than that; a design's answer "
+                      f"is the robust one (--tolerance)", ContactsepWarning)
     if change is not None and abs(change) > 0.02:
         if max_check is None:
             warnings.warn(f"the smallest preload moves by {change:+.1%} "
@@ -395,7 +267,47 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes),
-        **(converged or {}))
+        **(converged or {}), **spread)
+
+
+def check_perturbation(value) -> float | None:
+    """``perturbation`` as a float, or an InputError in one line."""
+    if value is None:
+        return None
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if isinstance(value, bool) or not 0.0 < number <= MAX_PERTURBATION:
+        raise InputError(f"perturbation: found {value!r}, expected a "
+                         f"relative change of y_s above 0 and at most "
+                         f"{MAX_PERTURBATION:g} (1e-9: round-off's scale;"
+                         f" a part's tolerances: tolerance)")
+    return number
+
+
+def _perturbed(design, model, settings, sims, ceiling, perturbation,
+               answer):
+    """The searches on y_s (1 + r) and y_s (1 - r) with the nominal's
+    settings, in the same batches."""
+    designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
+               for sign in (1.0, -1.0)]
+    start = answer if math.isfinite(answer) else None
+    return search(2, lambda tasks: sims.events(
+        [(designs[row], model, settings, load) for row, load in tasks]),
+        ceilings=[ceiling] * 2, starts=[start] * 2)
+
+
+def perturbed_fields(perturbation, perturbed, answer) -> dict:
+    """The perturbed_* fields of PreloadAnswer (empty: not asked)."""
+    if perturbation is None:
+        return {}
+    found = tuple(p.min_preload_lb for p in perturbed)
+    changes = [_change(answer, p) for p in found]
+    return dict(perturbation=perturbation, perturbed_min_preload_lb=found,
+                min_preload_spread=None if None in changes else
+                max(abs(c) for c in changes),
+                perturbed_tested=tuple(p.tested for p in perturbed))
 
 
 def _check_converge(converge, verify, n_modes):

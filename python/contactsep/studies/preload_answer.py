@@ -1,0 +1,206 @@
+"""The answer of ``contactsep preload`` (:class:`PreloadAnswer`, from
+:func:`contactsep.studies.design_preload.preload`) and its outputs: the
+JSON dictionary, the commented CSV, the converged answer in words."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from contactsep.studies.preload_robust import RobustPreload
+
+
+@dataclass(frozen=True)
+class PreloadAnswer:
+    """The smallest preload with no discontinuity event for one design
+    (:func:`preload`)."""
+
+    #: The design searched, as given.
+    design: object
+    model: str
+    #: simulate()'s keywords given (dt, damping, min_open, ...).
+    settings: dict
+    #: The step every run used (s; the nominal search's), and N.
+    dt_s: float
+    n_modes: object
+    #: The smallest tested preload (lb) above which every tested preload
+    #: has no event (NaN: an event up to the simulation's limit).
+    min_preload_lb: float
+    #: (answer at half the step and twice the modes - answer) / answer
+    #: (None: not verified, or no finite nonzero answer to compare).
+    min_preload_change: float | None
+    #: The answer at half the step and twice the modes (None: not run).
+    verify_min_preload_lb: float | None
+    #: (first, last) tested preloads of each run of events (lb).
+    event_windows: tuple
+    #: (first, last) of each run of closed preloads below the answer.
+    closed_windows: tuple
+    #: (preload lb, has an event) of every nominal run, by preload.
+    tested: tuple
+    #: The same for the runs at half the step and twice the modes.
+    verify_tested: tuple
+    #: The largest preload the simulation takes (lb).
+    ceiling_lb: float
+    #: The longest opening of the circuit at the answer (s): below
+    #: min_open, as the answer has no event; how near it is to one.
+    longest_open_at_answer_s: float | None
+    #: Simulations run: nominal, verify, checks and perturbed (the
+    #: robust ones in robust).
+    simulations: int
+    #: The robust answer under tolerances (None: none given).
+    robust: RobustPreload | None
+    notes: tuple
+    #: With ``converge``: the answer converged to 2 % (lb), the N and
+    #: step (s) it was found at, the N of the check it passed, and
+    #: whether it passed one (None: not asked; False: the last check,
+    #: at the largest N allowed, failed).  The answer at N when its
+    #: change at 2N is within 2 %; else the answer at 2N, checked at 4N
+    #: and searched again there if it fails, and so on.
+    converged_min_preload_lb: float | None = None
+    converged_n_modes: int | None = None
+    converged_dt_s: float | None = None
+    converged_check_n_modes: int | None = None
+    converged: bool | None = None
+    #: ((N, answer lb), ...) of every search, coarsest first.
+    converge_history: tuple = ()
+    #: With ``perturbation`` (a relative change r of y_s; None: not
+    #: asked): the answers (lb) of the same search on the design with
+    #: y_s (1 + r) and y_s (1 - r), with the same settings, and
+    #: the largest |perturbed - answer| / answer (None: no finite
+    #: nonzero answer to compare).  A spread far above r says the
+    #: threshold itself is ill-conditioned: no N or step converges the
+    #: answer closer than that (docs/chatter.md, "How well-posed the
+    #: answer is").
+    perturbation: float | None = None
+    perturbed_min_preload_lb: tuple = ()
+    min_preload_spread: float | None = None
+    #: (preload lb, has an event) of the two perturbed searches.
+    perturbed_tested: tuple = ()
+
+    def to_json_dict(self) -> dict:
+        """JSON-ready (strict through contactsep.output: NaN -> null)."""
+        fields = {name: getattr(self.design, name)
+                  for name in type(self.design).__dataclass_fields__}
+        return {
+            "inputs": {"model": self.model, "n_modes": self.n_modes,
+                       "dt_s": self.dt_s,
+                       "settings": {k: _plain(v)
+                                    for k, v in self.settings.items()},
+                       "design": {k: _plain(v) for k, v in fields.items()}},
+            "min_preload_lb": self.min_preload_lb,
+            "min_preload_change": self.min_preload_change,
+            "verify_min_preload_lb": self.verify_min_preload_lb,
+            "event_windows_lb": [list(w) for w in self.event_windows],
+            "closed_windows_lb": [list(w) for w in self.closed_windows],
+            "ceiling_lb": self.ceiling_lb,
+            "longest_open_at_answer_s": self.longest_open_at_answer_s,
+            "simulations": self.simulations,
+            "robust": self.robust.to_json_dict() if self.robust else None,
+            "converged_min_preload_lb": self.converged_min_preload_lb,
+            "converged_n_modes": self.converged_n_modes,
+            "converged_dt_s": self.converged_dt_s,
+            "converged_check_n_modes": self.converged_check_n_modes,
+            "converged": self.converged,
+            "converge_history": [{"n_modes": n, "min_preload_lb": p}
+                                 for n, p in self.converge_history],
+            "perturbation": self.perturbation,
+            "perturbed_min_preload_lb": list(self.perturbed_min_preload_lb),
+            "min_preload_spread": self.min_preload_spread,
+            "tested": [{"preload_lb": p, "event": bool(e)}
+                       for p, e in self.tested],
+            "verify_tested": [{"preload_lb": p, "event": bool(e)}
+                              for p, e in self.verify_tested],
+            "perturbed_tested": [[{"preload_lb": p, "event": bool(e)}
+                                  for p, e in tested]
+                                 for tested in self.perturbed_tested],
+            "notes": list(self.notes)}
+
+    def csv_text(self) -> str:
+        """'#' comments (the answer, its change, the windows, the robust
+        answer, the notes), then one row per preload tried: search
+        (nominal, verify, robust), preload_lb, n (designs run), n_open
+        (with an event), n_failed; perturbed_up, perturbed_down: the
+        searches on y_s (1 + r) and y_s (1 - r)."""
+        lines = [f"# contactsep preload: the smallest lower-contact "
+                 f"preload with no discontinuity event ({self.model}, "
+                 f"N = {self.n_modes}, dt {self.dt_s:g} s)",
+                 f"# min_preload_lb = {_g(self.min_preload_lb)}",
+                 f"# min_preload_change = {_g(self.min_preload_change)} "
+                 f"(at half the step and twice the modes: "
+                 f"{_g(self.verify_min_preload_lb)} lb)",
+                 *self._converged_lines(),
+                 *self._perturbed_lines(),
+                 "# event windows (lb): " + spans_text(self.event_windows),
+                 "# closed windows below the answer (lb): "
+                 + spans_text(self.closed_windows)]
+        if self.robust is not None:
+            r = self.robust
+            ci = r.p_open_ci95
+            lines.append(
+                f"# robust min_preload_lb = {_g(r.min_preload_lb)}: "
+                f"p_open {_g(r.p_open)} (95 % Wilson "
+                f"{'-' if ci is None else f'{ci[0]:.4g} to {ci[1]:.4g}'}"
+                f"; {r.n_open} of {r.n}, {r.n_failed} failed) <= "
+                f"p_target {r.p_target:g}")
+        lines += [f"# {note}" for note in self.notes]
+        lines.append("search,preload_lb,n,n_open,n_failed")
+        for name, tested in (("nominal", self.tested),
+                             ("verify", self.verify_tested),
+                             *zip(("perturbed_up", "perturbed_down"),
+                                  self.perturbed_tested)):
+            lines += [f"{name},{p:.12g},1,{int(bool(e))},0"
+                      for p, e in tested]
+        if self.robust is not None:
+            lines += [f"robust,{p:.12g},{n},{k},{f}"
+                      for p, n, k, f in self.robust.tested]
+        return "\n".join(lines) + "\n"
+
+
+    def converged_text(self) -> str | None:
+        """The converged answer in words (None: not asked): its N and
+        step, its check, every search's answer."""
+        if self.converged is None:
+            return None
+        steps = ", ".join(f"{_g(p)} lb at N = {n}"
+                          for n, p in self.converge_history)
+        return (f"{_g(self.converged_min_preload_lb)} lb (N = "
+                f"{self.converged_n_modes}, dt {_g(self.converged_dt_s)} s;"
+                f" {'held' if self.converged else 'NOT held'} at N = "
+                f"{self.converged_check_n_modes}; searches: {steps})")
+
+    def perturbed_text(self) -> str | None:
+        """The perturbed answers in words (None: not asked)."""
+        if self.perturbation is None:
+            return None
+        up, down = self.perturbed_min_preload_lb
+        spread = self.min_preload_spread
+        return (f"{'none' if spread is None else f'{spread:.2%}'} (y_s "
+                f"(1 + {self.perturbation:g}): {_g(up)} lb, y_s (1 - "
+                f"{self.perturbation:g}): {_g(down)} lb)")
+
+    def _perturbed_lines(self) -> list:
+        text = self.perturbed_text()
+        return [] if text is None else [f"# min_preload_spread = {text}"]
+
+    def _converged_lines(self) -> list:
+        text = self.converged_text()
+        return [] if text is None else \
+            [f"# converged_min_preload_lb = {text}"]
+
+
+def _plain(value):
+    if hasattr(value, "item"):
+        return value.item()
+    return list(value) if isinstance(value, tuple) else value
+
+
+def _g(value) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "none"
+    return f"{value:.6g}"
+
+
+def spans_text(spans) -> str:
+    """Windows (lb) as text: '0.5; 0.7-0.9' ('none' for none)."""
+    return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
+                     for lo, hi in spans) or "none"
