@@ -5,12 +5,15 @@ answer is"; issue 25):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/preload_conditioning.py \\
         [--designs NAME,NAME] [--perturbations 0,1e-9,...] \\
-        [--workers K] [--csv F]
+        [--dt S --t-end S] [--workers K] [--csv F]
 
 For every design of tests/design_family.py and every relative change r
 of ``--perturbations``: ``contactsep.preload(design with y_s (1 + r),
 verify=False, converge=False)`` at N = DEFAULT_MODES, the design's own
-step and window (elastic Hertz, the static correction on).  A change of
+step and window (elastic Hertz, the static correction on), or the step
+and window given (``--dt 5e-8 --t-end 0.06``: the preload chart's, on
+the thesis rigs, whose own 0.295 s window has events up to the largest
+preload the simulation takes).  A change of
 1e-9 in y_s is far below any tolerance a part is made to and below the
 effect of halving the step or doubling N; where it moves the answer by
 more than the 2 % the convergence checks ask for, the answer has no
@@ -49,10 +52,15 @@ def main() -> None:
                         default=",".join(repr(p) for p in PERTURBATIONS),
                         help="relative changes of y_s; the first is the "
                              "reference of change_from_unperturbed")
+    parser.add_argument("--dt", type=float, default=None)
+    parser.add_argument("--t-end", type=float, default=None)
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--csv", default=None)
     args = parser.parse_args()
     changes = [float(p) for p in args.perturbations.split(",")]
+    settings = {name: value for name, value in (("dt", args.dt),
+                                                ("t_end", args.t_end))
+                if value is not None}
     rows = []
     print("| design | N | dt s | y_s change | min preload lb | change "
           "| highest event lb | simulations | s |")
@@ -66,7 +74,7 @@ def main() -> None:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 answer = preload(design, verify=False, converge=False,
-                                 workers=args.workers)
+                                 workers=args.workers, **settings)
             seconds = time.perf_counter() - start
             found = answer.min_preload_lb
             if reference is None:
@@ -88,15 +96,17 @@ def main() -> None:
                   f"{highest:.4g} | {answer.simulations} | "
                   f"{seconds:.0f} |", flush=True)
         if args.csv:
-            write_csv(rows, args.csv)
+            write_csv(rows, args.csv, settings)
 
 
-def write_csv(rows, path) -> None:
+def write_csv(rows, path, settings) -> None:
     """The rows, '#' comments first; replaced only when finished."""
+    given = ", ".join(f"{k} = {v:g} s" for k, v in settings.items())
     lines = ["# contactsep.preload(design with y_s (1 + ys_change), "
              "verify=False, converge=False) on the designs of "
              "tests/design_family.py at N = DEFAULT_MODES (elastic Hertz, "
-             "the design's own step and window, static correction on)",
+             + (given if given else "the design's own step and window")
+             + ", static correction on)",
              "# change_from_unperturbed: (min_preload_lb - the design's "
              "own answer) / the design's own answer; highest_event_lb: the "
              "largest preload tried with a discontinuity event",

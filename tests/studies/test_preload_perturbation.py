@@ -147,24 +147,26 @@ def test_the_command_writes_the_spread(monkeypatch, tmp_path, capsys):
 
 # the real simulation: the steel relay at N = 32 and its own step
 
-#: Preloads above the steel relay's N = 32 answer (0.1586 lb) on the
-#: search's fine grid, at which the searches of designs with y_s changed
-#: by 1e-9 or 1e-6 of itself found events
+#: A preload of the search's fine grid 2.9 % above the steel relay's
+#: N = 32 answer (0.1586 lb), at which the searches of designs with y_s
+#: changed by 1e-9 and 1e-6 of itself found events
 #: (docs/studies/preload_conditioning.csv).
-ABOVE_ANSWER = (0.1632223082200554, 0.1766064223429140)
+ABOVE_ANSWER = 0.1632223082200554
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("load", ABOVE_ANSWER)
-def test_parts_per_billion_of_ys_decide_whether_the_relay_opens(load):
-    """Direct runs, no search: at a preload 3-11 % above the answer,
-    designs whose y_s differ by k 1e-9 of itself (k = 0 ... 11), all at
-    the nominal step and window, do not agree on whether the circuit
-    opens -- a threshold no N or step can pin down to 2 %."""
+def test_parts_per_billion_of_ys_decide_whether_the_relay_opens():
+    """Direct runs, no search: at a preload 2.9 % above the answer,
+    designs whose y_s differ by k 1e-9 of itself (k = 0 ... 15), each
+    run as the search runs it, do not agree on whether the circuit
+    opens -- a threshold no N or step can pin down to 2 %.  (On the
+    machine of docs/chatter.md 5 of the first 12 open; the test asks
+    only that some do and some do not.)"""
     base = FAMILY["steel_relay"].replace(n_modes=32)
-    probe = simulate(base, samples=1)
-    opened = {simulate(base.replace(ys=base.ys * (1 + k * 1e-9)),
-                       preload=load, samples=1, dt=probe.dt,
-                       t_end=probe.t_end_s).n_events > 0
-              for k in range(12)}
-    assert opened == {True, False}
+    opened = [simulate(base.replace(ys=base.ys * (1 + k * 1e-9)),
+                       preload=ABOVE_ANSWER, samples=1,
+                       single_impulse=False).n_events > 0
+              for k in range(16)]
+    # the design itself is closed there, as its search found
+    assert not opened[0]
+    assert set(opened) == {True, False}

@@ -56,6 +56,10 @@ from contactsep.studies.preload_robust import (
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
 #: not a tolerance (those are ``tolerance``'s).
 MAX_PERTURBATION = 1e-3
+#: Where the answer moves with N or the step: it may be the threshold's
+#: own conditioning (docs/chatter.md, "How well-posed the answer is").
+_HINT = ("; if it is the threshold itself, ill-conditioned, more modes "
+         "will not settle it: --perturbation 1e-9 measures that")
 #: simulate()'s keywords the search sets itself.
 _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
@@ -230,6 +234,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                   in limit_notes("the design", verify_found)]
     change = None if verify_found is None else _change(answer,
                                                        verify_answer)
+    hint = "" if perturbation is not None else _HINT
     if converged is not None and not converged["converged"]:
         checked = converged["converged_check_n_modes"]
         if checked > converged["converged_n_modes"]:
@@ -240,7 +245,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             why = (f"no check at N = {2 * checked} fits the simulation's "
                    f"work budget")
         warnings.warn(f"the smallest preload is not converged to "
-                      f"{MARGIN:.0%} by N = {checked}: {why}",
+                      f"{MARGIN:.0%} by N = {checked}: {why}{hint}",
                       ContactsepWarning)
     spread = perturbed_fields(perturbation, perturbed, answer)
     if spread.get("min_preload_spread") is not None and \
@@ -256,7 +261,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             warnings.warn(f"the smallest preload moves by {change:+.1%} "
                           f"at half the step and twice the modes: raise "
                           f"n_modes (or lower dt) and search again, or "
-                          f"converge it (--converge)", ContactsepWarning)
+                          f"converge it (--converge){hint}",
+                          ContactsepWarning)
     return PreloadAnswer(
         design=design, model=model, settings=dict(settings),
         dt_s=probe.dt, n_modes=design.n_modes, min_preload_lb=answer,
