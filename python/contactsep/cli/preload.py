@@ -100,7 +100,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     run_group.add_argument(
         "--perturbation", default=None, metavar="R",
         help="also search on y_s (1 + R) and y_s (1 - R) with the same "
-             "settings (0 < R <= 1e-3; 1e-9: round-off's scale): where "
+             "settings (0 < R <= 1e-3; 1e-6: far below a part's "
+             "tolerance, 1e-9: round-off's scale): where "
              "the answer moves far more than R, the threshold is "
              "ill-conditioned and no N or step converges it closer "
              "(min_preload_spread; two more searches)")

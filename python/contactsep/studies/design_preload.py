@@ -59,7 +59,7 @@ MAX_PERTURBATION = 1e-3
 #: Where the answer moves with N or the step: it may be the threshold's
 #: own conditioning (docs/chatter.md, "How well-posed the answer is").
 _HINT = ("; if it is the threshold itself, ill-conditioned, more modes "
-         "will not settle it: --perturbation 1e-9 measures that")
+         "will not settle it: --perturbation 1e-6 measures that")
 #: simulate()'s keywords the search sets itself.
 _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
@@ -150,9 +150,9 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         that N (contactsep.studies.preload_converge); False: no check.
         Needs ``verify`` and one N for every member.
     perturbation : float, optional
-        A relative change r of y_s (0 < r <= 1e-3; 1e-9 is the scale of
-        round-off): the same search, with the same settings, on the
-        design with y_s (1 + r) and y_s (1 - r)
+        A relative change r of y_s (0 < r <= 1e-3; 1e-6 is far below any
+        part's tolerance, 1e-9 round-off's scale): the same search, with
+        the same settings, on the design with y_s (1 + r) and y_s (1 - r)
         (``perturbed_min_preload_lb``, ``min_preload_spread``; a step
         or window the simulation chooses from the design moves by
         about r with it).  Where
@@ -287,8 +287,9 @@ def check_perturbation(value) -> float | None:
     if isinstance(value, bool) or not 0.0 < number <= MAX_PERTURBATION:
         raise InputError(f"perturbation: found {value!r}, expected a "
                          f"relative change of y_s above 0 and at most "
-                         f"{MAX_PERTURBATION:g} (1e-9: round-off's scale;"
-                         f" a part's tolerances: tolerance)")
+                         f"{MAX_PERTURBATION:g} (1e-6 is far below any "
+                         f"part's tolerance; tolerances themselves: "
+                         f"tolerance)")
     return number
 
 
