@@ -42,7 +42,8 @@ DIMENSIONLESS = {
     "verify_n_modes", "verify_status", "check_n_modes", "converged",
     "converged_n_modes", "converged_check_n_modes", "simulations",
     "contact_material",
-    "separator_material", "law"}
+    "separator_material", "law", "perturbation", "min_preload_spread",
+    "ys_change", "change_from_unperturbed"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
