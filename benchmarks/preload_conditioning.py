@@ -118,7 +118,7 @@ def write_csv(rows, path, settings) -> None:
         for column in COLUMNS:
             value = row[column]
             if isinstance(value, float):
-                cells.append("" if not math.isfinite(value)
+                cells.append("nan" if not math.isfinite(value)
                              else f"{value:.6g}" if column != "ys_in"
                              else repr(value))
             else:

@@ -13,7 +13,7 @@ from contactsep.studies.preload_robust import RobustPreload
 @dataclass(frozen=True)
 class PreloadAnswer:
     """The smallest preload with no discontinuity event for one design
-    (:func:`preload`)."""
+    (:func:`contactsep.studies.design_preload.preload`)."""
 
     #: The design searched, as given.
     design: object
