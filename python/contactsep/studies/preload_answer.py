@@ -66,7 +66,7 @@ class PreloadAnswer:
     #: With ``perturbation`` (a relative change r of y_s; None: not
     #: asked): the answers (lb) of the same search on the design with
     #: y_s (1 + r) and y_s (1 - r), with the same settings, and
-    #: the largest |perturbed - answer| / answer (None: no finite
+    #: the largest abs(perturbed - answer) / answer (None: no finite
     #: nonzero answer to compare).  A spread far above r says the
     #: threshold itself is ill-conditioned: no N or step converges the
     #: answer closer than that (docs/chatter.md, "How well-posed the
