@@ -27,7 +27,9 @@ class Chunks:
     others from the time per design measured so far (:meth:`record`).
     ``stored`` (first -> last) are chunks already computed (a resumed
     sweep): they are given as they are, and the new chunks fill the
-    gaps.  The results do not depend on the chunking."""
+    gaps.  The rows and counts do not depend on the chunking; merged
+    means and standard deviations do to their last bits (the merge
+    rounds differently for another partition)."""
 
     def __init__(self, size: int, chunk_size: int, modes: int,
                  costly: bool = False, workers: int = 1,
