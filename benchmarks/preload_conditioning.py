@@ -34,6 +34,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from design_family import FAMILY  # noqa: E402
+from preload_family import csv_rows  # noqa: E402
 
 from contactsep import output  # noqa: E402
 from contactsep.studies.design_preload import preload  # noqa: E402
@@ -113,17 +114,7 @@ def write_csv(rows, path, settings) -> None:
              "# units: in, lb, s; wall_s: wall time on two worker "
              "processes (benchmarks/preload_conditioning.py)",
              ",".join(COLUMNS)]
-    for row in rows:
-        cells = []
-        for column in COLUMNS:
-            value = row[column]
-            if isinstance(value, float):
-                cells.append("nan" if not math.isfinite(value)
-                             else f"{value:.6g}" if column != "ys_in"
-                             else repr(value))
-            else:
-                cells.append(str(value))
-        lines.append(",".join(cells))
+    lines += csv_rows(rows, COLUMNS, exact=("ys_in",))
     with output.open_output(path) as out:
         output.write_text(out, "\n".join(lines) + "\n")
 

@@ -182,21 +182,27 @@ def write_csv(rows, path) -> None:
              "converged 1: its check held",
              "# units: lb, s; wall_s: wall time on two worker processes",
              ",".join(COLUMNS)]
-    for row in rows:
-        cells = []
-        for column in COLUMNS:
-            value = row[column]
-            if value is None:
-                cells.append("")
-            elif isinstance(value, bool):
-                cells.append(str(int(value)))
-            elif isinstance(value, float):
-                cells.append(f"{value:.6g}")
-            else:
-                cells.append(str(value))
-        lines.append(",".join(cells))
+    lines += csv_rows(rows, COLUMNS)
     with output.open_output(path) as out:
         output.write_text(out, "\n".join(lines) + "\n")
+
+
+def csv_rows(rows, columns, exact=()) -> list[str]:
+    """One CSV line a row (dicts): '' for None, 0 or 1 for a bool, 'nan'
+    for a number that is not finite, 6 significant digits for a float
+    (all of them, repr, in the ``exact`` columns)."""
+    def cell(column, value):
+        if value is None:
+            return ""
+        if isinstance(value, bool):
+            return str(int(value))
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                return "nan"
+            return repr(value) if column in exact else f"{value:.6g}"
+        return str(value)
+    return [",".join(cell(column, row[column]) for column in columns)
+            for row in rows]
 
 
 if __name__ == "__main__":
