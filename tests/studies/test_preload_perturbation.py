@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import types
+import warnings
 
 import pytest
 from design_family import FAMILY
@@ -81,7 +82,6 @@ def test_a_planted_sensitivity_is_measured_and_warned(monkeypatch):
 def test_a_well_conditioned_threshold_has_no_spread(monkeypatch):
     _planted(monkeypatch, gain=1.0)
     design = FAMILY["steel_relay"].replace(n_modes=8)
-    import warnings
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         answer = contactsep.preload(design, workers=1, verify=False,

@@ -97,6 +97,9 @@ def register(commands: argparse._SubParsersAction) -> None:
              "moves more than 2 %% at 2N, the answer at 2N is checked at "
              "4N and a quarter of the step (or the finest step the work "
              "budget takes)")
+    converging.add_argument(
+        "--no-converge", dest="converge", action="store_const", const=False,
+        help="no check at 4N (the answer and its change at 2N only)")
     run_group.add_argument(
         "--perturbation", default=None, metavar="R",
         help="also search on y_s (1 + R) and y_s (1 - R) with the same "
@@ -105,9 +108,6 @@ def register(commands: argparse._SubParsersAction) -> None:
              "the answer moves far more than R, the threshold is "
              "ill-conditioned and no N or step converges it closer "
              "(min_preload_spread; two more searches)")
-    converging.add_argument(
-        "--no-converge", dest="converge", action="store_const", const=False,
-        help="no check at 4N (the answer and its change at 2N only)")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
