@@ -1,0 +1,143 @@
+"""Does the robust preload converge in N where the nominal one cannot?
+The robust answer (``contactsep preload --tolerance``) of the relays
+whose nominal threshold is ill-conditioned, searched at N and 2N on the
+same tolerance draws (docs/chatter.md, "How well-posed the answer is";
+issue 25):
+
+    OPENBLAS_NUM_THREADS=1 nice python benchmarks/robust_convergence.py \\
+        [--designs NAME,NAME] [--n-modes 32,64] [--ys-tolerance 0.02] \\
+        [--samples 100] [--workers K] [--csv F] [--tested-csv F]
+
+For every design of tests/design_family.py named and every N:
+``contactsep.preload(design at N, tolerance=['ys=uniform(y_s (1 - t),
+y_s (1 + t))'], samples=S, seed=0, verify=False, converge=False)``
+(elastic Hertz, the static correction on, each run's own step and the
+design's own window).  The draws are the same at every N (the seed and
+the sweep's sampler), so the answers differ by N alone, not by the
+samples.  ``--csv``: one row an answer (nominal and robust); and
+``--tested-csv``: one row a preload the robust search tried (n, n_open,
+n_failed).  Both are rewritten (whole, atomically) after every run, so a
+killed run keeps those it finished; rows of designs not named are kept
+from the files as found (a design too slow for many samples can be run
+apart with fewer: each row says its samples).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+import warnings
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
+from design_family import FAMILY  # noqa: E402
+from preload_family import csv_rows  # noqa: E402
+
+from contactsep import output  # noqa: E402
+from contactsep.studies.design_preload import preload  # noqa: E402
+
+COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
+           "min_preload_lb", "robust_min_preload_lb", "n", "n_open",
+           "n_failed", "p_open_ci95_high", "robust_tested",
+           "simulations", "wall_s")
+TESTED_COLUMNS = ("design", "n_modes", "preload_lb", "n", "n_open",
+                  "n_failed")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--designs", default="steel_relay,becu_light")
+    parser.add_argument("--n-modes", default="32,64")
+    parser.add_argument("--ys-tolerance", type=float, default=0.02,
+                        help="relative half-width of y_s's uniform "
+                             "tolerance")
+    parser.add_argument("--samples", type=int, default=100)
+    parser.add_argument("--workers", type=int, default=None)
+    parser.add_argument("--csv", default=None)
+    parser.add_argument("--tested-csv", default=None)
+    args = parser.parse_args()
+    names = args.designs.split(",")
+    rows = kept(args.csv, names)
+    tested = kept(args.tested_csv, names)
+    print("| design | N | nominal lb | robust lb | n_open/n | preloads "
+          "tried | simulations | s |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for name in names:
+        for n_modes in (int(n) for n in args.n_modes.split(",")):
+            design = FAMILY[name].replace(n_modes=n_modes)
+            t = args.ys_tolerance
+            tolerance = [f"ys=uniform({design.ys * (1 - t)!r},"
+                         f"{design.ys * (1 + t)!r})"]
+            start = time.perf_counter()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                answer = preload(design, tolerance=tolerance,
+                                 samples=args.samples, seed=0,
+                                 verify=False, converge=False,
+                                 workers=args.workers)
+            seconds = time.perf_counter() - start
+            robust = answer.robust
+            interval = robust.p_open_ci95
+            rows.append({
+                "design": name, "n_modes": n_modes, "ys_in": design.ys,
+                "ys_tolerance": t, "samples": args.samples,
+                "min_preload_lb": answer.min_preload_lb,
+                "robust_min_preload_lb": robust.min_preload_lb,
+                "n": robust.n, "n_open": robust.n_open,
+                "n_failed": robust.n_failed,
+                "p_open_ci95_high": interval[1] if interval else None,
+                "robust_tested": len(robust.tested),
+                "simulations": answer.simulations, "wall_s": seconds})
+            tested += [{"design": name, "n_modes": n_modes,
+                        "preload_lb": p, "n": n, "n_open": k,
+                        "n_failed": f} for p, n, k, f in robust.tested]
+            print(f"| {name} | {n_modes} | {answer.min_preload_lb:.4g} | "
+                  f"{robust.min_preload_lb:.4g} | {robust.n_open}/"
+                  f"{robust.n} | {len(robust.tested)} | "
+                  f"{answer.simulations} | {seconds:.0f} |", flush=True)
+            if args.csv:
+                write(args.csv, rows, COLUMNS, (
+                    "# min_preload_lb: the nominal design's answer; "
+                    "robust_min_preload_lb: the smallest preload with "
+                    "p_open <= 0.01 over the samples; n, n_open, "
+                    "n_failed, p_open_ci95_high (Wilson 95 %) at it; "
+                    "robust_tested: preloads the robust search tried",
+                    "# units: in, lb, s; wall_s: wall time on two worker "
+                    "processes (benchmarks/robust_convergence.py)"))
+            if args.tested_csv:
+                write(args.tested_csv, tested, TESTED_COLUMNS, (
+                    "# one row a preload the robust search tried: n "
+                    "samples ran, n_open had a discontinuity event, "
+                    "n_failed did not finish",
+                    "# units: lb (benchmarks/robust_convergence.py)"))
+
+
+def kept(path, names) -> list[dict]:
+    """The rows of ``path`` (if it exists) whose design is not named."""
+    if not path or not Path(path).exists():
+        return []
+    lines = [line for line in Path(path).read_text().splitlines()
+             if not line.startswith("#")]
+    columns = lines[0].split(",")
+    rows = [dict(zip(columns, line.split(","))) for line in lines[1:]]
+    return [row for row in rows if row["design"] not in names]
+
+
+def write(path, rows, columns, comments) -> None:
+    """The rows, '#' comments first; replaced only when finished."""
+    lines = ["# contactsep.preload(design at N, tolerance=['ys=uniform("
+             "y_s (1 - ys_tolerance), y_s (1 + ys_tolerance))'], "
+             "samples=samples, seed=0, verify=False, converge=False) on "
+             "the designs of "
+               "tests/design_family.py (elastic Hertz, each run's own "
+               "step, the design's own window, static correction on)",
+             *comments, ",".join(columns)]
+    lines += csv_rows(rows, columns, exact=("ys_in",))
+    with output.open_output(path) as out:
+        output.write_text(out, "\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
