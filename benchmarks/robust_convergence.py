@@ -20,6 +20,11 @@ n_failed).  Both are rewritten (whole, atomically) after every run, so a
 killed run keeps those it finished; rows of designs not named are kept
 from the files as found (a design too slow for many samples can be run
 apart with fewer: each row says its samples).
+
+``--check-preloads P,P,... --check-csv F``: no search; each sample's run
+at each of those preloads (lb), at every N given: the counts that say
+whether the p_open a search found at N holds at a higher N, where a
+whole search there would cost hours.
 """
 
 from __future__ import annotations
@@ -37,11 +42,16 @@ from preload_family import csv_rows  # noqa: E402
 
 from contactsep import output  # noqa: E402
 from contactsep.studies.design_preload import preload  # noqa: E402
+from contactsep.studies.preload import Simulations  # noqa: E402
+from contactsep.studies.preload_robust import (  # noqa: E402
+    _sample_run, parse_tolerances, tolerance_samples)
 
 COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
            "min_preload_lb", "robust_min_preload_lb", "n", "n_open",
            "n_failed", "p_open_ci95_high", "robust_tested",
            "simulations", "wall_s")
+CHECK_COLUMNS = ("design", "n_modes", "ys_tolerance", "samples",
+                 "preload_lb", "n", "n_open", "n_failed", "wall_s")
 TESTED_COLUMNS = ("design", "n_modes", "preload_lb", "n", "n_open",
                   "n_failed")
 
@@ -57,7 +67,12 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--csv", default=None)
     parser.add_argument("--tested-csv", default=None)
+    parser.add_argument("--check-preloads", default=None)
+    parser.add_argument("--check-csv", default=None)
     args = parser.parse_args()
+    if args.check_preloads:
+        check(args)
+        return
     names = args.designs.split(",")
     rows = kept(args.csv, names)
     tested = kept(args.tested_csv, names)
@@ -68,8 +83,7 @@ def main() -> None:
         for n_modes in (int(n) for n in args.n_modes.split(",")):
             design = FAMILY[name].replace(n_modes=n_modes)
             t = args.ys_tolerance
-            tolerance = [f"ys=uniform({design.ys * (1 - t)!r},"
-                         f"{design.ys * (1 + t)!r})"]
+            tolerance = _tolerance(design, t)
             start = time.perf_counter()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -114,6 +128,52 @@ def main() -> None:
                     "# units: lb (benchmarks/robust_convergence.py)"))
 
 
+def _tolerance(design, t) -> list[str]:
+    return [f"ys=uniform({design.ys * (1 - t)!r},{design.ys * (1 + t)!r})"]
+
+
+def check(args) -> None:
+    """The samples' counts at the preloads given, no search."""
+    names = args.designs.split(",")
+    rows = kept(args.check_csv, names)
+    preloads = [float(p) for p in args.check_preloads.split(",")]
+    print("| design | N | preload lb | n_open/n | s |")
+    print("|---|---:|---:|---:|---:|")
+    with Simulations(args.workers) as sims:
+        for name in names:
+            for n_modes in (int(n) for n in args.n_modes.split(",")):
+                design = FAMILY[name].replace(n_modes=n_modes)
+                spec = parse_tolerances(
+                    _tolerance(design, args.ys_tolerance), args.samples, 0)
+                samples = tolerance_samples(design, {}, spec)
+                for p in preloads:
+                    start = time.perf_counter()
+                    runs = [(fields, "hertz", {**own, "preload": p})
+                            for fields, own in samples]
+                    results = sims.map(_sample_run, runs)
+                    ok = [events for events, status in results
+                          if status == 0]
+                    n_open = sum(1 for events in ok if events > 0)
+                    seconds = time.perf_counter() - start
+                    rows.append({"design": name, "n_modes": n_modes,
+                                 "ys_tolerance": args.ys_tolerance,
+                                 "samples": args.samples, "preload_lb": p,
+                                 "n": len(ok), "n_open": n_open,
+                                 "n_failed": len(results) - len(ok),
+                                 "wall_s": seconds})
+                    print(f"| {name} | {n_modes} | {p:.6g} | {n_open}/"
+                          f"{len(ok)} | {seconds:.0f} |", flush=True)
+                    if args.check_csv:
+                        write(args.check_csv, rows, CHECK_COLUMNS, (
+                            "# no search: n samples ran at preload_lb, "
+                            "n_open had a discontinuity event, n_failed "
+                            "did not finish",
+                            "# units: lb, s; wall_s: wall time on two "
+                            "worker processes "
+                            "(benchmarks/robust_convergence.py "
+                            "--check-preloads)"), first=CHECK)
+
+
 def kept(path, names) -> list[dict]:
     """The rows of ``path`` (if it exists) whose design is not named."""
     if not path or not Path(path).exists():
@@ -125,15 +185,23 @@ def kept(path, names) -> list[dict]:
     return [row for row in rows if row["design"] not in names]
 
 
-def write(path, rows, columns, comments) -> None:
+SEARCH = ("# contactsep.preload(design at N, tolerance=['ys=uniform("
+          "y_s (1 - ys_tolerance), y_s (1 + ys_tolerance))'], "
+          "samples=samples, seed=0, verify=False, converge=False) on "
+          "the designs of tests/design_family.py (elastic Hertz, each "
+          "run's own step, the design's own window, static correction "
+          "on)")
+CHECK = ("# the samples of contactsep.preload(design at N, tolerance=["
+         "'ys=uniform(y_s (1 - ys_tolerance), y_s (1 + ys_tolerance))'], "
+         "samples=samples, seed=0) on the designs of "
+         "tests/design_family.py, each run at preload_lb (elastic Hertz, "
+         "each run's own step, the design's own window, static "
+         "correction on)")
+
+
+def write(path, rows, columns, comments, first=SEARCH) -> None:
     """The rows, '#' comments first; replaced only when finished."""
-    lines = ["# contactsep.preload(design at N, tolerance=['ys=uniform("
-             "y_s (1 - ys_tolerance), y_s (1 + ys_tolerance))'], "
-             "samples=samples, seed=0, verify=False, converge=False) on "
-             "the designs of "
-               "tests/design_family.py (elastic Hertz, each run's own "
-               "step, the design's own window, static correction on)",
-             *comments, ",".join(columns)]
+    lines = [first, *comments, ",".join(columns)]
     lines += csv_rows(rows, columns, exact=("ys_in",))
     with output.open_output(path) as out:
         output.write_text(out, "\n".join(lines) + "\n")

@@ -144,6 +144,24 @@ def _sample_run(task) -> tuple:
     return row[_EVENTS], row[_STATUS]
 
 
+def tolerance_samples(design, settings: dict, spec) -> list:
+    """(fields, settings) of each of ``spec``'s draws of ``design`` (a
+    Design; ``settings``: simulate()'s keywords): the samples every
+    preload tried runs, the same for a given seed, samples and
+    tolerances whatever the design's N."""
+    base = {name: getattr(design, name)
+            for name in type(design).__dataclass_fields__}
+    drawn = chunk_inputs(spec, 0, spec.samples)
+    samples = []
+    for i in range(spec.samples):
+        fields, own = dict(base), dict(settings)
+        for name, values in drawn.items():
+            target = own if name in design_fields.SETTINGS else fields
+            target[name] = _plain(values[i])
+        samples.append((fields, own))
+    return samples
+
+
 def robust_preload(design, model: str, settings: dict, spec, p_target,
                    simulations, start=None, ceiling=math.inf,
                    nominal_events=()) -> RobustPreload:
@@ -157,16 +175,7 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     (the scan's 19 % steps would step over a narrow window the nominal
     search found at its 0.99 % steps, and the tolerances smear it)."""
     p_target = check_p_target(p_target)
-    base = {name: getattr(design, name)
-            for name in type(design).__dataclass_fields__}
-    drawn = chunk_inputs(spec, 0, spec.samples)
-    samples = []
-    for i in range(spec.samples):
-        fields, own = dict(base), dict(settings)
-        for name, values in drawn.items():
-            target = own if name in design_fields.SETTINGS else fields
-            target[name] = _plain(values[i])
-        samples.append((fields, own))
+    samples = tolerance_samples(design, settings, spec)
     counts = {}
 
     def fails(tasks):
