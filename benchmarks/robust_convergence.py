@@ -117,7 +117,9 @@ def main() -> None:
                     "robust_min_preload_lb: the smallest preload with "
                     "p_open <= 0.01 over the samples; n, n_open, "
                     "n_failed, p_open_ci95_high (Wilson 95 %) at it; "
-                    "robust_tested: preloads the robust search tried",
+                    "robust_tested: preloads the robust search tried; "
+                    "simulations: the nominal search's runs (the robust "
+                    "search's are robust_tested x samples)",
                     "# units: in, lb, s; wall_s: wall time on two worker "
                     "processes (benchmarks/robust_convergence.py)"))
             if args.tested_csv:
