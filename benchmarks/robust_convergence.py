@@ -44,7 +44,7 @@ from contactsep import output  # noqa: E402
 from contactsep.studies.design_preload import preload  # noqa: E402
 from contactsep.studies.preload import Simulations  # noqa: E402
 from contactsep.studies.preload_robust import (  # noqa: E402
-    _sample_run, parse_tolerances, tolerance_samples)
+    parse_tolerances, sample_counts, tolerance_samples)
 
 COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
            "min_preload_lb", "robust_min_preload_lb", "n", "n_open",
@@ -150,21 +150,16 @@ def check(args) -> None:
                 samples = tolerance_samples(design, {}, spec)
                 for p in preloads:
                     start = time.perf_counter()
-                    runs = [(fields, "hertz", {**own, "preload": p})
-                            for fields, own in samples]
-                    results = sims.map(_sample_run, runs)
-                    ok = [events for events, status in results
-                          if status == 0]
-                    n_open = sum(1 for events in ok if events > 0)
+                    (n, n_open, n_failed), = sample_counts(
+                        samples, "hertz", [p], sims)
                     seconds = time.perf_counter() - start
                     rows.append({"design": name, "n_modes": n_modes,
                                  "ys_tolerance": args.ys_tolerance,
                                  "samples": args.samples, "preload_lb": p,
-                                 "n": len(ok), "n_open": n_open,
-                                 "n_failed": len(results) - len(ok),
-                                 "wall_s": seconds})
+                                 "n": n, "n_open": n_open,
+                                 "n_failed": n_failed, "wall_s": seconds})
                     print(f"| {name} | {n_modes} | {p:.6g} | {n_open}/"
-                          f"{len(ok)} | {seconds:.0f} |", flush=True)
+                          f"{n} | {seconds:.0f} |", flush=True)
                     if args.check_csv:
                         write(args.check_csv, rows, CHECK_COLUMNS, (
                             "# no search: n samples ran at preload_lb, "

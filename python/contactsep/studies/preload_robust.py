@@ -162,6 +162,24 @@ def tolerance_samples(design, settings: dict, spec) -> list:
     return samples
 
 
+def sample_counts(samples, model: str, preloads, simulations) -> list:
+    """(n, n_open, n_failed) of ``samples`` (:func:`tolerance_samples`)
+    simulated by ``model`` at each of ``preloads`` (lb), all in one
+    batch on ``simulations``: the samples that ran, that had a
+    discontinuity event, that the simulation refused or could not
+    finish."""
+    runs = [(fields, model, {**own, "preload": preload})
+            for preload in preloads for fields, own in samples]
+    results = simulations.map(_sample_run, runs)
+    counts = []
+    for j in range(len(preloads)):
+        rows = results[j * len(samples):(j + 1) * len(samples)]
+        ok = [events for events, status in rows if status == 0]
+        counts.append((len(ok), sum(1 for events in ok if events > 0),
+                       len(rows) - len(ok)))
+    return counts
+
+
 def robust_preload(design, model: str, settings: dict, spec, p_target,
                    simulations, start=None, ceiling=math.inf,
                    nominal_events=()) -> RobustPreload:
@@ -179,17 +197,13 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     counts = {}
 
     def fails(tasks):
-        runs = [(fields, model, {**own, "preload": preload})
-                for _, preload in tasks for fields, own in samples]
-        results = simulations.map(_sample_run, runs)
+        preloads = [preload for _, preload in tasks]
         out = []
-        for j, (_, preload) in enumerate(tasks):
-            rows = results[j * len(samples):(j + 1) * len(samples)]
-            ok = [events for events, status in rows if status == 0]
-            n_open = sum(1 for events in ok if events > 0)
-            counts[preload] = (len(ok), n_open, len(rows) - len(ok))
+        for preload, (n, n_open, n_failed) in zip(preloads, sample_counts(
+                samples, model, preloads, simulations)):
+            counts[preload] = (n, n_open, n_failed)
             # no sample ran: no evidence that this preload keeps closed
-            out.append(not ok or n_open > p_target * len(ok))
+            out.append(not n or n_open > p_target * n)
         return out
 
     events = sorted(set(nominal_events))
