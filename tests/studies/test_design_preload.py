@@ -207,6 +207,43 @@ def test_the_robust_answer_is_above_a_narrow_window_the_nominal_found(
     assert lo * 1.01 <= r.min_preload_lb and r.n_open == 0
 
 
+def test_the_robust_answer_is_above_a_window_only_the_samples_have(
+        planted, monkeypatch):
+    """A window of events 1.2 % wide, 3 % above a grid point of the scan
+    (whose next point is 19 % higher), in the thicker half of the
+    samples and not in the nominal design (as becu_light's samples at
+    N = 64 open at 0.045 lb where the nominal design has no event above
+    0.0415 lb): a band of the nominal design's events would not look
+    there; the robust answer is above the window, and the search tried
+    every preload of the fine grid from its answer to 1.5 times it."""
+    from contactsep.studies.preload_search import FINE_RATIO, fine_band, grid
+    design = FAMILY["thesis"].replace(n_modes=8)
+    t = _threshold(design, {})
+    planted()
+    lo = grid(math.ceil(4 * math.log2(1.1 * t))) * 1.03
+    hi = lo * 1.012
+
+    def sample(fields, model, settings):
+        load = settings["preload"]
+        event = load < t * fields["h2"] / 0.25 or (
+            fields["h2"] > 0.25 and lo <= load <= hi)
+        return (0.0,) * 5 + (int(event), 0)
+
+    monkeypatch.setattr(preload_robust, "simulate_design", sample)
+    answer = contactsep.preload(design, workers=1, verify=False,
+                                tolerance=["d=uniform(0.245,0.255)"],
+                                samples=10)
+    r = answer.robust
+    assert t * 1.01 < lo and hi < 1.5 * t      # above, within the band
+    assert hi < r.min_preload_lb <= hi * FINE_RATIO ** 2
+    assert r.n_open == 0
+    tried = {p for p, *_ in r.tested}
+    assert {p for p in fine_band(r.min_preload_lb)
+            if r.min_preload_lb < p <= 1.5 * r.min_preload_lb} <= tried
+    opened = [p for p, n, k, f in r.tested if k]
+    assert any(lo <= p <= hi for p in opened)
+
+
 @pytest.mark.parametrize("kwargs, message", [
     ({"p_target": 1.0}, "--p-target: found 1.0"),
     ({"p_target": -0.1}, "--p-target: found -0.1"),

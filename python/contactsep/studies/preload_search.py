@@ -157,9 +157,9 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     row's guess of its answer (lb; None: scan from 1/16 lb): the scan
     begins at the octave that ends there.  ``band`` True: the fine
     check (:func:`fine_band`); a callable: ``band(row, answer)`` lists
-    the preloads to check instead (the robust answer checks only where
-    the nominal design had events: each preload there is a whole
-    tolerance study); False: none, the answer is then closed at the
+    the preloads to check instead (the robust answer's, above the
+    answer only: each preload there is a whole tolerance study); False:
+    none, the answer is then closed at the
     scan's steps to an octave above its last event.
     """
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
