@@ -18,8 +18,9 @@ samples.  ``--csv``: one row an answer (nominal and robust); and
 ``--tested-csv``: one row a preload the robust search tried (n, n_open,
 n_failed).  Both are rewritten (whole, atomically) after every run, so a
 killed run keeps those it finished; rows of designs not named are kept
-from the files as found (a design too slow for many samples can be run
-apart with fewer: each row says its samples).
+from the files as found, and so are those of a named design at an N not
+given (a design too slow for many samples can be run apart with fewer,
+and a higher N added later: each row says its samples and N).
 
 ``--check-preloads P,P,... --check-csv F``: no search; each sample's run
 at each of those preloads (lb), at every N given: the counts that say
@@ -74,8 +75,9 @@ def main() -> None:
         check(args)
         return
     names = args.designs.split(",")
-    rows = kept(args.csv, names)
-    tested = kept(args.tested_csv, names)
+    n_list = [int(n) for n in args.n_modes.split(",")]
+    rows = kept(args.csv, names, n_list)
+    tested = kept(args.tested_csv, names, n_list)
     print("| design | N | nominal lb | robust lb | n_open/n | preloads "
           "tried | simulations | s |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
@@ -137,8 +139,9 @@ def _tolerance(design, t) -> list[str]:
 def check(args) -> None:
     """The samples' counts at the preloads given, no search."""
     names = args.designs.split(",")
-    rows = kept(args.check_csv, names)
     preloads = [float(p) for p in args.check_preloads.split(",")]
+    rows = kept(args.check_csv, names,
+                [int(n) for n in args.n_modes.split(",")], preloads)
     print("| design | N | preload lb | n_open/n | s |")
     print("|---|---:|---:|---:|---:|")
     with Simulations(args.workers) as sims:
@@ -168,18 +171,25 @@ def check(args) -> None:
                             "# units: lb, s; wall_s: wall time on two "
                             "worker processes "
                             "(benchmarks/robust_convergence.py "
-                            "--check-preloads)"), first=CHECK)
+                            "--check-preloads)"), first=CHECK,
+                            exact=("preload_lb",))
 
 
-def kept(path, names) -> list[dict]:
-    """The rows of ``path`` (if it exists) whose design is not named."""
+def kept(path, names, n_modes, preloads=None) -> list[dict]:
+    """The rows of ``path`` (if it exists) not of a named design at a
+    named N (and, given ``preloads``, at one of those preloads): those
+    are the ones this run writes anew."""
     if not path or not Path(path).exists():
         return []
     lines = [line for line in Path(path).read_text().splitlines()
              if not line.startswith("#")]
     columns = lines[0].split(",")
     rows = [dict(zip(columns, line.split(","))) for line in lines[1:]]
-    return [row for row in rows if row["design"] not in names]
+    rerun = {(name, str(n)) for name in names for n in n_modes}
+    return [row for row in rows
+            if (row["design"], row["n_modes"]) not in rerun or (
+                preloads is not None and not any(
+                    float(row["preload_lb"]) == p for p in preloads))]
 
 
 SEARCH = ("# contactsep.preload(design at N, tolerance=['ys=uniform("
@@ -196,10 +206,12 @@ CHECK = ("# the samples of contactsep.preload(design at N, tolerance=["
          "correction on)")
 
 
-def write(path, rows, columns, comments, first=SEARCH) -> None:
-    """The rows, '#' comments first; replaced only when finished."""
+def write(path, rows, columns, comments, first=SEARCH,
+          exact=("ys_in",)) -> None:
+    """The rows, '#' comments first (``exact`` columns with all their
+    digits); replaced only when finished."""
     lines = [first, *comments, ",".join(columns)]
-    lines += csv_rows(rows, columns, exact=("ys_in",))
+    lines += csv_rows(rows, columns, exact=exact)
     with output.open_output(path) as out:
         output.write_text(out, "\n".join(lines) + "\n")
 
