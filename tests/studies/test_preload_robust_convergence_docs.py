@@ -172,7 +172,7 @@ def test_the_check_and_the_search_agree_at_the_same_preload():
     assert len(exact) == len(typed) == 1
     assert exact[0]["n_open"] == searched()[("128", "0.0405262")]
     assert abs(int(typed[0]["n_open"]) - int(exact[0]["n_open"])) == 1
-    assert abs(2.0 ** -4.625 / 0.0405262 - 1) < 1e-6
+    assert abs(2.0 ** -4.625 / float(typed[0]["preload_lb"]) - 1) < 1e-6
 
 
 def test_the_n64_answer_has_a_window_of_open_samples_above_it():
@@ -188,15 +188,17 @@ def test_the_n64_answer_has_a_window_of_open_samples_above_it():
                    if int(r["n_open"]) > 0)
     assert top_open / at64 - 1 > 0.07
     at128 = float(answers["128"]["robust_min_preload_lb"])
-    assert at128 / at64 - 1 == pytest.approx(0.0692, abs=5e-5)
     opened128 = [float(t["preload_lb"]) for t in rows(TESTED)
                  if t["design"] == "becu_light" and t["n_modes"] == "128"
                  and int(t["n_open"]) > 0]
     assert at64 < max(opened128) < at128
-    # the nominal answers: 0.0415 at 64, 0.04625 at 128 (as the whole
-    # nominal search at 128 in docs/studies/preload_family_becu128.csv)
-    assert float(answers["128"]["min_preload_lb"]) == pytest.approx(
-        0.04625, rel=1e-3)
+    # the nominal answer at 128 modes is the whole nominal search's at
+    # 128 modes and another step (benchmarks/preload_family.py
+    # --search-at 128), to the 6 digits both files keep
+    other = (ROOT / "docs" / "studies" / "preload_family_becu128.csv")
+    said = next(line for line in other.read_text().splitlines()
+                if line.startswith("# answer: "))
+    assert answers["128"]["min_preload_lb"] == said.split()[2]
 
 
 def test_the_reading():
