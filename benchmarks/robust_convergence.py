@@ -82,7 +82,7 @@ def main() -> None:
           "tried | simulations | s |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for name in names:
-        for n_modes in (int(n) for n in args.n_modes.split(",")):
+        for n_modes in n_list:
             design = FAMILY[name].replace(n_modes=n_modes)
             t = args.ys_tolerance
             tolerance = _tolerance(design, t)
@@ -140,13 +140,13 @@ def check(args) -> None:
     """The samples' counts at the preloads given, no search."""
     names = args.designs.split(",")
     preloads = [float(p) for p in args.check_preloads.split(",")]
-    rows = kept(args.check_csv, names,
-                [int(n) for n in args.n_modes.split(",")], preloads)
+    n_list = [int(n) for n in args.n_modes.split(",")]
+    rows = kept(args.check_csv, names, n_list, preloads)
     print("| design | N | preload lb | n_open/n | s |")
     print("|---|---:|---:|---:|---:|")
     with Simulations(args.workers) as sims:
         for name in names:
-            for n_modes in (int(n) for n in args.n_modes.split(",")):
+            for n_modes in n_list:
                 design = FAMILY[name].replace(n_modes=n_modes)
                 spec = parse_tolerances(
                     _tolerance(design, args.ys_tolerance), args.samples, 0)

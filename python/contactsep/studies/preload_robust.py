@@ -52,9 +52,10 @@ MAX_SAMPLES = 1_000_000
 #: The default target: at most 1 % of the parts open.
 DEFAULT_P_TARGET = 0.01
 #: The robust search tries every preload of the fine grid from its
-#: answer to this many times it (windows 1 % wide, as the nominal
-#: search's 0.7-1.5 times its answer; above, the scan's steps and the
-#: nominal design's events).
+#: answer to this many times it: windows 1 % wide up to the 1.5 times
+#: the answer issue 25 asks of the nominal search (whose band goes on
+#: to 2, BAND_HIGH, at one run a preload; here each is ``samples``
+#: runs); above, the scan's steps and the nominal design's events.
 ROBUST_BAND_HIGH = 1.5
 #: Index of n_events and status in simulate_design's row.
 _EVENTS, _STATUS = 5, 6

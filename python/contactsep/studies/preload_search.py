@@ -159,8 +159,8 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     check (:func:`fine_band`); a callable: ``band(row, answer)`` lists
     the preloads to check instead (the robust answer's, above the
     answer only: each preload there is a whole tolerance study); False:
-    none, the answer is then closed at the
-    scan's steps to an octave above its last event.
+    none, the answer is then closed at the scan's steps to an octave
+    above its last event.
     """
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
     tops = [top_index(c) for c in limits]
