@@ -50,7 +50,11 @@ from contactsep.studies.preload_robust import (  # noqa: E402
 COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
            "min_preload_lb", "robust_min_preload_lb", "n", "n_open",
            "n_failed", "p_open_ci95_high", "robust_tested",
-           "simulations", "wall_s")
+           "simulations", "wall_s", "robust_band")
+#: How the robust search chose the preloads above its answer: rows
+#: searched before commit 8260ec4 tried the nominal design's events only.
+BAND_BEFORE_FIX = "nominal_events"
+BAND = "fine_grid"
 CHECK_COLUMNS = ("design", "n_modes", "ys_tolerance", "samples",
                  "preload_lb", "n", "n_open", "n_failed", "wall_s")
 TESTED_COLUMNS = ("design", "n_modes", "preload_lb", "n", "n_open",
@@ -105,7 +109,8 @@ def main() -> None:
                 "n_failed": robust.n_failed,
                 "p_open_ci95_high": interval[1] if interval else None,
                 "robust_tested": len(robust.tested),
-                "simulations": answer.simulations, "wall_s": seconds})
+                "simulations": answer.simulations, "wall_s": seconds,
+                "robust_band": BAND})
             tested += [{"design": name, "n_modes": n_modes,
                         "preload_lb": p, "n": n, "n_open": k,
                         "n_failed": f} for p, n, k, f in robust.tested]
@@ -123,7 +128,13 @@ def main() -> None:
                     "simulations: the nominal search's runs (the robust "
                     "search's are robust_tested x samples)",
                     "# units: in, lb, s; wall_s: wall time on two worker "
-                    "processes (benchmarks/robust_convergence.py)"))
+                    "processes (benchmarks/robust_convergence.py)",
+                    "# robust_band: fine_grid, every fine-grid preload "
+                    "from the robust answer to 1.5 times it and the "
+                    "nominal design's events to 2 times (since commit "
+                    "8260ec4); nominal_events, above its answer the "
+                    "nominal design's events only (rows searched before "
+                    "it; docs/chatter.md, The robust answer at N and 2N)"))
             if args.tested_csv:
                 write(args.tested_csv, tested, TESTED_COLUMNS, (
                     "# one row a preload the robust search tried: n "
@@ -185,6 +196,9 @@ def kept(path, names, n_modes, preloads=None) -> list[dict]:
              if not line.startswith("#")]
     columns = lines[0].split(",")
     rows = [dict(zip(columns, line.split(","))) for line in lines[1:]]
+    if "robust_band" not in columns and "robust_tested" in columns:
+        for row in rows:
+            row["robust_band"] = BAND_BEFORE_FIX
     rerun = {(name, str(n)) for name in names for n in n_modes}
     return [row for row in rows
             if (row["design"], row["n_modes"]) not in rerun or (
