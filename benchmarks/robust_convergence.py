@@ -58,7 +58,7 @@ BAND = "fine_grid"
 CHECK_COLUMNS = ("design", "n_modes", "ys_tolerance", "samples",
                  "preload_lb", "n", "n_open", "n_failed", "wall_s")
 TESTED_COLUMNS = ("design", "n_modes", "preload_lb", "n", "n_open",
-                  "n_failed")
+                  "n_failed", "robust_band")
 
 
 def main() -> None:
@@ -113,7 +113,8 @@ def main() -> None:
                 "robust_band": BAND})
             tested += [{"design": name, "n_modes": n_modes,
                         "preload_lb": p, "n": n, "n_open": k,
-                        "n_failed": f} for p, n, k, f in robust.tested]
+                        "n_failed": f, "robust_band": BAND}
+                       for p, n, k, f in robust.tested]
             print(f"| {name} | {n_modes} | {answer.min_preload_lb:.4g} | "
                   f"{robust.min_preload_lb:.4g} | {robust.n_open}/"
                   f"{robust.n} | {len(robust.tested)} | "
@@ -139,7 +140,8 @@ def main() -> None:
                 write(args.tested_csv, tested, TESTED_COLUMNS, (
                     "# one row a preload the robust search tried: n "
                     "samples ran, n_open had a discontinuity event, "
-                    "n_failed did not finish",
+                    "n_failed did not finish; robust_band: that "
+                    "search's (the answers' file says what it means)",
                     "# units: lb (benchmarks/robust_convergence.py)"))
 
 
@@ -188,22 +190,27 @@ def check(args) -> None:
 
 def kept(path, names, n_modes, preloads=None) -> list[dict]:
     """The rows of ``path`` (if it exists) not of a named design at a
-    named N (and, given ``preloads``, at one of those preloads): those
-    are the ones this run writes anew."""
+    named N (and, given ``preloads``, at one of those preloads; else
+    searched with this band): those are the ones this run writes anew.
+    A search's rows with the band before commit 8260ec4 are kept beside
+    the new band's: they are what the old band missed."""
     if not path or not Path(path).exists():
         return []
     lines = [line for line in Path(path).read_text().splitlines()
              if not line.startswith("#")]
     columns = lines[0].split(",")
     rows = [dict(zip(columns, line.split(","))) for line in lines[1:]]
-    if "robust_band" not in columns and "robust_tested" in columns:
+    if "robust_band" not in columns and preloads is None:
         for row in rows:
             row["robust_band"] = BAND_BEFORE_FIX
     rerun = {(name, str(n)) for name in names for n in n_modes}
+    if preloads is not None:
+        return [row for row in rows
+                if (row["design"], row["n_modes"]) not in rerun or not any(
+                    float(row["preload_lb"]) == p for p in preloads)]
     return [row for row in rows
-            if (row["design"], row["n_modes"]) not in rerun or (
-                preloads is not None and not any(
-                    float(row["preload_lb"]) == p for p in preloads))]
+            if (row["design"], row["n_modes"]) not in rerun
+            or row["robust_band"] != BAND]
 
 
 SEARCH = ("# contactsep.preload(design at N, tolerance=['ys=uniform("
