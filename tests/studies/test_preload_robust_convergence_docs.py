@@ -18,36 +18,60 @@ ROOT = Path(__file__).resolve().parents[2]
 STUDY = ROOT / "docs" / "studies" / "preload_robust_convergence.csv"
 TESTED = ROOT / "docs" / "studies" / "preload_robust_convergence_tested.csv"
 TITLE = "### The robust answer at N and 2N (issue 25)"
-ANSWERS = "| design | samples | N | nominal min preload (lb) |"
+ANSWERS = "| design | band | samples | N | nominal min preload (lb) |"
 CURVE = "| preload (lb) | N = 32 | N = 64 |"
 RELAYS = ("steel_relay", "becu_light")
 
 
+OLD, FIXED = "nominal_events", "fine_grid"
+
+
+def searches(band) -> dict:
+    """{design: [its answers' rows by N]} of the searches with ``band``
+    (robust_band: the old band, before commit 8260ec4, or the fixed)."""
+    return {name: [r for r in runs if r["robust_band"] == band]
+            for name, runs in by_design(STUDY).items()
+            if any(r["robust_band"] == band for r in runs)}
+
+
 def answers_table() -> list[list[str]]:
+    """The table: per design, the old band's searches by N, then the
+    fixed band's; the change at 2N against the same band's search at N."""
     expected = []
-    for name, runs in by_design(STUDY).items():
-        for i, r in enumerate(runs):
-            half = runs[i - 1] if i else None
-            moved = "—" if half is None else pct(repr(
-                float(r["robust_min_preload_lb"]) /
-                float(half["robust_min_preload_lb"]) - 1.0))
-            expected.append([
-                name, r["samples"], r["n_modes"], g4(r["min_preload_lb"]),
-                g4(r["robust_min_preload_lb"]),
-                f"{r['n_open']} of {r['n']}", moved,
-                f"{float(r['wall_s']) / 60:.0f}"])
+    for name in by_design(STUDY):
+        for band, said in ((OLD, "events"), (FIXED, "fine grid")):
+            runs = searches(band).get(name, [])
+            for i, r in enumerate(runs):
+                half = runs[i - 1] if i else None
+                moved = "—" if half is None or \
+                    int(half["n_modes"]) * 2 != int(r["n_modes"]) else pct(
+                        repr(float(r["robust_min_preload_lb"]) /
+                             float(half["robust_min_preload_lb"]) - 1.0))
+                expected.append([
+                    name, said, r["samples"], r["n_modes"],
+                    g4(r["min_preload_lb"]), g4(r["robust_min_preload_lb"]),
+                    f"{r['n_open']} of {r['n']}", moved,
+                    f"{float(r['wall_s']) / 60:.0f}"])
     return expected
 
 
+def tried(name, n_modes, band) -> list[tuple]:
+    """(preload, n_open, n) of every preload one search tried."""
+    return sorted((float(t["preload_lb"]), int(t["n_open"]), int(t["n"]))
+                  for t in rows(TESTED) if t["design"] == name and
+                  t["n_modes"] == n_modes and t["robust_band"] == band)
+
+
 def curves(name) -> dict:
-    """{preload text: {N: n_open}} of the preloads every N tried."""
+    """{preload text: {N: n_open}} of the preloads every N's old-band
+    search tried."""
     found = {}
     for r in rows(TESTED):
-        if r["design"] == name:
+        if r["design"] == name and r["robust_band"] == OLD:
             assert r["n"] == str(by_design(STUDY)[name][0]["samples"])
             found.setdefault(r["preload_lb"], {})[r["n_modes"]] = \
                 int(r["n_open"])
-    modes = {r["n_modes"] for r in by_design(STUDY)[name]}
+    modes = {r["n_modes"] for r in searches(OLD)[name]}
     return {p: k for p, k in found.items() if set(k) == modes}
 
 
@@ -57,8 +81,13 @@ def test_the_study_is_the_ill_conditioned_relays_on_the_same_draws():
     draws depend on the seed, the samples and the tolerance only)."""
     lines = STUDY.read_text().splitlines()
     assert all(line.startswith("#") for line in lines[:3])
-    found = by_design(STUDY)
+    found = searches(OLD)
     assert sorted(found) == sorted(RELAYS)
+    assert {r["robust_band"] for r in rows(STUDY)} <= {OLD, FIXED}
+    assert len({(r["design"], r["n_modes"], r["robust_band"])
+                for r in rows(STUDY)}) == len(rows(STUDY))
+    for name, runs in by_design(STUDY).items():
+        assert len({(r["samples"], r["ys_tolerance"]) for r in runs}) == 1
     for name, runs in found.items():
         assert [r["n_modes"] for r in runs] == \
             {"steel_relay": ["32", "64"],
@@ -87,15 +116,12 @@ def test_the_robust_answer_is_where_the_tested_counts_say():
     the target, with every preload tried above it within it too."""
     for name, runs in by_design(STUDY).items():
         for r in runs:
-            tried = sorted((float(t["preload_lb"]), int(t["n_open"]),
-                            int(t["n"])) for t in rows(TESTED)
-                           if t["design"] == name and
-                           t["n_modes"] == r["n_modes"])
-            passing = [p for p, k, n in tried if k <= 0.01 * n]
+            ran = tried(name, r["n_modes"], r["robust_band"])
+            passing = [p for p, k, n in ran if k <= 0.01 * n]
             answer = float(r["robust_min_preload_lb"])
             assert answer == pytest.approx(min(
                 p for p in passing if all(q in passing for q, _, _ in
-                                          tried if q > p)), rel=1e-5)
+                                          ran if q > p)), rel=1e-5)
 
 
 CHECK = ROOT / "docs" / "studies" / "preload_robust_convergence_check.csv"
@@ -110,9 +136,11 @@ def g6(text) -> str:
 
 
 def searched() -> dict:
-    """{(N, preload to 6 digits): n_open} of becu_light's searches."""
+    """{(N, preload to 6 digits): n_open} of becu_light's old-band
+    searches."""
     return {(r["n_modes"], g6(r["preload_lb"])): r["n_open"]
-            for r in rows(TESTED) if r["design"] == "becu_light"}
+            for r in rows(TESTED) if r["design"] == "becu_light"
+            and r["robust_band"] == OLD}
 
 
 def checked(n_modes) -> list[dict]:
@@ -148,13 +176,12 @@ def test_the_check_ran_the_searches_samples():
     search = by_design(STUDY)["becu_light"][0]
     ran = [r for r in rows(CHECK) if r["design"] == "becu_light"]
     assert ran
-    tried = sorted(float(r["preload_lb"]) for r in rows(TESTED)
-                   if r["design"] == "becu_light" and r["n_modes"] == "64")
+    span = [p for p, _, _ in tried("becu_light", "64", OLD)]
     for r in ran:
         assert (r["samples"], r["ys_tolerance"]) == \
             (search["samples"], search["ys_tolerance"])
         assert r["n"] == r["samples"] and r["n_failed"] == "0"
-        assert tried[0] <= float(r["preload_lb"]) <= tried[-1]
+        assert span[0] <= float(r["preload_lb"]) <= span[-1]
 
 
 def test_becu_lights_table_is_the_study():
@@ -180,7 +207,7 @@ def test_the_n64_answer_has_a_window_of_open_samples_above_it():
     than the 1 % target allows of 30 samples, i.e. any), where its
     nominal design had no event above its nominal answer; the N = 128
     search found open samples there too, and its answer lies above."""
-    answers = {r["n_modes"]: r for r in by_design(STUDY)["becu_light"]}
+    answers = {r["n_modes"]: r for r in searches(OLD)["becu_light"]}
     at64 = float(answers["64"]["robust_min_preload_lb"])
     above = [r for r in checked("64") if float(r["preload_lb"]) > at64]
     assert any(int(r["n_open"]) > 0.01 * 30 for r in above)
@@ -188,9 +215,7 @@ def test_the_n64_answer_has_a_window_of_open_samples_above_it():
                    if int(r["n_open"]) > 0)
     assert top_open / at64 - 1 > 0.07
     at128 = float(answers["128"]["robust_min_preload_lb"])
-    opened128 = [float(t["preload_lb"]) for t in rows(TESTED)
-                 if t["design"] == "becu_light" and t["n_modes"] == "128"
-                 and int(t["n_open"]) > 0]
+    opened128 = [p for p, k, _ in tried("becu_light", "128", OLD) if k]
     assert at64 < max(opened128) < at128
     # the nominal answer at 128 modes is the whole nominal search's at
     # 128 modes and another step (benchmarks/preload_family.py
@@ -211,7 +236,7 @@ def test_the_reading():
     assert len(steel) >= 5
     assert max(abs(k["32"] - k["64"]) for k in steel.values()) <= 3
     answers = {name: [float(r["robust_min_preload_lb"]) for r in runs]
-               for name, runs in by_design(STUDY).items()}
+               for name, runs in searches(OLD).items()}
     assert 0.02 < 1 - answers["steel_relay"][1] / answers["steel_relay"][0]
     assert 1 - answers["becu_light"][1] / answers["becu_light"][0] > 0.2
     both = [row for row in becu_table() if row[2] != "—"]
