@@ -20,7 +20,10 @@ n_failed).  Both are rewritten (whole, atomically) after every run, so a
 killed run keeps those it finished; rows of designs not named are kept
 from the files as found, and so are those of a named design at an N not
 given (a design too slow for many samples can be run apart with fewer,
-and a higher N added later: each row says its samples and N).
+and a higher N added later: each row says its samples and N), and so
+are the rows of a search with the robust band before commit 8260ec4
+(``robust_band`` nominal_events: what the old band missed stays beside
+the fixed band's fine_grid rows).
 
 ``--check-preloads P,P,... --check-csv F``: no search; each sample's run
 at each of those preloads (lb), at every N given: the counts that say
