@@ -92,7 +92,6 @@ def test_the_study_is_the_ill_conditioned_relays_on_the_same_draws():
         assert [r["n_modes"] for r in runs] == \
             {"steel_relay": ["32", "64"],
              "becu_light": ["32", "64", "128"]}[name]
-        assert len({(r["samples"], r["ys_tolerance"]) for r in runs}) == 1
         for r in runs:
             assert float(r["ys_in"]) == FAMILY[name].ys
             assert int(r["n_failed"]) == 0
