@@ -6,7 +6,8 @@ issue 25):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/robust_convergence.py \\
         [--designs NAME,NAME] [--n-modes 32,64] [--ys-tolerance 0.02] \\
-        [--samples 100] [--workers K] [--csv F] [--tested-csv F]
+        [--samples 100] [--workers K] [--csv F] [--tested-csv F] \\
+        [--journal DIR]
 
 For every design of tests/design_family.py named and every N:
 ``contactsep.preload(design at N, tolerance=['ys=uniform(y_s (1 - t),
@@ -23,7 +24,11 @@ given (a design too slow for many samples can be run apart with fewer,
 and a higher N added later: each row says its samples and N), and so
 are the rows of a search with the robust band before commit 8260ec4
 (``robust_band`` nominal_events: what the old band missed stays beside
-the fixed band's fine_grid rows).
+the fixed band's fine_grid rows).  ``--journal DIR``: each search keeps
+every finished simulation in DIR/DESIGN-N (``contactsep.preload(...,
+journal=...)``), so that a search killed after hours and run again with
+the same command simulates only what is missing; the directory goes once
+its rows are written.
 
 ``--check-preloads P,P,... --check-csv F``: no search; each sample's run
 at each of those preloads (lb), at every N given: the counts that say
@@ -34,6 +39,7 @@ whole search there would cost hours.
 from __future__ import annotations
 
 import argparse
+import shutil
 import sys
 import time
 import warnings
@@ -75,6 +81,10 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=None)
     parser.add_argument("--csv", default=None)
     parser.add_argument("--tested-csv", default=None)
+    parser.add_argument("--journal", default=None,
+                        help="directory that keeps each search's finished "
+                             "simulations (DIR/DESIGN-N) until its rows "
+                             "are written")
     parser.add_argument("--check-preloads", default=None)
     parser.add_argument("--check-csv", default=None)
     args = parser.parse_args()
@@ -94,12 +104,16 @@ def main() -> None:
             t = args.ys_tolerance
             tolerance = _tolerance(design, t)
             start = time.perf_counter()
+            journal = None
+            if args.journal:
+                journal = Path(args.journal) / f"{name}-{n_modes}"
+                journal.parent.mkdir(parents=True, exist_ok=True)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 answer = preload(design, tolerance=tolerance,
                                  samples=args.samples, seed=0,
                                  verify=False, converge=False,
-                                 workers=args.workers)
+                                 workers=args.workers, journal=journal)
             seconds = time.perf_counter() - start
             robust = answer.robust
             interval = robust.p_open_ci95
@@ -132,7 +146,8 @@ def main() -> None:
                     "simulations: the nominal search's runs (the robust "
                     "search's are robust_tested x samples)",
                     "# units: in, lb, s; wall_s: wall time on two worker "
-                    "processes (benchmarks/robust_convergence.py)",
+                    "processes (benchmarks/robust_convergence.py; a search "
+                    "resumed from --journal: its last run's only)",
                     "# robust_band: fine_grid, every fine-grid preload "
                     "from the robust answer to 1.5 times it and the "
                     "nominal design's events to 2 times (since commit "
@@ -146,6 +161,8 @@ def main() -> None:
                     "n_failed did not finish; robust_band: that "
                     "search's (the answers' file says what it means)",
                     "# units: lb (benchmarks/robust_convergence.py)"))
+            if journal is not None and args.csv and args.tested_csv:
+                shutil.rmtree(journal, ignore_errors=True)
 
 
 def _tolerance(design, t) -> list[str]:

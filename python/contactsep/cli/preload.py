@@ -5,6 +5,9 @@ tolerances (contactsep.studies.design_preload)."""
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
+import shutil
 import sys
 
 from contactsep import output
@@ -49,7 +52,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         **examples("contactsep preload --n-modes 8 --d 0.75",
                    "contactsep preload --d 0.5 --json",
                    "contactsep preload --tolerance 'd=normal(0.25,0.005)' "
-                   "--samples 300 --csv preload.csv"))
+                   "--samples 300 --csv preload.csv --resume"))
     run_group = parser.add_argument_group("simulation")
     run_group.add_argument("--model", choices=MODELS, default="hertz",
                            help="default hertz")
@@ -114,6 +117,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     out_group.add_argument("--csv", metavar="FILE",
                            help="write every preload tried (comments: the "
                                 "answers); replaced only when finished")
+    out_group.add_argument("--resume", action="store_true",
+                           help="keep every finished simulation beside the "
+                                "--csv file, in .FILE.resume/, and continue "
+                                "a search an earlier run of the same "
+                                "command left there (killed, interrupted): "
+                                "the same answer and CSV as an "
+                                "uninterrupted run")
     out_group.add_argument("--workers", type=integer(1, max_workers()),
                            default=None,
                            help=f"local processes (default: the usable "
@@ -159,9 +169,15 @@ def run(args: argparse.Namespace) -> int:
                          "tolerance")
     output.check_targets({"--csv": args.csv},
                          {"--design": args.design} if args.design else {})
+    _check_resume(args)
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
+    inputs = dict(design=design, model=args.model, settings=settings,
+                  tolerance=list(args.tolerance), p_target=p_target,
+                  samples=args.samples, seed=args.seed, verify=True,
+                  converge=args.converge, perturbation=args.perturbation)
+    journal = _open_journal(args, inputs)
     bar = _progress(None, enabled)
     if bar is not None:
         bar.unit = "run"
@@ -172,8 +188,16 @@ def run(args: argparse.Namespace) -> int:
                          converge=args.converge,
                          perturbation=args.perturbation,
                          progress=None if bar is None else bar.update,
-                         **settings)
-    except InputError as error:
+                         journal=journal, **settings)
+    except BaseException as error:
+        if journal is not None and not len(journal):
+            journal.remove()        # refused, or stopped before a run
+        elif journal is not None:
+            journal.close()
+            if isinstance(error, (KeyboardInterrupt, output.Terminated)):
+                _say_kept(args.csv, journal)
+        if not isinstance(error, InputError):
+            raise
         # the simulation names its arguments; the command, its options
         name, sep, rest = str(error).partition(":")
         if sep and (name in _OPTIONS
@@ -186,11 +210,73 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         with output.open_output(args.csv) as out:
             output.write_text(out, answer.csv_text())
+        _remove_journal(args.csv, journal)
     if args.json:
         output.write_json(sys.stdout, answer.to_json_dict())
     else:
         output.write_text(sys.stdout, summary_text(answer))
     return 0
+
+
+def _check_resume(args) -> None:
+    """--resume needs a regular --csv file to keep its journal beside."""
+    import stat
+    if not args.resume:
+        return
+    if not args.csv:
+        raise InputError("--resume keeps the finished simulations beside "
+                         "the output: give --csv")
+    info = output.target_info(args.csv)
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        raise InputError(f"--resume keeps the finished simulations beside "
+                         f"the output: {args.csv} is not a regular file")
+
+
+def _open_journal(args, inputs: dict):
+    """With --resume, the journal beside --csv (continued if one of the
+    same inputs is there), and a line on stderr saying what it holds."""
+    if not args.resume:
+        return None
+    from contactsep.studies.resume import store_path
+    from contactsep.studies.run_journal import RunJournal
+    path = store_path(args.csv)
+    journal = RunJournal(path, inputs, label=args.csv + " (" +
+                         os.path.basename(path) + ")")
+    if len(journal):
+        sys.stderr.write(f"contactsep: --resume: {len(journal):,} finished "
+                         f"simulations in {os.path.basename(path)}, not "
+                         f"run again\n")
+        sys.stderr.flush()
+    return journal
+
+
+def _say_kept(csv: str, journal) -> None:
+    """An interrupted search: where its finished simulations are."""
+    with contextlib.suppress(OSError, ValueError):
+        sys.stderr.write(f"contactsep: {csv}: not written; "
+                         f"{len(journal):,} finished simulations kept in "
+                         f"{os.path.basename(journal.path)}: rerun the "
+                         f"command to continue\n")
+        sys.stderr.flush()
+
+
+def _remove_journal(csv: str, journal) -> None:
+    """The CSV is in place: this search's journal, or a journal an
+    earlier run without --resume could not continue, is obsolete."""
+    if journal is not None:
+        journal.remove()
+        return
+    from contactsep.output import locks
+    from contactsep.studies.resume import store_path
+    path = store_path(csv)
+    if not os.path.isdir(path):
+        return
+    try:
+        lock = locks.take(path + ".lock", csv)
+    except InputError:
+        return              # another command is continuing it
+    shutil.rmtree(path, ignore_errors=True)
+    locks.release(lock)
 
 
 def _g(value, unit="") -> str:

@@ -16,6 +16,7 @@ unchanged to every run.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import warnings
 
@@ -52,6 +53,7 @@ from contactsep.studies.preload_robust import (
     parse_tolerances,
     robust_preload,
 )
+from contactsep.studies.run_journal import RunJournal
 
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
 #: not a tolerance (those are ``tolerance``'s).
@@ -112,7 +114,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             p_target: float = DEFAULT_P_TARGET, samples: int | None = None,
             seed: int = 0, verify: bool = True, converge=None,
             perturbation: float | None = None,
-            workers: int | None = None, progress=None,
+            workers: int | None = None, progress=None, journal=None,
             **settings) -> PreloadAnswer:
     """The smallest lower-contact preload (lb) with no discontinuity
     event for ``design`` (a :class:`contactsep.Design`, its own N).
@@ -163,6 +165,15 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
         Called with the number of simulations each time some finish.
+    journal : str, path or RunJournal, optional
+        A directory that keeps every finished simulation (created; a
+        journal of the same inputs found there is continued, so a
+        search killed at any moment and run again computes only what is
+        missing, with the same answer; one of other inputs is refused:
+        :class:`contactsep.studies.resume.ResumeError`).  It is left in
+        place: remove it once the answer is saved
+        (:class:`contactsep.studies.run_journal.RunJournal`,
+        ``contactsep preload --csv F --resume``).
     **settings
         simulate()'s other keywords (dt, t_end, damping, min_open,
         open_threshold, ...), passed to every run.
@@ -194,7 +205,12 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         finer = design.replace(n_modes=_doubled(design.n_modes))
         verify_settings = {**settings, "dt": probe.dt / 2}
         _probe(finer, model, verify_settings)
-    with Simulations(workers, progress=progress) as sims:
+    inputs = dict(design=design, model=model, settings=settings,
+                  tolerance=list(tolerance), p_target=p_target,
+                  samples=samples, seed=seed, verify=verify,
+                  converge=converge, perturbation=perturbation)
+    with _journal(journal, inputs) as kept, \
+            Simulations(workers, progress=progress, journal=kept) as sims:
         found = _search(design, model, settings, sims, ceiling)
         answer = found.min_preload_lb
         verify_found = None
@@ -274,6 +290,17 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes),
         **(converged or {}), **spread)
+
+
+@contextlib.contextmanager
+def _journal(journal, inputs: dict):
+    """The RunJournal ``journal`` names (a path: opened here and closed
+    at the end, left in place; a RunJournal: the caller's), or None."""
+    if journal is None or isinstance(journal, RunJournal):
+        yield journal
+        return
+    with RunJournal(journal, inputs) as opened:
+        yield opened
 
 
 def check_perturbation(value) -> float | None:

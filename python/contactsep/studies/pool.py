@@ -16,7 +16,7 @@ from __future__ import annotations
 import functools
 import os
 import signal
-from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
 from contactsep import output
 
@@ -80,13 +80,15 @@ def stop_pool(pool: ProcessPoolExecutor, finished: bool = True,
 
 
 def map_longest_first(pool, function, tasks: list, cost=None,
-                      done=None) -> list:
+                      done=None, finished=None) -> list:
     """``function(task)`` for every task on ``pool``, the results in the
     tasks' order; the tasks are handed out one at a time, the costliest
     first (``cost(task)``, a number; None: in order), so that a batch
     ends with short tasks on every worker instead of one long task on
     one worker while the others wait (longest processing time first);
-    ``done(1)`` is called as each task ends (a progress bar)."""
+    ``done(1)`` is called as each task ends (a progress bar), and
+    ``finished(index, result)`` in this thread as each task's result
+    arrives (a journal that keeps it)."""
     order = list(range(len(tasks)))
     if cost is not None:
         order.sort(key=lambda i: -cost(tasks[i]))
@@ -95,6 +97,10 @@ def map_longest_first(pool, function, tasks: list, cost=None,
         for future in futures.values():
             future.add_done_callback(lambda _: done(1))
     try:
+        if finished is not None:
+            index = {future: i for i, future in futures.items()}
+            for future in as_completed(index):
+                finished(index[future], future.result())
         return [futures[i].result() for i in range(len(tasks))]
     except BaseException:
         for future in futures.values():

@@ -94,11 +94,19 @@ class Simulations:
     search; ``workers`` 1 runs them here).  Counts the runs and their
     time for the caller's notes."""
 
-    def __init__(self, workers: int | None = None, progress=None):
+    def __init__(self, workers: int | None = None, progress=None,
+                 journal=None):
         self.workers = workers or usable_cores()
         #: Called with the number of simulations each time some finish
         #: (a progress bar's update), or None.
         self.progress = progress
+        #: A :class:`~contactsep.studies.run_journal.RunJournal` that
+        #: keeps every finished simulation and answers those it holds,
+        #: or None.
+        self.journal = journal
+        #: Simulations asked for (those the journal answered included,
+        #: so that a resumed search counts what an uninterrupted one
+        #: does), and the seconds this process spent on them.
         self.runs = 0
         self.seconds = 0.0
         self._pool = None
@@ -118,20 +126,52 @@ class Simulations:
 
     def map(self, function, tasks: list) -> list:
         """function(task) for every task, in order (function and tasks
-        picklable: module-level, plain data and Designs)."""
+        picklable: module-level, plain data and Designs); a task the
+        journal holds is not run again."""
         start = time.perf_counter()
-        if self._pool is None:
-            out = []
-            for task in tasks:
-                out.append(function(task))
-                if self.progress is not None:
-                    self.progress(1)
+        if self.journal is None:
+            out = self._run(function, tasks)
         else:
-            # the preloaded runs (slower: fixed steps while pressed) first
-            out = map_longest_first(self._pool, function, tasks,
-                                    cost=_preload_of, done=self.progress)
+            out = self._run_journaled(function, tasks)
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
+        return out
+
+    def _run(self, function, tasks: list, finished=None) -> list:
+        if self._pool is None:
+            out = []
+            for i, task in enumerate(tasks):
+                out.append(function(task))
+                if finished is not None:
+                    finished(i, out[-1])
+                if self.progress is not None:
+                    self.progress(1)
+            return out
+        # the preloaded runs (slower: fixed steps while pressed) first
+        return map_longest_first(self._pool, function, tasks,
+                                 cost=_preload_of, done=self.progress,
+                                 finished=finished)
+
+    def _run_journaled(self, function, tasks: list) -> list:
+        from contactsep.studies.run_journal import task_key
+        journal = self.journal
+        keys = [task_key(function, task) for task in tasks]
+        out, missing = [None] * len(tasks), []
+        for i, key in enumerate(keys):
+            found, result = journal.lookup(key)
+            if found:
+                out[i] = result
+            else:
+                missing.append(i)
+        journal.reused += len(tasks) - len(missing)
+        if self.progress is not None and len(missing) < len(tasks):
+            self.progress(len(tasks) - len(missing))
+        results = self._run(
+            function, [tasks[i] for i in missing],
+            finished=lambda j, result: journal.record(keys[missing[j]],
+                                                      result))
+        for i, result in zip(missing, results):
+            out[i] = result
         return out
 
     def events(self, tasks: list) -> list:

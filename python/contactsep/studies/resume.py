@@ -54,19 +54,19 @@ def manifest(spec: SweepSpec) -> dict:
             "inputs": spec.inputs()}
 
 
-def _differences(old: dict, new: dict, prefix: str = "") -> list:
+def differences(old: dict, new: dict, prefix: str = "") -> list:
     keys = sorted(set(old) | set(new))
     out = []
     for key in keys:
         a, b = old.get(key), new.get(key)
         if isinstance(a, dict) and isinstance(b, dict):
-            out += _differences(a, b, f"{prefix}{key}.")
+            out += differences(a, b, f"{prefix}{key}.")
         elif a != b:
             out.append(f"{prefix}{key}")
     return out
 
 
-def _atomic_write(path: str, write) -> None:
+def atomic_write(path: str, write) -> None:
     directory, name = os.path.split(path)
     fd, temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp",
                                 dir=directory)
@@ -82,7 +82,7 @@ def _atomic_write(path: str, write) -> None:
 
 def save_columns(path: str, columns: dict) -> None:
     """A chunk's columns to ``path`` (.npz), atomically."""
-    _atomic_write(path, lambda handle: np.savez(
+    atomic_write(path, lambda handle: np.savez(
         handle, **{k: np.ascontiguousarray(v) for k, v in columns.items()}))
 
 
@@ -113,7 +113,7 @@ class ChunkStore:
             except (OSError, ValueError):
                 found = None        # killed before its manifest: afresh
             if found is not None and found != wanted:
-                differ = _differences(found, wanted) or ["the manifest"]
+                differ = differences(found, wanted) or ["the manifest"]
                 raise ResumeError(
                     f"--resume: the unfinished sweep beside {output_path} "
                     f"({os.path.basename(self.path)}) was made with other "
@@ -125,7 +125,7 @@ class ChunkStore:
         if not self.chunks:
             shutil.rmtree(self.path, ignore_errors=True)
             os.makedirs(self.path, exist_ok=True)
-            _atomic_write(manifest_path, lambda handle: handle.write(
+            atomic_write(manifest_path, lambda handle: handle.write(
                 json_text(wanted).encode("utf-8")))
 
     def _scan(self, size: int) -> dict:

@@ -1,0 +1,301 @@
+"""Preload searches that survive being killed (``contactsep preload
+--csv F --resume``, ``contactsep.preload(..., journal=DIR)``; issue 25's
+multi-hour robust searches): a search killed (SIGKILL, in a forked
+child: no clean-up of any kind) at several points and run again with
+--resume ends with the CSV and JSON of an uninterrupted run and
+simulates only what the killed run had not finished; a line cut by the
+kill is dropped; a changed input is refused; the journal's digests tell
+equal tasks from different ones.
+
+The simulations are planted (a known threshold, a known tolerance
+study), as in test_design_preload: what is tested is that a resumed
+search asks for and receives the same results, not the physics."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import types
+
+import numpy as np
+import pytest
+from design_family import FAMILY
+
+from contactsep.chatter.simulate import largest_preload
+from contactsep.cli import main
+from contactsep.errors import InputError
+from contactsep.studies import design_preload, preload, preload_robust
+from contactsep.studies.preload import Simulations
+from contactsep.studies.resume import ResumeError
+from contactsep.studies.run_journal import RunJournal, task_key
+
+# planted physics, module-level so that pool workers can run them
+
+#: Every planted run in this process: (kind, preload).
+CALLS: list = []
+
+
+def _threshold(design, settings) -> float:
+    n = design.n_modes if isinstance(design.n_modes, int) else max(
+        design.n_modes)
+    return 0.25 * largest_preload(design) * (1.0 + 1.0 / n) * (
+        1.0 + settings.get("dt", 5e-8) / 1e-7)
+
+
+def fake_event(task) -> bool:
+    design, _, settings, load = task
+    CALLS.append(("event", load))
+    return load < _threshold(design, settings)
+
+
+def fake_simulate(design, model, preload=0.0, **settings):
+    settings.pop("samples", None)
+    settings.pop("single_impulse", None)
+    return types.SimpleNamespace(
+        dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
+        min_open_s=1e-5, t_end_s=0.06,
+        longest_open_s=2e-5 if preload < _threshold(design, settings)
+        else 5e-6)
+
+
+def fake_sample(fields, model, settings):
+    """An event below 10 lb per inch of the separator's thickness."""
+    CALLS.append(("sample", settings["preload"]))
+    event = settings["preload"] < 10.0 * fields["h2"]
+    return (0.0,) * 5 + (int(event), 0)
+
+
+@pytest.fixture
+def planted(monkeypatch):
+    monkeypatch.setattr(preload, "_simulate_event", fake_event)
+    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
+    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
+    CALLS.clear()
+
+
+COMMAND = ["preload", "--n-modes", "8", "--workers", "1", "--json",
+           "--tolerance", "d=uniform(0.2,0.3)", "--samples", "20",
+           "--progress", "never"]
+
+
+def _run(capsys, args) -> tuple[int, str, str]:
+    status = main(list(args))
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def _killed_at(args, count: int, cut: bool = False) -> None:
+    """Run the command in a forked child that SIGKILLs itself at the
+    ``count``-th simulation it would keep (``cut``: after writing half
+    of that one's line)."""
+    pid = os.fork()
+    if pid == 0:
+        try:
+            calls = [0]
+            original = RunJournal.record
+
+            def killing(self, key, result):
+                calls[0] += 1
+                if calls[0] >= count:
+                    if cut:
+                        self._file.write('{"key": "' + key[:20])
+                        self._file.flush()
+                    os.kill(os.getpid(), signal.SIGKILL)
+                return original(self, key, result)
+            RunJournal.record = killing
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, 1)
+            os.dup2(devnull, 2)
+            main(list(args))
+        finally:
+            os._exit(3)
+    _, code = os.waitpid(pid, 0)
+    assert os.WIFSIGNALED(code) and os.WTERMSIG(code) == signal.SIGKILL
+
+
+@pytest.fixture
+def uninterrupted(planted, tmp_path, capsys):
+    """The command's CSV bytes, JSON and simulation count, run without
+    --resume, and the count of simulations each search ran, in the
+    order they run (the CSV's rows: one a preload, a robust one a
+    preload of 20 samples; the convergence check's runs lie between
+    the repeat at 2N and the robust search)."""
+    path = tmp_path / "reference.csv"
+    CALLS.clear()
+    status, out, err = _run(capsys, [*COMMAND, "--csv", str(path)])
+    assert status == 0, err
+    rows = [line.split(",")[0] for line in path.read_text().splitlines()
+            if not line.startswith("#")][1:]
+    searches = {name: rows.count(name) for name in ("nominal", "verify",
+                                                    "robust")}
+    return path.read_bytes(), json.loads(out), len(CALLS), searches
+
+
+#: Where the child is killed: the simulation of that rank (1-based) it
+#: was about to keep, from the searches' sizes.
+WHERE = {"before the first": lambda s: 1,
+         "in the nominal search": lambda s: s["nominal"] // 2,
+         "in the repeat at 2N": lambda s: s["nominal"] + s["verify"] // 2,
+         "in the robust search": lambda s: s["total"] - 10 * s["robust"]}
+
+
+@pytest.mark.parametrize("where, cut", [
+    ("before the first", False), ("in the nominal search", False),
+    ("in the nominal search", True), ("in the repeat at 2N", False),
+    ("in the robust search", False), ("in the robust search", True)])
+def test_a_killed_search_resumes_to_the_same_answer_and_csv(
+        tmp_path, capsys, uninterrupted, where, cut):
+    """Killed before it kept a simulation, in the nominal search, in its
+    repeat at 2N, in the robust search (with half a line written, too):
+    the resumed run's CSV equals the uninterrupted run's byte for byte,
+    its JSON the same, and it simulates exactly what the killed run had
+    not kept."""
+    reference, answer, total, searches = uninterrupted
+    assert searches["nominal"] > 50 and searches["verify"] > 50
+    assert searches["nominal"] + searches["verify"] + 20 * \
+        searches["robust"] < total      # the check at 4N: a few runs
+    count = WHERE[where]({**searches, "total": total})
+    path = tmp_path / "p.csv"
+    command = [*COMMAND, "--csv", str(path), "--resume"]
+    _killed_at(command, count, cut)
+    journal = tmp_path / ".p.csv.resume"
+    lines = (journal / "runs.jsonl").read_text().splitlines()
+    whole = [line for line in lines if line.endswith("}")]
+    assert len(whole) == count - 1
+    assert len(lines) == len(whole) + cut
+    CALLS.clear()
+    status, out, err = _run(capsys, command)
+    assert status == 0, err
+    assert path.read_bytes() == reference
+    assert json.loads(out) == answer
+    assert len(CALLS) == total - (count - 1)
+    if count > 1:
+        assert err.startswith(f"contactsep: --resume: {count - 1:,} "
+                              f"finished simulations in .p.csv.resume, "
+                              f"not run again\n")
+    # nothing left beside the CSV: no journal, lock or temporary file
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.csv",
+                                                           "reference.csv"]
+
+
+def test_a_changed_input_refuses_to_resume(planted, tmp_path, capsys):
+    path = tmp_path / "p.csv"
+    command = [*COMMAND, "--csv", str(path), "--resume"]
+    _killed_at(command, 30)
+    status, _, err = _run(capsys, [*command, "--seed", "1"])
+    assert status == 2
+    assert err == (f"contactsep: error: --resume: the unfinished search in "
+                   f"{path} (.p.csv.resume) was made with other inputs "
+                   f"(inputs.seed differs); rerun without --resume, or "
+                   f"remove it, to start afresh\n")
+    assert len((tmp_path / ".p.csv.resume" / "runs.jsonl").read_text()
+               .splitlines()) == 29
+    status, _, err = _run(capsys, command)
+    assert status == 0, err
+
+
+def test_without_resume_a_leftover_journal_goes_once_the_csv_is_written(
+        planted, tmp_path, capsys):
+    path = tmp_path / "p.csv"
+    command = [*COMMAND, "--csv", str(path)]
+    _killed_at([*command, "--resume"], 30)
+    CALLS.clear()
+    status, _, err = _run(capsys, command)
+    assert status == 0, err
+    assert len(CALLS) > 200         # nothing taken from the journal
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.csv"]
+
+
+@pytest.mark.parametrize("argv, message", [
+    ([], "--resume keeps the finished simulations beside the output: give "
+         "--csv"),
+    (["--csv", os.devnull], "--resume keeps the finished simulations "
+                            f"beside the output: {os.devnull} is not a "
+                            f"regular file")])
+def test_resume_needs_a_csv_file(planted, capsys, argv, message):
+    status, _, err = _run(capsys, [*COMMAND, "--resume", *argv])
+    assert status == 2
+    assert err == f"contactsep: error: {message}\n"
+    assert CALLS == []
+
+
+def test_a_refused_command_leaves_no_journal(planted, tmp_path, capsys):
+    path = tmp_path / "p.csv"
+    status, _, err = _run(capsys, [*COMMAND, "--csv", str(path), "--resume",
+                                   "--perturbation", "0.5"])
+    assert status == 2 and err.startswith("contactsep: error: "
+                                          "--perturbation: found")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_second_command_on_the_same_journal_is_refused(tmp_path):
+    with RunJournal(tmp_path / "j", {"a": 1}, label="p.csv"):
+        with pytest.raises(InputError, match=r"^p\.csv: in use: another "
+                                             r"contactsep command"):
+            RunJournal(tmp_path / "j", {"a": 1}, label="p.csv")
+    with RunJournal(tmp_path / "j", {"a": 1}) as again:
+        assert len(again) == 0
+
+
+def test_the_api_leaves_the_journal_for_the_caller(planted, tmp_path):
+    design = FAMILY["steel_relay"].replace(n_modes=8)
+    first = design_preload.preload(design, workers=1, verify=False,
+                                   journal=tmp_path / "j")
+    simulated = len(CALLS)
+    assert len((tmp_path / "j" / "runs.jsonl").read_text().splitlines()) \
+        == simulated == first.simulations
+    again = design_preload.preload(design, workers=1, verify=False,
+                                   journal=str(tmp_path / "j"))
+    assert len(CALLS) == simulated            # every run from the journal
+    assert again == first
+    with pytest.raises(ResumeError, match="inputs.verify differs"):
+        design_preload.preload(design, workers=1, journal=tmp_path / "j")
+
+
+def double(task):
+    CALLS.append(("double", task))
+    return (task, 2 * task, np.int64(task) * 3)
+
+
+def refuse(task):
+    raise AssertionError(f"ran {task} again")
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_simulations_keep_each_result_and_run_only_the_new_ones(
+        tmp_path, workers):
+    tasks = [3, 1, 4, 1, 9]
+    with RunJournal(tmp_path / "j", {}) as journal, \
+            Simulations(workers, journal=journal) as sims:
+        assert sims.map(double, tasks) == [(t, 2 * t, 3 * t) for t in tasks]
+        assert journal.recorded == 5 and journal.reused == 0
+    with RunJournal(tmp_path / "j", {}) as journal:
+        assert len(journal) == 4      # 1 twice: one simulation
+        # the function named in the key: another one's results are not
+        # these
+        assert not journal.lookup(task_key(refuse, 3))[0]
+        with Simulations(workers, journal=journal) as sims:
+            out = sims.map(double, [9, 3, 2])
+        assert out[0] == (9, 18, 27) and out[1] == (3, 6, 9)
+        assert journal.reused == 2 and journal.recorded == 1
+        assert sims.runs == 3
+
+
+def test_the_digest_tells_equal_tasks_from_different_ones():
+    design = FAMILY["becu_light"]
+    base = (design, "hertz", {"dt": 1e-8, "t_end": 0.01}, 0.05)
+    key = task_key(fake_event, base)
+    # equal values, other objects and types: the same simulation
+    assert key == task_key(fake_event, (
+        design.replace(n_modes=design.n_modes), "hertz",
+        {"t_end": np.float64(0.01), "dt": 1e-8}, np.float64(0.05)))
+    # one bit of the preload, a setting, a field, the model, the function
+    for other in ((design, "hertz", {"dt": 1e-8, "t_end": 0.01},
+                   np.nextafter(0.05, 1.0)),
+                  (design, "hertz", {"dt": 1e-8, "t_end": 0.011}, 0.05),
+                  (design.replace(ys=design.ys * (1 + 1e-15)), "hertz",
+                   {"dt": 1e-8, "t_end": 0.01}, 0.05),
+                  (design, "newton", {"dt": 1e-8, "t_end": 0.01}, 0.05)):
+        assert task_key(fake_event, other) != key
+    assert task_key(fake_sample, base) != key
