@@ -149,14 +149,34 @@ def checked(n_modes) -> list[dict]:
 
 
 def becu_table() -> list[list[str]]:
-    """becu_light's counts at the preloads checked at 128 modes, beside
-    its searches' counts at the same preloads ('—': not tried)."""
+    """becu_light's counts at the preloads checked at 128 modes that an
+    old-band search tried, beside those searches' counts at the same
+    preloads ('—': not tried)."""
     found = searched()
     return [[f"{float(r['preload_lb']):.7g}",
              found.get(("32", g6(r["preload_lb"])), "—"),
              found.get(("64", g6(r["preload_lb"])), "—"), r["n_open"],
              found.get(("128", g6(r["preload_lb"])), "—")]
-            for r in checked("128")]
+            for r in checked("128") if any(
+                (n, g6(r["preload_lb"])) in found for n in ("32", "64",
+                                                            "128"))]
+
+
+FINE_WINDOW = ("| preload (lb) | open of 30, N = 64 (fine-grid search) | "
+               "N = 128 (check) |")
+
+
+def fine_window_table() -> list[list[str]]:
+    """becu_light's counts at 128 modes at the preloads checked there
+    that no old-band search tried, beside the fixed band's search at 64
+    modes."""
+    found = searched()
+    fine = {g6(p): str(k) for p, k, _ in tried("becu_light", "64", FIXED)}
+    return [[f"{float(r['preload_lb']):.7g}", fine[g6(r["preload_lb"])],
+             r["n_open"]]
+            for r in checked("128") if not any(
+                (n, g6(r["preload_lb"])) in found for n in ("32", "64",
+                                                            "128"))]
 
 
 def window_table() -> list[list[str]]:
@@ -186,6 +206,24 @@ def test_the_check_ran_the_searches_samples():
 def test_becu_lights_table_is_the_study():
     assert table(section(TITLE), BECU) == becu_table()
     assert table(section(TITLE), WINDOW) == window_table()
+    assert table(section(TITLE), FINE_WINDOW) == fine_window_table()
+
+
+def test_the_fixed_bands_n64_window_is_not_there_at_n128():
+    """The fixed band's N = 64 answer lies just above a window of open
+    samples, the preload the check at 128 modes ran with its two
+    fine-grid neighbours; at 128 modes none of them opens."""
+    rows_ = fine_window_table()
+    assert len(rows_) == 3
+    answer = float(next(r for r in searches(FIXED)["becu_light"]
+                        if r["n_modes"] == "64")["robust_min_preload_lb"])
+    preloads = sorted(float(p) for p, _, _ in rows_)
+    # consecutive fine-grid preloads (0.99 % apart), the answer the top
+    assert all(b / a == pytest.approx(1.0099, rel=1e-6)
+               for a, b in zip(preloads, preloads[1:]))
+    assert preloads[-1] == pytest.approx(answer, rel=1e-6)
+    assert [int(k) for _, k, _ in rows_] == [0, 3, 0]
+    assert all(n128 == "0" for _, _, n128 in rows_)
 
 
 def test_the_check_and_the_search_agree_at_the_same_preload():
