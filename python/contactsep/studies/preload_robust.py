@@ -57,6 +57,11 @@ DEFAULT_P_TARGET = 0.01
 #: to 2, BAND_HIGH, at one run a preload; here each is ``samples``
 #: runs); above, the scan's steps and the nominal design's events.
 ROBUST_BAND_HIGH = 1.5
+#: The robust band runs from its top down, this many preloads a batch
+#: (each ``samples`` runs), and stops at the first batch with a failing
+#: preload: the answer is the whole band's (preload_search.search), the
+#: preloads below that failure are not tried.
+ROBUST_BAND_BATCH = 4
 #: Index of n_events and status in simulate_design's row.
 _EVENTS, _STATUS = 5, 6
 
@@ -193,7 +198,8 @@ def sample_counts(samples, model: str, preloads, simulations) -> list:
 
 def robust_preload(design, model: str, settings: dict, spec, p_target,
                    simulations, start=None, ceiling=math.inf,
-                   nominal_events=()) -> RobustPreload:
+                   nominal_events=(), band_batch=ROBUST_BAND_BATCH
+                   ) -> RobustPreload:
     """The robust answer for ``design`` (a Design) simulated by ``model``
     with ``settings`` (simulate()'s keywords), the tolerances drawn by
     ``spec`` (:func:`parse_tolerances`), the runs on ``simulations``
@@ -205,7 +211,9 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     search found at its 0.99 % steps, and the tolerances smear it), and
     so is every preload of the fine grid from an answer to
     ROBUST_BAND_HIGH times it (a sample's window need not be one of the
-    nominal design's)."""
+    nominal design's); the band from its top down, ``band_batch``
+    preloads a batch, to its first failing preload (None: the whole band
+    in one batch; the same answer, more preloads tried)."""
     p_target = check_p_target(p_target)
     samples = tolerance_samples(design, settings, spec)
     counts = {}
@@ -229,7 +237,7 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
             p for p in events if answer < p <= 2.0 * answer))
 
     found, = search(1, fails, ceilings=[ceiling], starts=[start],
-                    band=check)
+                    band=check, band_batch=band_batch)
     answer = found.min_preload_lb
     n, n_open, n_failed = counts.get(answer, (0, 0, 0))
     return RobustPreload(

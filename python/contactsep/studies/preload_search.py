@@ -143,7 +143,7 @@ def start_index(preload: float) -> int:
 
 
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
-           ceilings=None, starts=None, band=True
+           ceilings=None, starts=None, band=True, band_batch=None
            ) -> list[PreloadSearch]:
     """Run the scan, the bisection and the fine check around the answer
     for ``n_rows`` designs at once (module docstring).
@@ -160,8 +160,18 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     the preloads to check instead (the robust answer's, above the
     answer only: each preload there is a whole tolerance study); False:
     none, the answer is then closed at the scan's steps to an octave
-    above its last event.
+    above its last event.  ``band_batch`` None: a band is one batch; an
+    integer k: a row's band runs from its top down, k preloads a batch,
+    and stops after the first batch with an event (where each preload is
+    a whole tolerance study): the highest event in the band is the same
+    as the whole band's, so the answer is too (every step depends only
+    on the highest event and the tested preloads above it), with fewer
+    preloads tried below it.
     """
+    if band_batch is not None and not (isinstance(band_batch, int)
+                                       and band_batch >= 1):
+        raise ValueError(f"band_batch: found {band_batch!r}, expected None "
+                         f"or a positive integer")
     limits = list(ceilings) if ceilings else [math.inf] * n_rows
     tops = [top_index(c) for c in limits]
     # a row's first octave lies below its top (at least one preload)
@@ -208,8 +218,13 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
             break
         checks = band if callable(band) else (
             lambda row, answer: fine_band(answer))
-        run([(row, p) for row in rows for p in checks(row, brackets[row][1])
-             if p not in tested[row] and p <= limits[row]])
+        bands = {row: [p for p in checks(row, brackets[row][1])
+                       if p not in tested[row] and p <= limits[row]]
+                 for row in rows}
+        if band_batch is None:
+            run([(row, p) for row in rows for p in bands[row]])
+        else:
+            _run_from_the_top(bands, tested, run, band_batch)
         # an event the band found near its top: the scan's grid values
         # to an octave above it are tested too (as the scan did above
         # its last event), until they are all closed
@@ -231,6 +246,21 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                           tested=tuple(sorted(tested[row].items())),
                           ceiling_lb=limits[row])
             for row, (_, hi) in enumerate(brackets)]
+
+
+def _run_from_the_top(bands: dict, tested: list, run, batch: int) -> None:
+    """Each row's band (``bands``: row -> preloads), highest first,
+    ``batch`` preloads a row a batch, until a batch has an event or the
+    band is done."""
+    pending = {row: sorted(preloads, reverse=True)
+               for row, preloads in bands.items() if preloads}
+    while pending:
+        run([(row, p) for row, preloads in pending.items()
+             for p in preloads[:batch]])
+        for row in list(pending):
+            done, pending[row] = pending[row][:batch], pending[row][batch:]
+            if not pending[row] or any(tested[row][p] for p in done):
+                del pending[row]
 
 
 def _octave_above(tested: dict, top_k: int) -> list:
