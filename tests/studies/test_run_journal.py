@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import os
 import signal
+import sys
 import types
 
 import numpy as np
@@ -299,3 +300,44 @@ def test_the_digest_tells_equal_tasks_from_different_ones():
                   (design, "newton", {"dt": 1e-8, "t_end": 0.01}, 0.05)):
         assert task_key(fake_event, other) != key
     assert task_key(fake_sample, base) != key
+
+
+def test_sigterm_says_where_the_finished_simulations_are(planted,
+                                                         tmp_path):
+    """SIGTERM mid-search (the command's own handler: exit 143): no CSV,
+    one line on stderr naming the journal and what it holds, and the
+    same command with --resume finishes it."""
+    path = tmp_path / "p.csv"
+    command = [*COMMAND, "--csv", str(path), "--resume"]
+    err = tmp_path / "err.txt"
+    pid = os.fork()
+    if pid == 0:
+        try:
+            calls = [0]
+            original = RunJournal.record
+
+            def terminating(self, key, result):
+                original(self, key, result)
+                calls[0] += 1
+                if calls[0] == 25:
+                    os.kill(os.getpid(), signal.SIGTERM)
+            RunJournal.record = terminating
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, 1)
+            sys.stderr = open(err, "w", encoding="utf-8")
+            status = main(list(command))
+            sys.stderr.flush()
+        finally:
+            os._exit(status if "status" in locals() else 3)
+    _, code = os.waitpid(pid, 0)
+    assert os.WIFEXITED(code) and os.WEXITSTATUS(code) == 143
+    kept = len((tmp_path / ".p.csv.resume" / "runs.jsonl").read_text()
+               .splitlines())
+    assert kept >= 25
+    assert err.read_text() == (f"contactsep: {path}: not written; {kept} "
+                               f"finished simulations kept in "
+                               f".p.csv.resume: rerun the command to "
+                               f"continue\n")
+    assert not path.exists()
+    assert main(command) == 0 and path.exists()
+    assert not (tmp_path / ".p.csv.resume").exists()
