@@ -28,7 +28,9 @@ the fixed band's fine_grid rows).  ``--journal DIR``: each search keeps
 every finished simulation in DIR/DESIGN-N (``contactsep.preload(...,
 journal=...)``), so that a search killed after hours and run again with
 the same command simulates only what is missing; the directory goes once
-its rows are written.
+its rows are written (with ``--check-preloads``, DIR/check: every
+run's task names its design, N and preload, so one journal serves any
+check).
 
 ``--check-preloads P,P,... --check-csv F``: no search; each sample's run
 at each of those preloads (lb), at every N given: the counts that say
@@ -55,6 +57,7 @@ from contactsep.studies.design_preload import preload  # noqa: E402
 from contactsep.studies.preload import Simulations  # noqa: E402
 from contactsep.studies.preload_robust import (  # noqa: E402
     parse_tolerances, sample_counts, tolerance_samples)
+from contactsep.studies.run_journal import RunJournal  # noqa: E402
 
 COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
            "min_preload_lb", "robust_min_preload_lb", "n", "n_open",
@@ -177,7 +180,12 @@ def check(args) -> None:
     rows = kept(args.check_csv, names, n_list, preloads)
     print("| design | N | preload lb | n_open/n | s |")
     print("|---|---:|---:|---:|---:|")
-    with Simulations(args.workers) as sims:
+    journal = None
+    if args.journal:
+        Path(args.journal).mkdir(parents=True, exist_ok=True)
+        journal = RunJournal(Path(args.journal) / "check", {
+            "check": "benchmarks/robust_convergence.py --check-preloads"})
+    with Simulations(args.workers, journal=journal) as sims:
         for name in names:
             for n_modes in n_list:
                 design = FAMILY[name].replace(n_modes=n_modes)
@@ -206,6 +214,8 @@ def check(args) -> None:
                             "(benchmarks/robust_convergence.py "
                             "--check-preloads)"), first=CHECK,
                             exact=("preload_lb",))
+    if journal is not None and args.check_csv:
+        journal.remove()
 
 
 def kept(path, names, n_modes, preloads=None) -> list[dict]:
