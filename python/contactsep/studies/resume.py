@@ -66,6 +66,31 @@ def differences(old: dict, new: dict, prefix: str = "") -> list:
     return out
 
 
+def same_inputs(directory: str, wanted: dict, what: str,
+                advice: str = "rerun without --resume") -> bool:
+    """Whether ``directory`` holds a manifest.json equal to ``wanted``
+    (False: none, or one a kill cut short: start afresh); one of other
+    inputs is refused (:class:`ResumeError`, one line naming what
+    differs: ``--resume: the unfinished {what} was made with other
+    inputs (...); {advice} to start afresh``)."""
+    if not os.path.isdir(directory):
+        return False
+    try:
+        with open(os.path.join(directory, "manifest.json"),
+                  encoding="utf-8") as handle:
+            found = json.load(handle)
+    except (OSError, ValueError):
+        return False            # killed before its manifest: afresh
+    if found != wanted:
+        differ = differences(found, wanted) or ["the manifest"]
+        raise ResumeError(
+            f"--resume: the unfinished {what} was made with other inputs "
+            f"({', '.join(differ[:4])} "
+            f"{'differs' if len(differ) == 1 else 'differ'}); {advice} to "
+            f"start afresh")
+    return True
+
+
 def atomic_write(path: str, write) -> None:
     directory, name = os.path.split(path)
     fd, temp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp",
@@ -106,22 +131,10 @@ class ChunkStore:
         wanted = manifest(spec)
         manifest_path = os.path.join(self.path, "manifest.json")
         self.chunks = {}
-        if resume and os.path.isdir(self.path):
-            try:
-                with open(manifest_path, encoding="utf-8") as handle:
-                    found = json.load(handle)
-            except (OSError, ValueError):
-                found = None        # killed before its manifest: afresh
-            if found is not None and found != wanted:
-                differ = differences(found, wanted) or ["the manifest"]
-                raise ResumeError(
-                    f"--resume: the unfinished sweep beside {output_path} "
-                    f"({os.path.basename(self.path)}) was made with other "
-                    f"inputs ({', '.join(differ[:4])} "
-                    f"{'differs' if len(differ) == 1 else 'differ'}); rerun "
-                    f"without --resume to start afresh")
-            if found is not None:
-                self.chunks = self._scan(spec.size)
+        if resume and same_inputs(
+                self.path, wanted, f"sweep beside {output_path} "
+                                   f"({os.path.basename(self.path)})"):
+            self.chunks = self._scan(spec.size)
         if not self.chunks:
             shutil.rmtree(self.path, ignore_errors=True)
             os.makedirs(self.path, exist_ok=True)

@@ -33,7 +33,7 @@ import numpy as np
 
 from contactsep.output import json_text, locks
 from contactsep.output.streams import named
-from contactsep.studies.resume import ResumeError, atomic_write, differences
+from contactsep.studies.resume import atomic_write, same_inputs
 
 _MANIFEST = "manifest.json"
 _RUNS = "runs.jsonl"
@@ -124,22 +124,10 @@ class RunJournal:
 
     def _open(self, wanted: dict) -> None:
         manifest = os.path.join(self.path, _MANIFEST)
-        found = None
-        if os.path.isdir(self.path):
-            try:
-                with open(manifest, encoding="utf-8") as handle:
-                    found = json.load(handle)
-            except (OSError, ValueError):
-                found = None        # killed before its manifest: afresh
-        if found is not None and found != wanted:
-            differ = differences(found, wanted) or ["the manifest"]
-            raise ResumeError(
-                f"--resume: the unfinished search in {self.label} was made "
-                f"with other inputs ({', '.join(differ[:4])} "
-                f"{'differs' if len(differ) == 1 else 'differ'}); rerun "
-                f"without --resume, or remove it, to start afresh")
+        found = same_inputs(self.path, wanted, f"search in {self.label}",
+                            "rerun without --resume, or remove it,")
         try:
-            if found is None:
+            if not found:
                 shutil.rmtree(self.path, ignore_errors=True)
                 os.makedirs(self.path, exist_ok=True)
                 atomic_write(manifest, lambda handle: handle.write(
