@@ -154,7 +154,10 @@ def main() -> None:
                     "# robust_band: fine_grid, every fine-grid preload "
                     "from the robust answer to 1.5 times it and the "
                     "nominal design's events to 2 times (since commit "
-                    "8260ec4); nominal_events, above its answer the "
+                    "8260ec4; since commit ae7bf1a from the top down, "
+                    "stopping at the first failing batch of four: the "
+                    "same answer, fewer preloads tried below it); "
+                    "nominal_events, above its answer the "
                     "nominal design's events only (rows searched before "
                     "it; docs/chatter.md, The robust answer at N and 2N)"))
             if args.tested_csv:
