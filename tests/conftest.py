@@ -10,6 +10,9 @@ import pytest
 from contactsep.restored import cards, thesis_decks
 from contactsep.restored.dataset import DataSet
 
+# the preload command's planted physics, a fixture for every test module
+from planted_preload import planted_preload  # noqa: E402, F401
+
 ROOT = Path(__file__).resolve().parent.parent
 DECK_DIR = ROOT / "data" / "decks"
 THESIS_DECKS = sorted(DECK_DIR.glob("*.dat"))

@@ -304,7 +304,11 @@ def test_the_command_writes_strict_json_and_a_commented_csv(
     rows = list(csv.DictReader(io.StringIO("\n".join(lines[len(comments):]))))
     assert list(rows[0]) == ["search", "preload_lb", "n", "n_open",
                              "n_failed"]
-    assert {r["search"] for r in rows} == {"nominal", "verify", "robust"}
+    assert {r["search"] for r in rows} == {"nominal", "verify", "robust",
+                                           "robust_check"}
+    # the planted tolerance study does not depend on N: its answer holds
+    assert data["robust"]["converged"] is True
+    assert data["robust"]["check_n_modes"] == 16
     nominal = {float(r["preload_lb"]): r["n_open"] == "1" for r in rows
                if r["search"] == "nominal"}
     # the answer's row (12 significant digits in the CSV): closed

@@ -7,9 +7,10 @@ simulates only what the killed run had not finished; a line cut by the
 kill is dropped; a changed input is refused; the journal's digests tell
 equal tasks from different ones.
 
-The simulations are planted (a known threshold, a known tolerance
-study), as in test_design_preload: what is tested is that a resumed
-search asks for and receives the same results, not the physics."""
+The simulations are planted (tests/planted_preload.py: a known
+threshold, a known tolerance study), as in test_design_preload: what is
+tested is that a resumed search asks for and receives the same results,
+not the physics."""
 
 from __future__ import annotations
 
@@ -17,63 +18,18 @@ import json
 import os
 import signal
 import sys
-import types
 
 import numpy as np
 import pytest
 from design_family import FAMILY
+from planted_preload import CALLS, fake_event, fake_sample
 
-from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies import design_preload, preload, preload_robust
+from contactsep.studies import design_preload
 from contactsep.studies.preload import Simulations
 from contactsep.studies.resume import ResumeError
 from contactsep.studies.run_journal import RunJournal, task_key
-
-# planted physics, module-level so that pool workers can run them
-
-#: Every planted run in this process: (kind, preload).
-CALLS: list = []
-
-
-def _threshold(design, settings) -> float:
-    n = design.n_modes if isinstance(design.n_modes, int) else max(
-        design.n_modes)
-    return 0.25 * largest_preload(design) * (1.0 + 1.0 / n) * (
-        1.0 + settings.get("dt", 5e-8) / 1e-7)
-
-
-def fake_event(task) -> bool:
-    design, _, settings, load = task
-    CALLS.append(("event", load))
-    return load < _threshold(design, settings)
-
-
-def fake_simulate(design, model, preload=0.0, **settings):
-    settings.pop("samples", None)
-    settings.pop("single_impulse", None)
-    return types.SimpleNamespace(
-        dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
-        min_open_s=1e-5, t_end_s=0.06,
-        longest_open_s=2e-5 if preload < _threshold(design, settings)
-        else 5e-6)
-
-
-def fake_sample(fields, model, settings):
-    """An event below 10 lb per inch of the separator's thickness."""
-    CALLS.append(("sample", settings["preload"]))
-    event = settings["preload"] < 10.0 * fields["h2"]
-    return (0.0,) * 5 + (int(event), 0)
-
-
-@pytest.fixture
-def planted(monkeypatch):
-    monkeypatch.setattr(preload, "_simulate_event", fake_event)
-    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
-    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
-    CALLS.clear()
-
 
 COMMAND = ["preload", "--n-modes", "8", "--workers", "1", "--json",
            "--tolerance", "d=uniform(0.2,0.3)", "--samples", "20",
@@ -116,7 +72,7 @@ def _killed_at(args, count: int, cut: bool = False) -> None:
 
 
 @pytest.fixture
-def uninterrupted(planted, tmp_path, capsys):
+def uninterrupted(planted_preload, tmp_path, capsys):
     """The command's CSV bytes, JSON and simulation count, run without
     --resume, and the count of simulations each search ran, in the
     order they run (the CSV's rows: one a preload, a robust one a
@@ -128,8 +84,8 @@ def uninterrupted(planted, tmp_path, capsys):
     assert status == 0, err
     rows = [line.split(",")[0] for line in path.read_text().splitlines()
             if not line.startswith("#")][1:]
-    searches = {name: rows.count(name) for name in ("nominal", "verify",
-                                                    "robust")}
+    searches = {name: rows.count(name) for name in (
+        "nominal", "verify", "robust", "robust_check")}
     return path.read_bytes(), json.loads(out), len(CALLS), searches
 
 
@@ -138,24 +94,30 @@ def uninterrupted(planted, tmp_path, capsys):
 WHERE = {"before the first": lambda s: 1,
          "in the nominal search": lambda s: s["nominal"] // 2,
          "in the repeat at 2N": lambda s: s["nominal"] + s["verify"] // 2,
-         "in the robust search": lambda s: s["total"] - 10 * s["robust"]}
+         "in the robust search": lambda s: s["total"] - 20 * s[
+             "robust_check"] - 10 * s["robust"],
+         "in the robust answer's check": lambda s: s["total"] - 10 * s[
+             "robust_check"]}
 
 
 @pytest.mark.parametrize("where, cut", [
     ("before the first", False), ("in the nominal search", False),
     ("in the nominal search", True), ("in the repeat at 2N", False),
-    ("in the robust search", False), ("in the robust search", True)])
+    ("in the robust search", False), ("in the robust search", True),
+    ("in the robust answer's check", False)])
 def test_a_killed_search_resumes_to_the_same_answer_and_csv(
         tmp_path, capsys, uninterrupted, where, cut):
     """Killed before it kept a simulation, in the nominal search, in its
-    repeat at 2N, in the robust search (with half a line written, too):
+    repeat at 2N, in the robust search (with half a line written, too),
+    in the robust answer's check at 2N:
     the resumed run's CSV equals the uninterrupted run's byte for byte,
     its JSON the same, and it simulates exactly what the killed run had
     not kept."""
     reference, answer, total, searches = uninterrupted
     assert searches["nominal"] > 50 and searches["verify"] > 50
-    assert searches["nominal"] + searches["verify"] + 20 * \
-        searches["robust"] < total      # the check at 4N: a few runs
+    assert searches["nominal"] + searches["verify"] + 20 * (
+        searches["robust"] + searches["robust_check"]) < total  # 4N: a few
+    assert searches["robust"] > 10 and searches["robust_check"] == 5
     count = WHERE[where]({**searches, "total": total})
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path), "--resume"]
@@ -180,7 +142,8 @@ def test_a_killed_search_resumes_to_the_same_answer_and_csv(
                                                            "reference.csv"]
 
 
-def test_a_changed_input_refuses_to_resume(planted, tmp_path, capsys):
+def test_a_changed_input_refuses_to_resume(planted_preload, tmp_path,
+                                           capsys):
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path), "--resume"]
     _killed_at(command, 30)
@@ -197,7 +160,7 @@ def test_a_changed_input_refuses_to_resume(planted, tmp_path, capsys):
 
 
 def test_without_resume_a_leftover_journal_goes_once_the_csv_is_written(
-        planted, tmp_path, capsys):
+        planted_preload, tmp_path, capsys):
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path)]
     _killed_at([*command, "--resume"], 30)
@@ -214,14 +177,16 @@ def test_without_resume_a_leftover_journal_goes_once_the_csv_is_written(
     (["--csv", os.devnull], "--resume keeps the finished simulations "
                             f"beside the output: {os.devnull} is not a "
                             f"regular file")])
-def test_resume_needs_a_csv_file(planted, capsys, argv, message):
+def test_resume_needs_a_csv_file(planted_preload, capsys, argv,
+                                 message):
     status, _, err = _run(capsys, [*COMMAND, "--resume", *argv])
     assert status == 2
     assert err == f"contactsep: error: {message}\n"
     assert CALLS == []
 
 
-def test_a_refused_command_leaves_no_journal(planted, tmp_path, capsys):
+def test_a_refused_command_leaves_no_journal(planted_preload, tmp_path,
+                                             capsys):
     path = tmp_path / "p.csv"
     status, _, err = _run(capsys, [*COMMAND, "--csv", str(path), "--resume",
                                    "--perturbation", "0.5"])
@@ -239,7 +204,8 @@ def test_a_second_command_on_the_same_journal_is_refused(tmp_path):
         assert len(again) == 0
 
 
-def test_the_api_leaves_the_journal_for_the_caller(planted, tmp_path):
+def test_the_api_leaves_the_journal_for_the_caller(planted_preload,
+                                                   tmp_path):
     design = FAMILY["steel_relay"].replace(n_modes=8)
     first = design_preload.preload(design, workers=1, verify=False,
                                    journal=tmp_path / "j")
@@ -302,7 +268,7 @@ def test_the_digest_tells_equal_tasks_from_different_ones():
     assert task_key(fake_sample, base) != key
 
 
-def test_sigterm_says_where_the_finished_simulations_are(planted,
+def test_sigterm_says_where_the_finished_simulations_are(planted_preload,
                                                          tmp_path):
     """SIGTERM mid-search (the command's own handler: exit 143): no CSV,
     one line on stderr naming the journal and what it holds, and the

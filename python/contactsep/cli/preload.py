@@ -15,7 +15,7 @@ from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
-from contactsep.studies.preload_answer import spans_text
+from contactsep.studies.preload_answer import robust_check_text, spans_text
 
 #: simulate()'s keywords that are options of the command.
 _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
@@ -329,5 +329,8 @@ def summary_text(answer) -> str:
                      f"{'-' if ci is None else f'{ci[0]:.3g}-{ci[1]:.3g}'};"
                      f" {r.n_open} of {r.n} open, {r.n_failed} failed) <= "
                      f"{r.p_target:g}")
+        if r.check_n_modes is not None:
+            lines.append(f"  robust, at N = {r.check_n_modes:<10} "
+                         f"{robust_check_text(r)}")
     lines += [f"note: {note}" for note in answer.notes]
     return "\n".join(lines) + "\n"

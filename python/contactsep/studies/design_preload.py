@@ -50,6 +50,7 @@ from contactsep.studies.preload_robust import (
     DEFAULT_P_TARGET,
     DEFAULT_SAMPLES,
     check_p_target,
+    check_robust,
     parse_tolerances,
     robust_preload,
 )
@@ -237,6 +238,16 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                 nominal_events=[p for p, event in found.tested if event])
             notes.append(f"robust answer: {sims.runs - runs} "
                          f"simulations of {spec.samples} samples")
+            if max_check is not None:
+                runs = sims.runs
+                robust = check_robust(robust, finer, model,
+                                      verify_settings, spec, sims)
+                notes.append(f"robust answer's check at N = "
+                             f"{robust.check_n_modes} and half the step: "
+                             f"{sims.runs - runs} simulations; it tries "
+                             f"{MARGIN:.0%} either side only, a window of "
+                             f"the samples' events further above is not "
+                             f"seen")
     at_answer = None
     if math.isfinite(answer) and answer > 0:
         at_answer = simulate(design, model=model, preload=answer,
@@ -262,6 +273,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                    f"work budget")
         warnings.warn(f"the smallest preload is not converged to "
                       f"{MARGIN:.0%} by N = {checked}: {why}{hint}",
+                      ContactsepWarning)
+    if robust is not None and robust.converged is False:
+        warnings.warn(f"the robust answer does not hold at twice the modes "
+                      f"and half the step (N = {robust.check_n_modes}): "
+                      f"p_open there is above p_target within "
+                      f"{MARGIN:.0%} above it, or not within {MARGIN:.0%} "
+                      f"below it; raise n_modes and search again",
                       ContactsepWarning)
     spread = perturbed_fields(perturbation, perturbed, answer)
     if spread.get("min_preload_spread") is not None and \

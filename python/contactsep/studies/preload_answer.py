@@ -120,7 +120,8 @@ class PreloadAnswer:
     def csv_text(self) -> str:
         """'#' comments (the answer, its change, the windows, the robust
         answer, the notes), then one row per preload tried: search
-        (nominal, verify, robust), preload_lb, n (designs run), n_open
+        (nominal, verify, robust, robust_check: the robust answer's check
+        at 2N), preload_lb, n (designs run), n_open
         (with an event), n_failed; perturbed_up, perturbed_down: the
         searches on y_s (1 + r) and y_s (1 - r)."""
         lines = [f"# contactsep preload: the smallest lower-contact "
@@ -144,6 +145,9 @@ class PreloadAnswer:
                 f"{'-' if ci is None else f'{ci[0]:.4g} to {ci[1]:.4g}'}"
                 f"; {r.n_open} of {r.n}, {r.n_failed} failed) <= "
                 f"p_target {r.p_target:g}")
+            if r.check_n_modes is not None:
+                lines.append(f"# robust check at N = {r.check_n_modes}: "
+                             f"{robust_check_text(r)}")
         lines += [f"# {note}" for note in self.notes]
         lines.append("search,preload_lb,n,n_open,n_failed")
         for name, tested in (("nominal", self.tested),
@@ -155,6 +159,8 @@ class PreloadAnswer:
         if self.robust is not None:
             lines += [f"robust,{p:.12g},{n},{k},{f}"
                       for p, n, k, f in self.robust.tested]
+            lines += [f"robust_check,{p:.12g},{n},{k},{f}"
+                      for p, n, k, f in self.robust.checked]
         return "\n".join(lines) + "\n"
 
     def converged_text(self) -> str | None:
@@ -199,6 +205,16 @@ def _g(value) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "none"
     return f"{value:.6g}"
+
+
+def robust_check_text(robust) -> str:
+    """Whether the robust answer held its check at 2N, in words."""
+    if robust.converged is None:
+        return "no answer to check"
+    return ("held (p_open <= p_target from the answer to 2 % above it, "
+            "above p_target within 2 % below)" if robust.converged else
+            "NOT held (p_open above p_target within 2 % above the answer, "
+            "or not within 2 % below)")
 
 
 def spans_text(spans) -> str:

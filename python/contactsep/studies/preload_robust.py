@@ -32,6 +32,7 @@ has no event above 0.0415 lb; docs/chatter.md).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -40,6 +41,7 @@ import numpy as np
 from contactsep.errors import InputError
 from contactsep.studies import fields as design_fields
 from contactsep.studies.chatter_sweep import simulate_design
+from contactsep.studies.preload_converge import MARGIN
 from contactsep.studies.preload_search import fine_band, search
 from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep import chunk_inputs, make_spec
@@ -84,6 +86,12 @@ class RobustPreload:
     #: (preload lb, n, n_open, n_failed) of every preload tried, by
     #: preload.
     tested: tuple
+    #: The answer's check (:func:`check_robust`): the N it ran at (None:
+    #: not checked), whether it held (None: no answer to check), and
+    #: (preload lb, n, n_open, n_failed) of each preload it ran.
+    check_n_modes: int | None = None
+    converged: bool | None = None
+    checked: tuple = ()
 
     @property
     def p_open(self) -> float | None:
@@ -112,7 +120,11 @@ class RobustPreload:
             "p_open": self.p_open,
             "p_open_ci95": list(self.p_open_ci95) if self.n else None,
             "tested": [{"preload_lb": p, "n": n, "n_open": k,
-                        "n_failed": f} for p, n, k, f in self.tested]}
+                        "n_failed": f} for p, n, k, f in self.tested],
+            "check_n_modes": self.check_n_modes,
+            "converged": self.converged,
+            "checked": [{"preload_lb": p, "n": n, "n_open": k,
+                         "n_failed": f} for p, n, k, f in self.checked]}
 
 
 def parse_tolerances(texts, samples, seed) -> tuple:
@@ -245,3 +257,34 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
         p_target=p_target, min_preload_lb=answer, n=n, n_open=n_open,
         n_failed=n_failed,
         tested=tuple((p, *counts[p]) for p in sorted(counts)))
+
+
+def check_robust(robust: RobustPreload, design, model: str,
+                 settings: dict, spec, simulations) -> RobustPreload:
+    """``robust`` with its check: the same draws of ``spec`` on
+    ``design`` (twice the modes of the search's) with ``settings`` (half
+    its step), at the answer and every fine-grid preload within MARGIN
+    (2 %) above it, and every one within MARGIN below it.  It held
+    (``converged``) when p_open <= p_target at every preload from the
+    answer up and above p_target at one below: the robust answer at 2N
+    then lies within 2 % of it, unless a window of the samples' events
+    lies further above it at 2N (the check is local, as the nominal
+    answer's: preload_converge).  No answer (NaN, or 0): not checked."""
+    answer = robust.min_preload_lb
+    n_modes = design.n_modes
+    if not (math.isfinite(answer) and answer > 0.0):
+        return dataclasses.replace(robust, check_n_modes=n_modes)
+    near = [p for p in fine_band(answer)
+            if answer * (1.0 - MARGIN) <= p <= answer * (1.0 + MARGIN)
+            and p != answer]
+    preloads = sorted([answer, *near])
+    counts = sample_counts(tolerance_samples(design, settings, spec),
+                           model, preloads, simulations)
+
+    def fails(n, n_open):
+        return not n or n_open > robust.p_target * n
+    checked = tuple((p, *c) for p, c in zip(preloads, counts))
+    held = not any(fails(n, k) for p, n, k, _ in checked if p >= answer) \
+        and any(fails(n, k) for p, n, k, _ in checked if p < answer)
+    return dataclasses.replace(robust, check_n_modes=n_modes,
+                               converged=held, checked=checked)

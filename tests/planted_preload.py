@@ -1,0 +1,61 @@
+"""A planted preload physics for the preload command's tests: the search
+sees only whether a run has an event, so a fake with a known threshold
+(and a known tolerance study) tests the search and its bookkeeping, not
+the simulation.  Module-level, so that pool workers can run them; the
+fixture ``planted_preload`` (tests/conftest.py) plants them."""
+
+from __future__ import annotations
+
+import types
+
+import pytest
+
+from contactsep.chatter.simulate import largest_preload
+from contactsep.studies import design_preload, preload, preload_robust
+
+#: Every planted run in this process: (kind, preload).
+CALLS: list = []
+
+
+def threshold(design, settings) -> float:
+    """A quarter of the largest preload the design takes x (1 + 1/N) x
+    (1 + dt/1e-7): half the step and twice the modes move it by a known
+    amount."""
+    n = design.n_modes if isinstance(design.n_modes, int) else max(
+        design.n_modes)
+    return 0.25 * largest_preload(design) * (1.0 + 1.0 / n) * (
+        1.0 + settings.get("dt", 5e-8) / 1e-7)
+
+
+def fake_event(task) -> bool:
+    design, _, settings, load = task
+    CALLS.append(("event", load))
+    return load < threshold(design, settings)
+
+
+def fake_simulate(design, model, preload=0.0, **settings):
+    settings.pop("samples", None)
+    settings.pop("single_impulse", None)
+    return types.SimpleNamespace(
+        dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
+        min_open_s=1e-5, t_end_s=0.06,
+        longest_open_s=2e-5 if preload < threshold(design, settings)
+        else 5e-6)
+
+
+def fake_sample(fields, model, settings):
+    """A tolerance study: an event below 10 lb per inch of the
+    separator's thickness."""
+    CALLS.append(("sample", settings["preload"]))
+    event = settings["preload"] < 10.0 * fields["h2"]
+    return (0.0,) * 5 + (int(event), 0)
+
+
+@pytest.fixture
+def planted_preload(monkeypatch):
+    """The nominal runs, the probe and the samples planted; CALLS
+    emptied."""
+    monkeypatch.setattr(preload, "_simulate_event", fake_event)
+    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
+    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
+    CALLS.clear()
