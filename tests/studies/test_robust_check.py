@@ -129,3 +129,24 @@ def test_the_command_prints_and_writes_the_check(planted_preload,
     rows = list(csv.DictReader(io.StringIO("\n".join(
         line for line in text.splitlines() if not line.startswith("#")))))
     assert sum(r["search"] == "robust_check" for r in rows) == 5
+
+
+def test_preloads_where_no_sample_ran_are_no_evidence(planted_preload,
+                                                      monkeypatch):
+    """At 2N every sample below the answer fails to run (status 2): the
+    check has no evidence that p_open rises there, and does not hold;
+    where they fail above it, neither."""
+    at_n = _study(lambda n: 1.0)
+    answer, _ = _answer(monkeypatch, at_n)
+    a = answer.min_preload_lb
+    for side in (-1, 1):
+        def sample(fields, model, settings, side=side):
+            if fields["n_modes"] == 16 and \
+                    side * (settings["preload"] - a) > 0:
+                return (0.0,) * 5 + (0, 2)
+            return at_n(fields, model, settings)
+        r, said = _answer(monkeypatch, sample)
+        assert r.min_preload_lb == a
+        assert r.converged is False and len(said) == 1
+        assert all(n == 0 for p, n, _, _ in r.checked
+                   if side * (p - a) > 0)

@@ -266,7 +266,8 @@ def check_robust(robust: RobustPreload, design, model: str,
     its step), at the answer and every fine-grid preload within MARGIN
     (2 %) above it, and every one within MARGIN below it.  It held
     (``converged``) when p_open <= p_target at every preload from the
-    answer up and above p_target at one below: the robust answer at 2N
+    answer up (each with a sample that ran) and above p_target at one
+    below (one that ran): the robust answer at 2N
     then lies within 2 % of it, unless a window of the samples' events
     lies further above it at 2N (the check is local, as the nominal
     answer's: preload_converge).  No answer (NaN, or 0): not checked."""
@@ -281,10 +282,13 @@ def check_robust(robust: RobustPreload, design, model: str,
     counts = sample_counts(tolerance_samples(design, settings, spec),
                            model, preloads, simulations)
 
-    def fails(n, n_open):
-        return not n or n_open > robust.p_target * n
+    def opens(n, n_open):
+        return n_open > robust.p_target * n
     checked = tuple((p, *c) for p, c in zip(preloads, counts))
-    held = not any(fails(n, k) for p, n, k, _ in checked if p >= answer) \
-        and any(fails(n, k) for p, n, k, _ in checked if p < answer)
+    # above: every preload ran and kept p_open within the target; below:
+    # one that ran opened (a preload where no sample ran is no evidence)
+    held = all(n and not opens(n, k) for p, n, k, _ in checked
+               if p >= answer) and \
+        any(n and opens(n, k) for p, n, k, _ in checked if p < answer)
     return dataclasses.replace(robust, check_n_modes=n_modes,
                                converged=held, checked=checked)
