@@ -307,3 +307,46 @@ def test_sigterm_says_where_the_finished_simulations_are(planted_preload,
     assert not path.exists()
     assert main(command) == 0 and path.exists()
     assert not (tmp_path / ".p.csv.resume").exists()
+
+
+def test_a_real_search_killed_on_two_workers_resumes_to_the_same_bytes(
+        tmp_path):
+    """The real simulation on two worker processes (the thesis rig,
+    d = 0.75 in, N = 2, a 30 ms window: its first impact at 22 ms, so
+    the search, its repeat at 2N, the convergence check, the robust
+    search of 3 samples and its check all run): the command SIGKILLed
+    once its journal holds 150 runs, then run again with --resume, ends
+    with the CSV and JSON bytes of an uninterrupted run."""
+    import subprocess
+    import time
+    command = [sys.executable, "-m", "contactsep", "preload", "--n-modes",
+               "2", "--d", "0.75", "--t-end", "0.03", "--workers", "2",
+               "--tolerance", "d=normal(0.75,0.005)", "--samples", "3",
+               "--json", "--progress", "never"]
+    reference = subprocess.run([*command, "--csv", str(tmp_path / "r.csv")],
+                               capture_output=True, timeout=600)
+    assert reference.returncode == 0, reference.stderr
+    path, runs = tmp_path / "p.csv", tmp_path / ".p.csv.resume/runs.jsonl"
+    child = subprocess.Popen([*command, "--csv", str(path), "--resume"],
+                             stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 300
+        while child.poll() is None and time.monotonic() < deadline and (
+                not runs.exists() or runs.read_text().count("\n") < 150):
+            time.sleep(0.05)
+    finally:
+        child.kill()
+        child.wait()
+    assert child.returncode == -signal.SIGKILL
+    kept = runs.read_text().count("\n")
+    assert kept >= 150
+    again = subprocess.run([*command, "--csv", str(path), "--resume"],
+                           capture_output=True, timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert again.stderr.decode().startswith(
+        f"contactsep: --resume: {kept} finished simulations")
+    assert path.read_bytes() == (tmp_path / "r.csv").read_bytes()
+    assert again.stdout == reference.stdout
+    data = json.loads(again.stdout)
+    assert data["robust"]["checked"] and data["simulations"] > kept

@@ -242,6 +242,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                 runs = sims.runs
                 robust = check_robust(robust, finer, model,
                                       verify_settings, spec, sims)
+            if robust.checked:
                 notes.append(f"robust answer's check at N = "
                              f"{robust.check_n_modes} and half the step: "
                              f"{sims.runs - runs} simulations; it tries "
