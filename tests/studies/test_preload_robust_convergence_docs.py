@@ -292,3 +292,66 @@ def test_the_reading():
     window = [row for row in window_table() if row[2] != "—"]
     assert len(window) == 4
     assert max(abs(int(a) - int(b)) for _, a, b in window) == 2
+
+
+def test_the_steel_relays_fixed_band_reading():
+    """The steel relay at N = 32 with the fixed band: its answer 1-2 %
+    above the old band's, the samples open above the old answer only at
+    two fine-grid preloads within 2 % of it (one over the target, one at
+    it), none from there to 1.5 times the answer, where the band tried
+    every fine-grid preload."""
+    from contactsep.studies.preload_search import fine_band
+    fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
+    old = {r["n_modes"]: r for r in searches(OLD)["steel_relay"]}["32"]
+    answer = float(fixed["robust_min_preload_lb"])
+    before = float(old["robust_min_preload_lb"])
+    assert 0.01 < answer / before - 1 < 0.02
+    assert (fixed["n_open"], fixed["n"], fixed["robust_tested"]) == \
+        ("0", "100", "55")
+    ran = tried("steel_relay", "32", FIXED)
+    assert len(ran) == 55
+    opened = [(p, k) for p, k, _ in ran if p > before and k]
+    assert [k for _, k in opened] == [2, 1]
+    assert all(p < before * 1.02 for p, _ in opened)
+    assert opened[0][0] < answer < opened[1][0]     # 1 of 100: allowed
+    tried_at = {f"{p:.6g}" for p, _, _ in ran}
+    band = [p for p in fine_band(answer) if answer < p <= 1.5 * answer]
+    assert band and all(f"{p:.6g}" in tried_at for p in band)
+
+
+STEEL_CHECK = ("| preload (lb) | open of 100, N = 32 (fine-grid search) | "
+               "N = 64 (check) |")
+
+
+def steel_check_table() -> list[list[str]]:
+    """The steel relay's samples at 64 modes at the preloads checked
+    there, beside the fixed band's search at 32 modes ('—': not
+    tried)."""
+    fine = {g6(p): str(k) for p, k, _ in tried("steel_relay", "32", FIXED)}
+    ran = sorted((r for r in rows(CHECK) if r["design"] == "steel_relay"
+                  and r["n_modes"] == "64"),
+                 key=lambda r: float(r["preload_lb"]))
+    return [[f"{float(r['preload_lb']):.7g}", fine.get(g6(r["preload_lb"]),
+                                                       "—"), r["n_open"]]
+            for r in ran]
+
+
+def test_the_steel_relays_check_at_n64_is_the_study():
+    """The table is the check's file; the check ran the search's 100
+    samples and tolerance at its answer and every fine-grid preload
+    within 2 % either side; none opens at 64 modes, where at 32 the
+    window 1 % above the old answer opened 2 of 100."""
+    from contactsep.studies.preload_search import fine_band
+    assert table(section(TITLE), STEEL_CHECK) == steel_check_table()
+    fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
+    answer = float(fixed["robust_min_preload_lb"])
+    ran = [r for r in rows(CHECK) if r["design"] == "steel_relay"]
+    assert {(r["samples"], r["ys_tolerance"], r["n"], r["n_failed"])
+            for r in ran} == {(fixed["samples"], fixed["ys_tolerance"],
+                               fixed["samples"], "0")}
+    near = {f"{p:.6g}" for p in fine_band(answer)
+            if 0.98 * answer <= p <= 1.02 * answer}
+    assert {g6(r["preload_lb"]) for r in ran} == near | {g6(repr(answer))}
+    assert all(r["n_open"] == "0" for r in ran)
+    assert ["2", "0", "1"] == [k for _, k, _ in steel_check_table()
+                               if k != "—"][:3]
