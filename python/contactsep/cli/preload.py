@@ -153,7 +153,7 @@ def _p_target(text):
 
 def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
-    from contactsep.studies.design_preload import preload
+    from contactsep.studies.design_preload import journal_inputs, preload
     from contactsep.studies.preload import DEFAULT_MODES
     from contactsep.studies.preload_robust import parse_tolerances
     from contactsep.studies.runner import _progress
@@ -173,11 +173,10 @@ def run(args: argparse.Namespace) -> int:
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
-    inputs = dict(design=design, model=args.model, settings=settings,
-                  tolerance=list(args.tolerance), p_target=p_target,
-                  samples=args.samples, seed=args.seed, verify=True,
-                  converge=args.converge, perturbation=args.perturbation)
-    journal = _open_journal(args, inputs)
+    journal = _open_journal(args, journal_inputs(
+        design, args.model, settings, tolerance=args.tolerance,
+        p_target=p_target, samples=args.samples, seed=args.seed,
+        converge=args.converge, perturbation=args.perturbation))
     bar = _progress(None, enabled)
     if bar is not None:
         bar.unit = "run"

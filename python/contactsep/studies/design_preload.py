@@ -206,10 +206,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         finer = design.replace(n_modes=_doubled(design.n_modes))
         verify_settings = {**settings, "dt": probe.dt / 2}
         _probe(finer, model, verify_settings)
-    inputs = dict(design=design, model=model, settings=settings,
-                  tolerance=list(tolerance), p_target=p_target,
-                  samples=samples, seed=seed, verify=verify,
-                  converge=converge, perturbation=perturbation)
+    inputs = journal_inputs(design, model, settings, tolerance=tolerance,
+                            p_target=p_target, samples=samples, seed=seed,
+                            verify=verify, converge=converge,
+                            perturbation=perturbation)
     with _journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
         found = _search(design, model, settings, sims, ceiling)
@@ -309,6 +309,18 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes),
         **(converged or {}), **spread)
+
+
+def journal_inputs(design, model: str, settings: dict, *, tolerance=(),
+                   p_target=DEFAULT_P_TARGET, samples=None, seed=0,
+                   verify=True, converge=None, perturbation=None) -> dict:
+    """What a search's journal must have been made with to be continued
+    (its manifest): :func:`preload`'s arguments that choose the
+    simulations it asks for."""
+    return dict(design=design, model=model, settings=settings,
+                tolerance=list(tolerance), p_target=p_target,
+                samples=samples, seed=seed, verify=verify,
+                converge=converge, perturbation=perturbation)
 
 
 @contextlib.contextmanager
