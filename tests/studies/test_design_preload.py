@@ -16,6 +16,7 @@ import warnings
 import numpy as np
 import pytest
 from design_family import FAMILY
+from planted_preload import threshold as _threshold
 
 import contactsep
 from contactsep import output
@@ -28,15 +29,7 @@ from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep import chunk_inputs
 
 # a planted physics: the search sees only whether a run has an event
-
-def _threshold(design, settings) -> float:
-    """The fake's threshold: a quarter of the largest preload the
-    design takes x (1 + 1/N) x (1 + dt/1e-7), so that half the step and
-    twice the modes move it by a known amount."""
-    n = design.n_modes if isinstance(design.n_modes, int) else max(
-        design.n_modes)
-    return 0.25 * largest_preload(design) * (1.0 + 1.0 / n) * (
-        1.0 + settings.get("dt", 5e-8) / 1e-7)
+# (the threshold: tests/planted_preload.py)
 
 
 def _planted(window=None):
