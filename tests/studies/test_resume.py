@@ -162,6 +162,22 @@ def test_a_changed_input_refuses_to_resume(tmp_path, capsys):
     assert status == 0, err
 
 
+def test_chunks_made_by_other_code_are_refused(tmp_path, capsys,
+                                               monkeypatch):
+    command = _outputs(tmp_path, [*EQ23, "--resume"])
+    _killed_at(command, "write", 2)
+    from contactsep.studies import code_digest
+    original = code_digest.code_digest
+    monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
+    status, _, err = _run(capsys, command)
+    assert status == 2
+    assert err.count("\n") == 1
+    assert "(code_sha256 differs); rerun without --resume" in err
+    monkeypatch.setattr(code_digest, "code_digest", original)
+    status, _, err = _run(capsys, command)
+    assert status == 0, err
+
+
 def test_without_resume_an_earlier_runs_chunks_are_dropped(tmp_path,
                                                            capsys):
     command = _outputs(tmp_path, [*EQ23, "--resume"])

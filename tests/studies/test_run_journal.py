@@ -350,3 +350,22 @@ def test_a_real_search_killed_on_two_workers_resumes_to_the_same_bytes(
     assert again.stdout == reference.stdout
     data = json.loads(again.stdout)
     assert data["robust"]["checked"] and data["simulations"] > kept
+
+
+def test_a_journal_made_by_other_code_is_refused(planted_preload, tmp_path,
+                                                 capsys, monkeypatch):
+    path = tmp_path / "p.csv"
+    command = [*COMMAND, "--csv", str(path), "--resume"]
+    _killed_at(command, 30)
+    from contactsep.studies import code_digest
+    original = code_digest.code_digest
+    monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
+    status, _, err = _run(capsys, command)
+    assert status == 2
+    assert err == (f"contactsep: error: --resume: the unfinished search in "
+                   f"{path} (.p.csv.resume) was made with other inputs "
+                   f"(code_sha256 differs); rerun without --resume, or "
+                   f"remove it, to start afresh\n")
+    monkeypatch.setattr(code_digest, "code_digest", original)
+    status, _, err = _run(capsys, command)
+    assert status == 0, err

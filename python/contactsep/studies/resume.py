@@ -3,7 +3,7 @@
 A resumable sweep keeps each finished chunk in a directory beside its
 output, ``.NAME.resume/`` (NAME the --csv file, else the --parquet one):
 ``manifest.json``, what made the sweep (:meth:`SweepSpec.inputs`, the
-package version), and one ``FIRST-LAST.npz`` per chunk of designs
+package version, the digest of its code: :mod:`.code_digest`), and one ``FIRST-LAST.npz`` per chunk of designs
 FIRST..LAST-1, its output columns.  Every file is written to a temporary
 name and renamed into place, so a SIGKILL at any moment leaves whole
 chunks or none.  Rerun with ``--resume``, the sweep takes the chunks it
@@ -47,11 +47,13 @@ def store_path(output_path: str) -> str:
 
 def manifest(spec: SweepSpec) -> dict:
     """What a chunk's columns depend on: the sweep's inputs, its model
-    and backend, and the package version (another version may compute
-    other digits)."""
+    and backend, the package version (another version may compute
+    other digits) and the digest of the code that computes them (an
+    edited development install too: :mod:`.code_digest`)."""
     from contactsep import __version__
-    return {"contactsep": __version__, "model": spec.model,
-            "inputs": spec.inputs()}
+    from contactsep.studies.code_digest import STUDIES, code_digest
+    return {"contactsep": __version__, "code_sha256": code_digest(STUDIES),
+            "model": spec.model, "inputs": spec.inputs()}
 
 
 def differences(old: dict, new: dict, prefix: str = "") -> list:

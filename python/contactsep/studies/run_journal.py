@@ -8,8 +8,9 @@ checks, the perturbed and the robust searches) is deterministic: the
 same inputs ask for the same simulations in the same order, and each
 simulation gives the same result whatever process runs it.  The journal,
 a directory (``.NAME.resume/`` beside the --csv file), holds
-``manifest.json`` (what made the search: its inputs and the package
-version) and ``runs.jsonl``, one line per finished simulation: a digest
+``manifest.json`` (what made the search: its inputs, the package
+version and the digest of the simulation code,
+:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per finished simulation: a digest
 of its task (the function, the design, the model, every setting, the
 preload) and its result.  A line is written whole as its simulation
 ends, so a SIGKILL at any moment can cut only the last line, which is
@@ -106,6 +107,7 @@ class RunJournal:
     def __init__(self, path: str | os.PathLike, inputs: dict,
                  label: str | None = None) -> None:
         from contactsep import __version__
+        from contactsep.studies.code_digest import code_digest
         self.path = os.fspath(path)
         self.label = label or self.path
         self.results: dict = {}
@@ -113,7 +115,8 @@ class RunJournal:
         self.reused = 0
         self.recorded = 0
         self._file = None
-        wanted = {"contactsep": __version__, "inputs": canonical(inputs)}
+        wanted = {"contactsep": __version__, "code_sha256": code_digest(),
+                  "inputs": canonical(inputs)}
         self._lock = locks.take(self.path.rstrip(os.sep) + ".lock",
                                 self.label)
         try:
