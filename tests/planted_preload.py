@@ -59,3 +59,11 @@ def planted_preload(monkeypatch):
     monkeypatch.setattr(design_preload, "simulate", fake_simulate)
     monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
     CALLS.clear()
+
+
+def fake_zero_preload(task):
+    """A conclusion study's run with no preload: (largest lower gap,
+    open time, events) from the separator's thickness alone."""
+    design, _, _ = task
+    CALLS.append(("free", float(design.h2)))
+    return 0.01 * float(design.h2), 0.0, 0

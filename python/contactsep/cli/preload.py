@@ -5,12 +5,10 @@ tolerances (contactsep.studies.design_preload)."""
 from __future__ import annotations
 
 import argparse
-import contextlib
-import os
-import shutil
 import sys
 
 from contactsep import output
+from contactsep.cli import journal as journals
 from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
@@ -169,11 +167,11 @@ def run(args: argparse.Namespace) -> int:
                          "tolerance")
     output.check_targets({"--csv": args.csv},
                          {"--design": args.design} if args.design else {})
-    _check_resume(args)
+    journals.check_resume(args.resume, args.csv)
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
-    journal = _open_journal(args, journal_inputs(
+    journal = journals.open_journal(args.resume, args.csv, journal_inputs(
         design, args.model, settings, tolerance=args.tolerance,
         p_target=p_target, samples=args.samples, seed=args.seed,
         converge=args.converge, perturbation=args.perturbation))
@@ -189,12 +187,7 @@ def run(args: argparse.Namespace) -> int:
                          progress=None if bar is None else bar.update,
                          journal=journal, **settings)
     except BaseException as error:
-        if journal is not None and not len(journal):
-            journal.remove()        # refused, or stopped before a run
-        elif journal is not None:
-            journal.close()
-            if isinstance(error, (KeyboardInterrupt, output.Terminated)):
-                _say_kept(args.csv, journal)
+        journals.stopped(journal, args.csv, error)
         if not isinstance(error, InputError):
             raise
         # the simulation names its arguments; the command, its options
@@ -209,73 +202,12 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         with output.open_output(args.csv) as out:
             output.write_text(out, answer.csv_text())
-        _remove_journal(args.csv, journal)
+        journals.finished(args.csv, journal)
     if args.json:
         output.write_json(sys.stdout, answer.to_json_dict())
     else:
         output.write_text(sys.stdout, summary_text(answer))
     return 0
-
-
-def _check_resume(args) -> None:
-    """--resume needs a regular --csv file to keep its journal beside."""
-    import stat
-    if not args.resume:
-        return
-    if not args.csv:
-        raise InputError("--resume keeps the finished simulations beside "
-                         "the output: give --csv")
-    info = output.target_info(args.csv)
-    if info is not None and not stat.S_ISREG(info.st_mode):
-        raise InputError(f"--resume keeps the finished simulations beside "
-                         f"the output: {args.csv} is not a regular file")
-
-
-def _open_journal(args, inputs: dict):
-    """With --resume, the journal beside --csv (continued if one of the
-    same inputs is there), and a line on stderr saying what it holds."""
-    if not args.resume:
-        return None
-    from contactsep.studies.resume import store_path
-    from contactsep.studies.run_journal import RunJournal
-    path = store_path(args.csv)
-    journal = RunJournal(path, inputs, label=args.csv + " (" +
-                         os.path.basename(path) + ")")
-    if len(journal):
-        sys.stderr.write(f"contactsep: --resume: {len(journal):,} finished "
-                         f"simulations in {os.path.basename(path)}, not "
-                         f"run again\n")
-        sys.stderr.flush()
-    return journal
-
-
-def _say_kept(csv: str, journal) -> None:
-    """An interrupted search: where its finished simulations are."""
-    with contextlib.suppress(OSError, ValueError):
-        sys.stderr.write(f"contactsep: {csv}: not written; "
-                         f"{len(journal):,} finished simulations kept in "
-                         f"{os.path.basename(journal.path)}: rerun the "
-                         f"command to continue\n")
-        sys.stderr.flush()
-
-
-def _remove_journal(csv: str, journal) -> None:
-    """The CSV is in place: this search's journal, or a journal an
-    earlier run without --resume could not continue, is obsolete."""
-    if journal is not None:
-        journal.remove()
-        return
-    from contactsep.output import locks
-    from contactsep.studies.resume import store_path
-    path = store_path(csv)
-    if not os.path.isdir(path):
-        return
-    try:
-        lock = locks.take(path + ".lock", csv)
-    except InputError:
-        return              # another command is continuing it
-    shutil.rmtree(path, ignore_errors=True)
-    locks.release(lock)
 
 
 def _g(value, unit="") -> str:

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
 from pathlib import Path
 
 from contactsep import output
+from contactsep.cli import journal as journals
 from contactsep.cli import sweep
 from contactsep.cli.design_options import (
     add_design_options,
@@ -28,6 +30,9 @@ from contactsep.studies.sweep_checks import CHATTER_UNUSED
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100
+#: The studies of three-beam simulations, which --resume can keep.
+RESUMABLE = ("preload", "conclusion3", "conclusion5", "conclusion6",
+             "conclusion7", "contact-points", "materials", "buttons")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -121,6 +126,14 @@ def register(commands: argparse._SubParsersAction) -> None:
                             f"processes for the simulations (default: the "
                             f"usable cores; at most {WORKERS_PER_CORE} a "
                             f"core)")
+    study.add_argument("--resume", action="store_true",
+                       help=f"{', '.join(RESUMABLE)} only: keep every "
+                            f"finished simulation beside the CSV (--csv "
+                            f"FILE, or DIR/NAME.csv of --out) in "
+                            f".FILE.resume/, and continue a study an "
+                            f"earlier run of the same command left there "
+                            f"(killed, interrupted): the same CSV as an "
+                            f"uninterrupted run")
     study.add_argument("--progress", choices=("auto", "always", "never"),
                        default="auto",
                        help="chatter, preload and conclusionN: a progress "
@@ -141,7 +154,7 @@ def _need_matplotlib() -> None:
     require_matplotlib()
 
 
-def _compute(name: str, args, overrides: dict):
+def _compute(name: str, args, overrides: dict, journal=None):
     from contactsep.studies import OWN_FIELDS, STUDIES
     from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
     from contactsep.studies.preload import FIXED as PRELOAD_FIXED
@@ -156,7 +169,7 @@ def _compute(name: str, args, overrides: dict):
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
     from contactsep.studies.recommendations import STUDIES as ADVICE
     if name in ADVICE:
-        return _recommendation(name, args, overrides)
+        return _recommendation(name, args, overrides, journal)
     searches = ("preload", *CONCLUSIONS)
     if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
@@ -183,9 +196,9 @@ def _compute(name: str, args, overrides: dict):
     if name == "conclusion4":
         return _conclusion4(args, overrides)
     if name == "buttons":
-        return _buttons(args, overrides)
+        return _buttons(args, overrides, journal)
     if name in searches:
-        return _search_study(name, args, overrides)
+        return _search_study(name, args, overrides, journal)
     if name == "separator-fit":
         if args.backend:
             raise InputError("study separator-fit computes the beams' "
@@ -229,7 +242,7 @@ def _conclusion4(args, overrides: dict):
         raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
 
 
-def _buttons(args, overrides: dict):
+def _buttons(args, overrides: dict, journal=None):
     """study buttons: open time and smallest preload against the
     button's shape and radius."""
     from contactsep.studies import buttons
@@ -241,10 +254,10 @@ def _buttons(args, overrides: dict):
                          "rig with each button")
     with _bar(args, None) as bar:
         return buttons.buttons(n_modes=n_modes, workers=args.workers,
-                               progress=bar)
+                               progress=bar, journal=journal)
 
 
-def _search_study(name: str, args, overrides: dict):
+def _search_study(name: str, args, overrides: dict, journal=None):
     """study preload and conclusion3|5|6|7: three-beam simulations with
     the preload search; their own model, N (default 32) and workers."""
     from contactsep.studies.conclusions import conclusion
@@ -255,7 +268,7 @@ def _search_study(name: str, args, overrides: dict):
     overrides = dict(overrides)
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
-               "workers": args.workers}
+               "workers": args.workers, "journal": journal}
     from contactsep.studies.search_checks import SearchError
     try:
         with _bar(args, None) as bar:
@@ -277,7 +290,7 @@ def _search_study(name: str, args, overrides: dict):
         raise InputError(f"{options}:{rest}") from None
 
 
-def _recommendation(name: str, args, overrides: dict):
+def _recommendation(name: str, args, overrides: dict, journal=None):
     """study contact-points and materials (the thesis's recommendations
     3 and 4): three-beam simulations, Hertz contact; N and workers."""
     from contactsep.studies.recommendations import STUDIES as ADVICE
@@ -289,7 +302,8 @@ def _recommendation(name: str, args, overrides: dict):
     own = {k: v for k, v in overrides.items() if k not in fields_from_file(
         args) or k not in fixed}
     with _bar(args, None) as bar:
-        return study(workers=args.workers, progress=bar, **own)
+        return study(workers=args.workers, progress=bar, journal=journal,
+                     **own)
 
 
 @contextlib.contextmanager
@@ -350,6 +364,7 @@ def run_study(args: argparse.Namespace) -> int:
                          "or --png)")
     overrides = design_overrides(args)
     check_targets(args, _study_targets(args, names))
+    csv = _study_csv(args)
     if args.png or args.out:
         _need_matplotlib()          # before anything is computed
     if args.name == "all":
@@ -366,7 +381,16 @@ def run_study(args: argparse.Namespace) -> int:
         print("chatter: skipped (45 three-beam simulations, 20 s or more;"
               " contactsep study chatter --out DIR writes it)")
         return 0
-    study = _compute(args.name, args, overrides)
+    if args.resume and args.out and csv is not None:
+        # the journal lies beside DIR/NAME.csv: DIR is made now
+        Path(args.out).mkdir(parents=True, exist_ok=True)
+    journal = journals.open_journal(args.resume, csv, _journal_inputs(
+        args, overrides)) if csv is not None else None
+    try:
+        study = _compute(args.name, args, overrides, journal)
+    except BaseException as error:
+        journals.stopped(journal, csv, error)
+        raise
     sys.stdout.write(study.table_text())
     if args.csv:
         _write_csv(args.csv, study)
@@ -377,4 +401,30 @@ def run_study(args: argparse.Namespace) -> int:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         _save(study, out, args.dpi)
+    if csv is not None:
+        journals.finished(csv, journal)
     return 0
+
+
+def _study_csv(args):
+    """The CSV a study of simulations keeps its --resume journal beside
+    (--csv, else --out's NAME.csv); None for a study of eq. 23, or
+    without a CSV.  --resume is refused where it has nothing to keep."""
+    csv = args.csv or (os.path.join(args.out, f"{args.name}.csv")
+                       if args.out else None)
+    if args.name not in RESUMABLE:
+        if args.resume:
+            raise InputError(f"--resume: study {args.name} runs no "
+                             f"three-beam simulations to keep (it is for "
+                             f"{', '.join(RESUMABLE)})")
+        return None
+    journals.check_resume(args.resume, csv, give="--csv or --out")
+    return csv
+
+
+def _journal_inputs(args, overrides: dict) -> dict:
+    """What makes a study's simulations, for its journal's manifest (the
+    journal keys every simulation by its whole task too)."""
+    return {"study": args.name, "model": args.model,
+            "damping": args.damping, "converge": args.converge,
+            "alpha": args.alpha, "design": overrides}

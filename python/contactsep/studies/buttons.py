@@ -41,10 +41,13 @@ def _zero_preload(task):
 
 
 def buttons(n_modes: int = MODES, radii=RADII, shapes=SHAPES, *,
-            workers=None, progress=None) -> Study:
+            workers=None, progress=None, journal=None) -> Study:
     """Open time and smallest preload against the button's shape and
     radius (module docstring); ``progress(k)`` is called as k more
-    simulations finish."""
+    simulations finish;
+    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    that keeps every finished simulation and answers those it holds
+    (``study NAME --resume``), or None."""
     for shape in shapes:
         if shape not in SHAPES:
             raise ValueError(f"shapes: found {shape!r}, expected "
@@ -53,7 +56,8 @@ def buttons(n_modes: int = MODES, radii=RADII, shapes=SHAPES, *,
     rows = [(shape, float(radius)) for shape in shapes for radius in radii]
     settings = [{"button": shape, "button_radius": radius,
                  "t_end": LISTING_TAU_S} for shape, radius in rows]
-    with Simulations(workers, progress=progress) as sims:
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
         free = sims.map(_zero_preload, [(design, s) for s in settings])
         found = [min_preloads([design], "hertz", s, simulations=sims)[0]
                  for s in settings]

@@ -103,13 +103,16 @@ def _columns(name: str, values, single, base) -> dict:
 
 def conclusion(name: str, model: str = "hertz",
                n_modes: int = DEFAULT_MODES, *, dt=None, workers=None,
-               progress=None, **overrides) -> Study:
+               progress=None, journal=None, **overrides) -> Study:
     """One of the studies (module docstring): the parameter's columns,
     then y3_max_in (eq. 23 as printed, the thesis's measure, same N),
     max_lower_gap_in, circuit_open_s, n_events (no preload) and
     min_preload_lb; any other design field overridden by keyword;
     ``dt`` the stepper's step (default: the model's); ``progress(k)``
-    is called as k more simulations finish (a bar)."""
+    is called as k more simulations finish (a bar);
+    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    that keeps every finished simulation and answers those it holds
+    (``study NAME --resume``), or None."""
     from contactsep.errors import shown
     from contactsep.studies.search_checks import SearchError, check_search
     if name not in STUDIES:
@@ -127,7 +130,8 @@ def conclusion(name: str, model: str = "hertz",
     # the thesis rig's converged step and the listing's window, given
     settings["dt"] = DEFAULT_DT[model] if dt is None else dt
     settings["t_end"] = LISTING_TAU_S
-    with Simulations(workers, progress=progress) as sims:
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
         free = sims.map(_zero_preload, [(d, model, settings)
                                         for d in designs])
         found = min_preloads(designs, model, settings, simulations=sims)

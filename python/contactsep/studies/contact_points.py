@@ -65,13 +65,16 @@ def _opening(task):
 def contact_points(*, n_modes: int = MODES, dt: float = DT,
                    ratios=RATIOS, preloads=(0.0, PRELOAD),
                    min_preload: bool = False, workers=None, progress=None,
-                   **overrides) -> Study:
+                   journal=None, **overrides) -> Study:
     """Opening of the circuit against where each contact touches the
     separator (module docstring): one row per preload and (x2, x2_lower)
     of the grid ``ratios`` x ``ratios`` (fractions of L2); any other
     design field overridden by keyword; ``min_preload`` adds the preload
     search's answer (slow); ``progress(k)`` is called as k more
-    simulations finish (a bar).
+    simulations finish (a bar);
+    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    that keeps every finished simulation and answers those it holds
+    (``study NAME --resume``), or None.
 
     Returns
     -------
@@ -95,7 +98,8 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
     pairs = [(a * length, b * length) for a in ratios for b in ratios]
     designs = [base.replace(x2=a, x2_lower=b) for a, b in pairs]
     settings = {"dt": dt, "t_end": LISTING_TAU_S}
-    with Simulations(workers, progress=progress) as sims:
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
         rows = sims.map(_opening, [(d, p, settings) for p in preloads
                                    for d in designs])
         found = min_preloads(designs, "hertz", settings, simulations=sims) \

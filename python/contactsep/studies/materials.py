@@ -66,12 +66,15 @@ def _run(task):
 def materials(*, n_modes: int = MODES, contacts=tuple(MATERIALS),
               separators=tuple(MATERIALS), preloads=(0.0, PRELOAD),
               min_preload: bool = False, workers=None, progress=None,
-              **overrides) -> Study:
+              journal=None, **overrides) -> Study:
     """Opening of the circuit against the materials of the contacts
     (their buttons) and of the separator (module docstring): one row per
     law, preload, contact material and separator material; any other
     design field overridden by keyword; ``progress(k)`` is called as k
-    more simulations finish (a bar).
+    more simulations finish (a bar);
+    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    that keeps every finished simulation and answers those it holds
+    (``study NAME --resume``), or None.
 
     Returns
     -------
@@ -110,7 +113,8 @@ def materials(*, n_modes: int = MODES, contacts=tuple(MATERIALS),
                 tasks.append((design, preload, {**extra(c, s), "nu": c.nu},
                               settings))
                 rows.append((law, preload, c, s))
-    with Simulations(workers, progress=progress) as sims:
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
         answers = sims.map(_run, tasks)
         found = min_preloads(designs, "hertz", settings, simulations=sims) \
             if min_preload else []

@@ -254,7 +254,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
                   damping: str = "none", dt=None,
                   workers: int | None = None, thicknesses=THICKNESSES,
                   heights=HEIGHTS, settings=None, progress=None,
-                  converge=False, **overrides) -> Study:
+                  converge=False, journal=None, **overrides) -> Study:
     """The chart: one row per (d, y_s), columns model, n_modes, d_in,
     ys_in, min_preload_lb; any other design field overridden by keyword;
     ``damping`` the Hertz contact's (none: elastic; flores: calibrated
@@ -263,7 +263,10 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ``progress(k)`` is called as k more simulations finish (a bar);
     ``converge``: each row checked at 2N, dt/2 and searched again where
     it fails, up to checks at N = 128 (or at the N given;
-    :mod:`contactsep.studies.preload_converge`)."""
+    :mod:`contactsep.studies.preload_converge`);
+    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    that keeps every finished simulation and answers those it holds
+    (``study NAME --resume``), or None."""
     from contactsep.studies import search_checks as checks
     checks.check_search("preload", model, MODELS, n_modes, workers,
                         overrides, True)
@@ -285,7 +288,8 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     settings.update(extra)
     step = DEFAULT_DT[model] if dt is None else dt
     columns, converged, again = {}, [], []
-    with Simulations(workers, progress=progress) as sims:
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
         found = min_preloads(designs, model, settings, simulations=sims)
         if largest is not None:
             columns, converged, again = chart_columns(rows, lambda n, idx: [
