@@ -10,10 +10,10 @@ from __future__ import annotations
 import json
 import math
 import os
-import signal
 
 import numpy as np
 import pytest
+from forked import killed_at
 
 from contactsep.cli import main as cli_main
 from contactsep.studies import resume, runner, sweep, writers
@@ -48,31 +48,12 @@ def _killed_at(args, where: str, count: int) -> None:
     ``count``-th call of ``where`` (the CSV writer's write or close, the
     store's save or remove): the state on disk of a command killed
     there."""
-    pid = os.fork()
-    if pid == 0:
-        try:
-            calls = [0]
-            owner, name = {
-                "write": (writers.CsvWriter, "write"),
-                "close": (writers.CsvWriter, "close"),
-                "save": (resume.ChunkStore, "save"),
-                "remove": (resume.ChunkStore, "remove")}[where]
-            original = getattr(owner, name)
-
-            def killing(self, *a, **k):
-                calls[0] += 1
-                if calls[0] >= count:
-                    os.kill(os.getpid(), signal.SIGKILL)
-                return original(self, *a, **k)
-            setattr(owner, name, killing)
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, 1)
-            os.dup2(devnull, 2)
-            cli_main(list(args))
-        finally:
-            os._exit(3)
-    _, code = os.waitpid(pid, 0)
-    assert os.WIFSIGNALED(code) and os.WTERMSIG(code) == signal.SIGKILL
+    owner, name = {
+        "write": (writers.CsvWriter, "write"),
+        "close": (writers.CsvWriter, "close"),
+        "save": (resume.ChunkStore, "save"),
+        "remove": (resume.ChunkStore, "remove")}[where]
+    killed_at(args, owner, name, count)
 
 
 @pytest.fixture(scope="module")

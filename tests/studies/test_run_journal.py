@@ -22,6 +22,7 @@ import sys
 import numpy as np
 import pytest
 from design_family import FAMILY
+from forked import killed_at, sigkill, terminated_at
 from planted_preload import CALLS, fake_event, fake_sample
 
 from contactsep.cli import main
@@ -42,33 +43,20 @@ def _run(capsys, args) -> tuple[int, str, str]:
     return status, captured.out, captured.err
 
 
+def _cut_and_kill(self, args) -> None:
+    """Half of the line of the run being kept, then SIGKILL."""
+    key, _ = args
+    self._file.write('{"key": "' + key[:20])
+    self._file.flush()
+    sigkill(self, args)
+
+
 def _killed_at(args, count: int, cut: bool = False) -> None:
     """Run the command in a forked child that SIGKILLs itself at the
     ``count``-th simulation it would keep (``cut``: after writing half
     of that one's line)."""
-    pid = os.fork()
-    if pid == 0:
-        try:
-            calls = [0]
-            original = RunJournal.record
-
-            def killing(self, key, result):
-                calls[0] += 1
-                if calls[0] >= count:
-                    if cut:
-                        self._file.write('{"key": "' + key[:20])
-                        self._file.flush()
-                    os.kill(os.getpid(), signal.SIGKILL)
-                return original(self, key, result)
-            RunJournal.record = killing
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, 1)
-            os.dup2(devnull, 2)
-            main(list(args))
-        finally:
-            os._exit(3)
-    _, code = os.waitpid(pid, 0)
-    assert os.WIFSIGNALED(code) and os.WTERMSIG(code) == signal.SIGKILL
+    killed_at(args, RunJournal, "record", count,
+              _cut_and_kill if cut else sigkill)
 
 
 @pytest.fixture
@@ -276,27 +264,7 @@ def test_sigterm_says_where_the_finished_simulations_are(planted_preload,
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path), "--resume"]
     err = tmp_path / "err.txt"
-    pid = os.fork()
-    if pid == 0:
-        try:
-            calls = [0]
-            original = RunJournal.record
-
-            def terminating(self, key, result):
-                original(self, key, result)
-                calls[0] += 1
-                if calls[0] == 25:
-                    os.kill(os.getpid(), signal.SIGTERM)
-            RunJournal.record = terminating
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, 1)
-            sys.stderr = open(err, "w", encoding="utf-8")
-            status = main(list(command))
-            sys.stderr.flush()
-        finally:
-            os._exit(status if "status" in locals() else 3)
-    _, code = os.waitpid(pid, 0)
-    assert os.WIFEXITED(code) and os.WEXITSTATUS(code) == 143
+    terminated_at(command, RunJournal, "record", 25, err)
     kept = len((tmp_path / ".p.csv.resume" / "runs.jsonl").read_text()
                .splitlines())
     assert kept >= 25

@@ -12,10 +12,9 @@ not the physics."""
 from __future__ import annotations
 
 import os
-import signal
-import sys
 
 import pytest
+from forked import killed_at, terminated_at
 from planted_preload import CALLS, fake_zero_preload
 
 from contactsep.cli import main
@@ -48,26 +47,7 @@ def _run(capsys, args) -> tuple[int, str, str]:
 def _killed_at(args, count: int) -> None:
     """Run the command in a forked child that SIGKILLs itself at the
     ``count``-th simulation it would keep."""
-    pid = os.fork()
-    if pid == 0:
-        try:
-            calls = [0]
-            original = RunJournal.record
-
-            def killing(self, key, result):
-                calls[0] += 1
-                if calls[0] >= count:
-                    os.kill(os.getpid(), signal.SIGKILL)
-                return original(self, key, result)
-            RunJournal.record = killing
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, 1)
-            os.dup2(devnull, 2)
-            main(list(args))
-        finally:
-            os._exit(3)
-    _, code = os.waitpid(pid, 0)
-    assert os.WIFSIGNALED(code) and os.WTERMSIG(code) == signal.SIGKILL
+    killed_at(args, RunJournal, "record", count)
 
 
 @pytest.mark.parametrize("name", list(STUDIES))
@@ -151,27 +131,7 @@ def test_sigterm_says_where_the_finished_simulations_are(planted,
     path = tmp_path / "s.csv"
     command = [*STUDIES["conclusion5"], "--csv", str(path), "--resume"]
     err = tmp_path / "err.txt"
-    pid = os.fork()
-    if pid == 0:
-        try:
-            calls = [0]
-            original = RunJournal.record
-
-            def terminating(self, key, result):
-                original(self, key, result)
-                calls[0] += 1
-                if calls[0] == 12:
-                    os.kill(os.getpid(), signal.SIGTERM)
-            RunJournal.record = terminating
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, 1)
-            sys.stderr = open(err, "w", encoding="utf-8")
-            status = main(list(command))
-            sys.stderr.flush()
-        finally:
-            os._exit(status if "status" in locals() else 3)
-    _, code = os.waitpid(pid, 0)
-    assert os.WIFEXITED(code) and os.WEXITSTATUS(code) == 143
+    terminated_at(command, RunJournal, "record", 12, err)
     kept = len((tmp_path / ".s.csv.resume" / "runs.jsonl").read_text()
                .splitlines())
     assert kept >= 12
