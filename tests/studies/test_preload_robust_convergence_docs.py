@@ -7,6 +7,7 @@ same tolerance draws.  Reads files only."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -323,13 +324,22 @@ STEEL_CHECK = ("| preload (lb) | open of 100, N = 32 (fine-grid search) | "
                "N = 64 (check) |")
 
 
+def steel_answer_check() -> list[dict]:
+    """The check rows of the steel relay around its fixed-band answer at
+    32 modes (within 2 % of it; the file holds the curve's check below
+    too)."""
+    fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
+    answer = float(fixed["robust_min_preload_lb"])
+    return [r for r in rows(CHECK) if r["design"] == "steel_relay"
+            and abs(float(r["preload_lb"]) / answer - 1.0) <= 0.0201]
+
+
 def steel_check_table() -> list[list[str]]:
     """The steel relay's samples at 64 modes at the preloads checked
     there, beside the fixed band's search at 32 modes ('—': not
     tried)."""
     fine = {g6(p): str(k) for p, k, _ in tried("steel_relay", "32", FIXED)}
-    ran = sorted((r for r in rows(CHECK) if r["design"] == "steel_relay"
-                  and r["n_modes"] == "64"),
+    ran = sorted((r for r in steel_answer_check() if r["n_modes"] == "64"),
                  key=lambda r: float(r["preload_lb"]))
     return [[f"{float(r['preload_lb']):.7g}", fine.get(g6(r["preload_lb"]),
                                                        "—"), r["n_open"]]
@@ -345,7 +355,8 @@ def test_the_steel_relays_check_at_n64_is_the_study():
     assert table(section(TITLE), STEEL_CHECK) == steel_check_table()
     fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
     answer = float(fixed["robust_min_preload_lb"])
-    ran = [r for r in rows(CHECK) if r["design"] == "steel_relay"]
+    ran = steel_answer_check()
+    assert {r["n_modes"] for r in ran} == {"64"}
     assert {(r["samples"], r["ys_tolerance"], r["n"], r["n_failed"])
             for r in ran} == {(fixed["samples"], fixed["ys_tolerance"],
                                fixed["samples"], "0")}
@@ -355,3 +366,104 @@ def test_the_steel_relays_check_at_n64_is_the_study():
     assert all(r["n_open"] == "0" for r in ran)
     assert ["2", "0", "1"] == [k for _, k, _ in steel_check_table()
                                if k != "—"][:3]
+
+
+STEEL_CURVE = ("| preload (lb) | open of 100, N = 32 | open of 100, N = 64 "
+               "| open of 100, N = 128 |")
+QUANTILES = "| p_target | N = 32 (lb) | N = 64 (lb) | change |"
+#: The fine curve's bracket: the two scan preloads the searches tried.
+LOW, HIGH = 2.0 ** -2.75, 2.0 ** -2.5
+
+
+def steel_counts(n_modes: str) -> dict:
+    """{preload: (n_open, n)} of every preload the steel relay's samples
+    ran at ``n_modes``: the searches' (both bands: the same samples,
+    the same counts where both tried) and the checks'."""
+    found = {}
+    for r in rows(TESTED):
+        if r["design"] == "steel_relay" and r["n_modes"] == n_modes:
+            found[float(r["preload_lb"])] = (int(r["n_open"]), int(r["n"]))
+    for r in rows(CHECK):
+        if r["design"] == "steel_relay" and r["n_modes"] == n_modes:
+            found[float(r["preload_lb"])] = (int(r["n_open"]), int(r["n"]))
+    return found
+
+
+def _at(counts: dict, p: float) -> str:
+    """The count at ``p`` (to the six digits the searches' file keeps)."""
+    near = [k for q, (k, _) in counts.items() if abs(q / p - 1) < 5e-6]
+    return str(near[0]) if near else "—"
+
+
+def steel_curve_table() -> list[list[str]]:
+    """The steel relay's samples open at every preload from the scan's
+    2^-2.75 to 2^-2.5 lb that the check ran, by N."""
+    counts = {n: steel_counts(n) for n in ("32", "64", "128")}
+    preloads = sorted({p for p in counts["32"]
+                       if LOW * (1 - 1e-5) <= p <= HIGH * (1 + 1e-5)})
+    return [[f"{p:.4f}", *(_at(counts[n], p) for n in ("32", "64", "128"))]
+            for p in preloads]
+
+
+def strict_answer(counts: dict, p_target: float) -> float:
+    """The smallest tried preload at and above which every tried preload
+    has p_open <= p_target (the robust search's rule, on what was
+    tried)."""
+    tried = sorted(counts.items())
+    for i, (p, _) in enumerate(tried):
+        if all(k <= p_target * n for _, (k, n) in tried[i:]):
+            return p
+    return math.nan
+
+
+def quantile_table() -> list[list[str]]:
+    steel = {n: steel_counts(n) for n in ("32", "64")}
+    out = []
+    for target in (0.3, 0.2, 0.1, 0.05):
+        a32, a64 = (strict_answer(steel[n], target) for n in ("32", "64"))
+        out.append([f"{target:g}", f"{a32:.4f}", f"{a64:.4f}",
+                    pct(repr(a64 / a32 - 1.0))])
+    return out
+
+
+def test_the_steel_curve_and_its_answers_are_the_study():
+    assert table(section(TITLE), STEEL_CURVE) == steel_curve_table()
+    assert table(section(TITLE), QUANTILES) == quantile_table()
+
+
+def test_the_steel_curve_reading():
+    """The check ran the search's samples at every fine-grid preload
+    strictly between the scan's 2^-2.75 and 2^-2.5 lb, at 32 and 64
+    modes; the page's reading of it, from the file: not monotone, a
+    third fewer openings at 64 modes, the counts it quotes, and the
+    robust answer holding at 2N where p_open is 0.2-0.3 but not at 0.1
+    and 0.05."""
+    from contactsep.studies.preload_search import FINE_RATIO
+    fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
+    grid = [FINE_RATIO ** j for j in range(-200, -170)
+            if LOW < FINE_RATIO ** j < HIGH]
+    assert len(grid) == 18
+    ran = {n: sorted((float(r["preload_lb"]), int(r["n_open"]))
+                     for r in rows(CHECK) if r["design"] == "steel_relay"
+                     and r["n_modes"] == n and LOW < float(r["preload_lb"])
+                     < HIGH)
+           for n in ("32", "64")}
+    for n in ("32", "64"):
+        assert [p for p, _ in ran[n]] == pytest.approx(grid, rel=1e-12)
+        assert all((r["samples"], r["ys_tolerance"], r["n"], r["n_failed"])
+                   == (fixed["samples"], fixed["ys_tolerance"],
+                       fixed["samples"], "0")
+                   for r in rows(CHECK) if r["design"] == "steel_relay"
+                   and r["n_modes"] == n)
+    assert sum(k for _, k in ran["32"]) == 298
+    assert sum(k for _, k in ran["64"]) == 203
+    # not monotone: after falling to 3, N = 32 rises to 14 again
+    k32 = [k for _, k in ran["32"]]
+    assert min(k32) == 3 and max(k32[k32.index(3):]) == 14
+    mid = {n: [k for p, k in ran[n] if 0.155 < p < 0.165]
+           for n in ("32", "64")}
+    assert (min(mid["32"]), max(mid["32"])) == (12, 20)
+    assert (min(mid["64"]), max(mid["64"])) == (3, 13)
+    changes = {row[0]: float(row[3].split()[0]) for row in quantile_table()}
+    assert abs(changes["0.3"]) <= 1.0 and abs(changes["0.2"]) <= 1.0
+    assert changes["0.1"] < -5.0 and changes["0.05"] < -5.0
