@@ -467,3 +467,33 @@ def test_the_steel_curve_reading():
     changes = {row[0]: float(row[3].split()[0]) for row in quantile_table()}
     assert abs(changes["0.3"]) <= 1.0 and abs(changes["0.2"]) <= 1.0
     assert changes["0.1"] < -5.0 and changes["0.05"] < -5.0
+
+
+def test_the_n128_column_reading():
+    """N = 128 ran the check's samples at every second preload from
+    0.1523 lb (as far as it went): within 4 of N = 64's counts from
+    0.1554 lb up, 6 or more below N = 32's from 0.1554 to 0.1648 lb,
+    within the 0.1 target from 0.1585 lb up; 35, 17 and 28 at 0.1523
+    lb; N = 64's own p_target 0.1 answer 0.1600 lb."""
+    counts = {n: steel_counts(n) for n in ("32", "64", "128")}
+    ran = sorted(p for p in counts["128"] if LOW < p < HIGH)
+    assert len(ran) >= 4
+    assert all(b / a == pytest.approx(1.0099 ** 2, rel=1e-9)
+               for a, b in zip(ran, ran[1:]))
+    first = ran[0]
+    assert [_at(counts[n], first) for n in ("32", "64", "128")] == \
+        ["35", "17", "28"]
+    for p in ran[1:]:
+        k32, k64, k128 = (int(_at(counts[n], p)) for n in ("32", "64",
+                                                            "128"))
+        assert abs(k128 - k64) <= 4
+        if p < 0.165:
+            assert k32 - k128 >= 6
+        if p > 0.158:
+            assert k128 <= 10
+    assert strict_answer(counts["64"], 0.1) == pytest.approx(
+        FINE_RATIO_64_ANSWER, rel=1e-12)
+
+
+#: N = 64's p_target 0.1 answer, the fine-grid preload 1.0099^-186 lb.
+FINE_RATIO_64_ANSWER = 1.0099 ** -186
