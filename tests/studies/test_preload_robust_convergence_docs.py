@@ -472,7 +472,7 @@ def test_the_steel_curve_reading():
 def test_the_n128_column_reading():
     """N = 128 ran the check's samples at every second preload from
     0.1523 lb (as far as it went): within 4 of N = 64's counts from
-    0.1554 lb up, 6 or more below N = 32's from 0.1554 to 0.1648 lb,
+    0.1554 lb up, 6 or more below N = 32's from 0.1554 to 0.1616 lb,
     within the 0.1 target from 0.1585 lb up; 35, 17 and 28 at 0.1523
     lb; N = 64's own p_target 0.1 answer 0.1600 lb."""
     counts = {n: steel_counts(n) for n in ("32", "64", "128")}
@@ -487,7 +487,7 @@ def test_the_n128_column_reading():
         k32, k64, k128 = (int(_at(counts[n], p)) for n in ("32", "64",
                                                             "128"))
         assert abs(k128 - k64) <= 4
-        if p < 0.165:
+        if p < 0.162:
             assert k32 - k128 >= 6
         if p > 0.158:
             assert k128 <= 10
