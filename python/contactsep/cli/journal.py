@@ -1,6 +1,6 @@
-"""``--resume`` for the commands of preload searches (``preload``,
-``study preload``, ``study conclusionN``): every finished simulation
-kept beside the output CSV in ``.FILE.resume/``
+"""``--resume`` for the commands of three-beam simulations
+(``preload``, and the studies of ``cli.studies.RESUMABLE``): every
+finished simulation kept beside the output CSV in ``.FILE.resume/``
 (:class:`contactsep.studies.run_journal.RunJournal`), what the command
 says about it, and its removal once the CSV is in place."""
 

@@ -381,11 +381,11 @@ def run_study(args: argparse.Namespace) -> int:
         print("chatter: skipped (45 three-beam simulations, 20 s or more;"
               " contactsep study chatter --out DIR writes it)")
         return 0
-    if args.resume and args.out and csv is not None:
+    if args.resume and not args.csv:
         # the journal lies beside DIR/NAME.csv: DIR is made now
         Path(args.out).mkdir(parents=True, exist_ok=True)
     journal = journals.open_journal(args.resume, csv, _journal_inputs(
-        args, overrides)) if csv is not None else None
+        args, overrides))
     try:
         study = _compute(args.name, args, overrides, journal)
     except BaseException as error:
