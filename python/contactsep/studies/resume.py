@@ -3,8 +3,9 @@
 A resumable sweep keeps each finished chunk in a directory beside its
 output, ``.NAME.resume/`` (NAME the --csv file, else the --parquet one):
 ``manifest.json``, what made the sweep (:meth:`SweepSpec.inputs`, the
-package version, the digest of its code: :mod:`.code_digest`), and one ``FIRST-LAST.npz`` per chunk of designs
-FIRST..LAST-1, its output columns.  Every file is written to a temporary
+package version, the digest of its code: :mod:`.code_digest`), and one
+``FIRST-LAST.npz`` per chunk of designs FIRST..LAST-1, its output
+columns.  Every file is written to a temporary
 name and renamed into place, so a SIGKILL at any moment leaves whole
 chunks or none.  Rerun with ``--resume``, the sweep takes the chunks it
 finds, computes the designs between them, and writes the outputs afresh

@@ -10,8 +10,8 @@ simulation gives the same result whatever process runs it.  The journal,
 a directory (``.NAME.resume/`` beside the --csv file), holds
 ``manifest.json`` (what made the search: its inputs, the package
 version and the digest of the simulation code,
-:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per finished simulation: a digest
-of its task (the function, the design, the model, every setting, the
+:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line
+per finished simulation: a digest of its task (the function, the design, the model, every setting, the
 preload) and its result.  A line is written whole as its simulation
 ends, so a SIGKILL at any moment can cut only the last line, which is
 then dropped.  Rerun on the same journal, the search takes each result
