@@ -72,3 +72,25 @@ def terminated_at(args, owner, name: str, count: int, stderr) -> None:
     code = _in_child(on_call(owner, name, count, lambda self, args: os.kill(
         os.getpid(), signal.SIGTERM), after=True), args, stderr)
     assert os.WIFEXITED(code) and os.WEXITSTATUS(code) == 143
+
+
+def terminated_then_resumed(command, path, count: int) -> None:
+    """The resumable command ``command`` (its CSV at ``path``, with
+    ``--resume``) stopped by SIGTERM after its ``count``-th finished
+    simulation: no CSV, one line on stderr naming the journal beside it
+    and what it holds; the same command run again finishes it, writes
+    the CSV and removes the journal."""
+    from contactsep.studies.run_journal import RunJournal
+
+    err = path.parent / "terminated-stderr.txt"
+    journal = path.parent / f".{path.name}.resume"
+    terminated_at(command, RunJournal, "record", count, err)
+    kept = len((journal / "runs.jsonl").read_text().splitlines())
+    assert kept >= count
+    assert err.read_text() == (f"contactsep: {path}: not written; {kept} "
+                               f"finished simulations kept in "
+                               f"{journal.name}: rerun the command to "
+                               f"continue\n")
+    assert not path.exists()
+    assert main(command) == 0 and path.exists()
+    assert not journal.exists()

@@ -22,7 +22,7 @@ import sys
 import numpy as np
 import pytest
 from design_family import FAMILY
-from forked import killed_at, sigkill, terminated_at
+from forked import killed_at, sigkill, terminated_then_resumed
 from planted_preload import CALLS, fake_event, fake_sample
 
 from contactsep.cli import main
@@ -262,19 +262,8 @@ def test_sigterm_says_where_the_finished_simulations_are(planted_preload,
     one line on stderr naming the journal and what it holds, and the
     same command with --resume finishes it."""
     path = tmp_path / "p.csv"
-    command = [*COMMAND, "--csv", str(path), "--resume"]
-    err = tmp_path / "err.txt"
-    terminated_at(command, RunJournal, "record", 25, err)
-    kept = len((tmp_path / ".p.csv.resume" / "runs.jsonl").read_text()
-               .splitlines())
-    assert kept >= 25
-    assert err.read_text() == (f"contactsep: {path}: not written; {kept} "
-                               f"finished simulations kept in "
-                               f".p.csv.resume: rerun the command to "
-                               f"continue\n")
-    assert not path.exists()
-    assert main(command) == 0 and path.exists()
-    assert not (tmp_path / ".p.csv.resume").exists()
+    terminated_then_resumed([*COMMAND, "--csv", str(path), "--resume"],
+                            path, 25)
 
 
 def test_a_real_search_killed_on_two_workers_resumes_to_the_same_bytes(

@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 
 import pytest
-from forked import killed_at, terminated_at
+from forked import killed_at, terminated_then_resumed
 from planted_preload import CALLS, fake_zero_preload
 
 from contactsep.cli import main
@@ -128,20 +128,11 @@ def test_without_resume_a_leftover_journal_goes(planted, tmp_path, capsys):
 
 def test_sigterm_says_where_the_finished_simulations_are(planted,
                                                          tmp_path):
+    """SIGTERM mid-study: no CSV, one line naming the journal, and the
+    same command finishes it."""
     path = tmp_path / "s.csv"
-    command = [*STUDIES["conclusion5"], "--csv", str(path), "--resume"]
-    err = tmp_path / "err.txt"
-    terminated_at(command, RunJournal, "record", 12, err)
-    kept = len((tmp_path / ".s.csv.resume" / "runs.jsonl").read_text()
-               .splitlines())
-    assert kept >= 12
-    assert err.read_text() == (f"contactsep: {path}: not written; {kept} "
-                               f"finished simulations kept in "
-                               f".s.csv.resume: rerun the command to "
-                               f"continue\n")
-    assert not path.exists()
-    assert main(command) == 0 and path.exists()
-    assert not (tmp_path / ".s.csv.resume").exists()
+    terminated_then_resumed(
+        [*STUDIES["conclusion5"], "--csv", str(path), "--resume"], path, 12)
 
 
 @pytest.mark.parametrize("argv, message", [
