@@ -241,8 +241,10 @@ def test_a_sweep_counts_blown_up_designs_as_status_7(capsys):
 @pytest.mark.parametrize("signum, code", [(2, 130), (15, 143)])
 @pytest.mark.parametrize("args", [
     # the regression: 5 s of work given Ctrl-C at 2 s exited 0
-    # after finishing (a child process: 3e8 steps x modes and more)
-    ["--n-modes", "1024", "--t-end", "0.15"],
+    # after finishing (a child process: 3e8 steps x modes and more; dt
+    # given: the design's own step at N = 1024, 6.8e-10 s, exceeds the
+    # work budget over 0.15 s, a refusal before any work)
+    ["--n-modes", "1024", "--dt", "5e-8", "--t-end", "0.15"],
     # below the forked size: the thread and the compiled loop's flag
     ["--stepper", "fixed", "--n-modes", "16", "--dt", "1e-8"],
 ])
