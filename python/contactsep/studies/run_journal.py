@@ -8,17 +8,18 @@ checks, the perturbed and the robust searches) is deterministic: the
 same inputs ask for the same simulations in the same order, and each
 simulation gives the same result whatever process runs it.  The journal,
 a directory (``.NAME.resume/`` beside the --csv file), holds
-``manifest.json`` (what made the search: its inputs, the package
-version and the digest of the simulation code,
-:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line
-per finished simulation: a digest of its task (the function, the design, the model, every setting, the
-preload) and its result.  A line is written whole as its simulation
-ends, so a SIGKILL at any moment can cut only the last line, which is
-then dropped.  Rerun on the same journal, the search takes each result
-the journal holds instead of simulating it, and its answer, notes and
-CSV are those of an uninterrupted run.  A journal made with other inputs
-is refused in one line; a second command on the same journal is refused
-while the first runs (``.NAME.resume.lock``, held with flock).
+``manifest.json`` (what made the search: its inputs, the package version
+and the digest of the simulation code,
+:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per
+finished simulation: a digest of its task (the function, the design, the
+model, every setting, the preload) and its result.  A line is written
+whole as its simulation ends, so a SIGKILL at any moment can cut only
+the last line, which is then dropped.  Rerun on the same journal, the
+search takes each result the journal holds instead of simulating it, and
+its answer, notes and CSV are those of an uninterrupted run.  A journal
+made with other inputs is refused in one line; a second command on the
+same journal is refused while the first runs (``.NAME.resume.lock``,
+held with flock).
 """
 
 from __future__ import annotations
