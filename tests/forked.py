@@ -10,6 +10,7 @@ import signal
 import sys
 
 from contactsep.cli import main
+from contactsep.studies.run_journal import RunJournal
 
 
 def _in_child(patch, args, stderr=None) -> int:
@@ -80,8 +81,6 @@ def terminated_then_resumed(command, path, count: int) -> None:
     simulation: no CSV, one line on stderr naming the journal beside it
     and what it holds; the same command run again finishes it, writes
     the CSV and removes the journal."""
-    from contactsep.studies.run_journal import RunJournal
-
     err = path.parent / "terminated-stderr.txt"
     journal = path.parent / f".{path.name}.resume"
     terminated_at(command, RunJournal, "record", count, err)
