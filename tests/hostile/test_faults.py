@@ -18,6 +18,7 @@ import time
 import numpy as np
 import pytest
 from hostile_cli import refusal
+from kept_chunks import kept_designs
 
 from contactsep import output
 from contactsep.cli import main as cli_main
@@ -465,10 +466,11 @@ def test_a_dask_worker_killed_mid_sweep_costs_only_its_chunk():
     assert all(np.array_equal(a[k], b[k], equal_nan=True) for k in a)
 
 
-def test_sigterm_leaves_a_parquet_file_that_says_it_is_partial(tmp_path):
-    """SIGTERM at a few seconds: the old file was replaced by ~2,000 of
-    40,000 rows with no word that it was partial."""
-    pq = pytest.importorskip("pyarrow.parquet")
+def test_sigterm_leaves_the_old_parquet_file_and_the_chunks(tmp_path):
+    """SIGTERM at a few seconds: the old file was once replaced by ~2,000
+    of 40,000 rows with no word that it was partial.  The old file stays;
+    the finished chunks are kept beside it, and one line says so."""
+    pytest.importorskip("pyarrow.parquet")
     target = tmp_path / "x.parquet"
     target.write_text("old")
     process = _start(["sweep", "--model", "hertz", "--vary",
@@ -485,11 +487,9 @@ def test_sigterm_leaves_a_parquet_file_that_says_it_is_partial(tmp_path):
     finally:
         _kill_group(process)
     assert process.returncode == 143
-    if target.read_bytes() == b"old":
-        return              # stopped before any row: the old file kept
-    metadata = pq.read_metadata(target)
-    assert metadata.metadata[b"partial"] == b"true"
-    note = metadata.metadata[b"interrupted"].decode()
-    assert note == f"interrupted after {metadata.num_rows} of 40000 designs"
-    assert err == (f"contactsep: {target}: partial, {note}; add --resume to "
-                   f"keep the chunks of the next run\n")
+    assert target.read_bytes() == b"old"
+    done = kept_designs(target)
+    assert err == (f"contactsep: interrupted after {done} of 40000 designs; "
+                   f"{target} not replaced; the finished chunks are kept in "
+                   f"{tmp_path / '.x.parquet.resume'}: the same command with "
+                   f"--resume finishes the sweep\n")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import resource
 import signal
 import stat
@@ -17,6 +18,7 @@ import time
 
 import pytest
 from hostile_cli import debris, device, main, refusal, run
+from kept_chunks import kept_designs
 
 OLD = "old contents\n"
 
@@ -93,11 +95,12 @@ def test_a_second_sweep_on_the_same_csv_is_refused(tmp_path):
         first.send_signal(signal.SIGINT)
         err = first.communicate(timeout=60)[1]
     assert first.returncode == 130, err
-    lines = path.read_text().splitlines()
-    assert lines[-1].startswith("# interrupted after ")
-    rows = [line for line in lines if not line.startswith("#")]
-    assert len(rows) > 1 and all(r.count(",") == 5 for r in rows)
-    assert debris(tmp_path) == []
+    # the old file stays under its name; the finished chunks beside it
+    assert path.read_text() == OLD
+    done = int(re.search(r"interrupted: (\d+) of 100000000 designs", err
+                         ).group(1))
+    assert done > 0 and kept_designs(path) == done
+    assert debris(tmp_path) == [".out.csv.resume"]
 
 
 @pytest.mark.parametrize("args, message", [

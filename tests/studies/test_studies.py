@@ -17,14 +17,16 @@ import time
 import extremum_reference as reference
 import numpy as np
 import pytest
+from kept_chunks import kept_designs
 from sweep_collect import Collect
 
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
+from contactsep.studies import runner, sweep
+
 # the thesis studies' design: eq. 23's lower response as printed
 from contactsep.studies.study import thesis_design
-from contactsep.studies import runner, sweep
 
 
 def test_fig5_grid_and_trends():
@@ -272,7 +274,13 @@ def test_gather_finished_takes_only_finished_chunks():
 
 
 def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
-    path = tmp_path / "s.csv"
+    """Interrupted at the third chunk: no file under the final name, the
+    two finished chunks in the store, and a resumed sweep writes the
+    bytes of an uninterrupted one."""
+    path, whole = tmp_path / "s.csv", tmp_path / "whole.csv"
+    runner.run_sweep(spec(), writers=[runner.CsvWriter(str(whole),
+                                                       spec())],
+                     chunk_size=10, workers=1)
     original = sweep.evaluate_chunk
     calls = []
 
@@ -287,10 +295,15 @@ def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
                        match="interrupted: 20 of 200 designs"):
         runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path),
                                                            spec())],
-                         chunk_size=10, workers=1)
-    rows = [r for r in path.read_text().splitlines()
-            if not r.startswith("#")]
-    assert len(rows) == 1 + 20
+                         chunk_size=10, workers=1,
+                         store=runner.ChunkStore(str(path), spec(),
+                                                 resume=False))
+    assert not path.exists() and kept_designs(path) == 20
+    monkeypatch.setattr(runner, "evaluate_chunk", original)
+    runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path), spec())],
+                     chunk_size=10, workers=1,
+                     store=runner.ChunkStore(str(path), spec()))
+    assert path.read_bytes() == whole.read_bytes()
 
 
 def test_sweep_command_json(tmp_path, capsys):
@@ -385,9 +398,8 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
         while sum(p.stat().st_size for p in tmp_path.glob(".out.csv.*.tmp")
                   ) < 10_000 and time.monotonic() < deadline:
             time.sleep(0.1)
-        # the workers' chunk files were in the test's scratch directory
-        assert [p.name for p in scratch.iterdir()
-                if p.name.startswith("contactsep-sweep-")]
+        # the workers' chunk files go to the store beside the output
+        assert list((tmp_path / ".out.csv.resume").glob("*.npz"))
         if signum == signal.SIGKILL:
             def workers():
                 return set(subprocess.run(
@@ -425,12 +437,11 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
             pass
         process.wait()
     assert not list(scratch.iterdir())
-    # the finished chunks, in place, whole lines, and a last line that
-    # says the sweep stopped; no temporary file or lock left
-    text = csv_path.read_text()
-    assert text.endswith("\n") and text.splitlines()[-1].startswith(
-        "# interrupted after ")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv",
+    # no file under the final name, the finished chunks kept beside it
+    # for --resume; no temporary file or lock left
+    assert not csv_path.exists()
+    kept_designs(csv_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".out.csv.resume",
                                                           "scratch"]
 
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import shutil
 import stat
 import sys
 import warnings
@@ -30,6 +29,7 @@ from contactsep.studies.chatter_sweep import (
 )
 from contactsep.studies.fields import SETTINGS
 from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+from contactsep.studies.runner import kept_note as runner_note
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
@@ -119,11 +119,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--parquet", metavar="FILE",
                        help="also write Parquet (needs pyarrow)")
     sweep.add_argument("--resume", action="store_true",
-                       help="keep each finished chunk beside the --csv "
-                            "(else --parquet) file, in .FILE.resume/, and "
-                            "continue a sweep an earlier run of the same "
-                            "command left there (killed, interrupted): "
-                            "the same outputs as an uninterrupted run")
+                       help="continue a sweep an earlier run of the same "
+                            "command left unfinished (killed, interrupted) "
+                            "from the chunks it kept beside the --csv "
+                            "(else --parquet) file, in .FILE.resume/ (a "
+                            "sweep into a file always keeps them until "
+                            "its outputs are in place): the same outputs "
+                            "as an uninterrupted run")
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
     sweep.add_argument("--chunk-size", type=integer(1, MAX_CHUNK_SIZE),
@@ -194,19 +196,24 @@ def _settings(args: argparse.Namespace) -> dict:
             for name, (text, option) in typed.items() if text is not None}
 
 
-def _say_partial(writers, resume: bool) -> None:
-    """On stderr, each output an interrupted sweep left with its finished
-    rows only (the CSV's last comment and the Parquet metadata say so
-    too)."""
-    for writer in writers:
-        note = getattr(writer, "partial", None)
-        if note:
-            more = ("rerun the command to complete it" if resume else
-                    "add --resume to keep the chunks of the next run")
-            with contextlib.suppress(OSError, ValueError):
-                sys.stderr.write(f"contactsep: {writer.path}: partial, "
-                                 f"{printable(note)}; {more}\n")
-                sys.stderr.flush()
+def _regular_or_new(path: str) -> bool:
+    """Whether ``path`` is a regular file or none yet (a device or FIFO
+    output has no folder beside it for the chunks)."""
+    info = output.target_info(path)
+    return info is None or stat.S_ISREG(info.st_mode)
+
+
+def _say_unfinished(writers, store) -> None:
+    """On stderr, in one line, what a sweep stopped by SIGTERM left (it
+    otherwise prints nothing): how far it got, its outputs unchanged,
+    where its finished chunks are."""
+    note = next((getattr(w, "partial", None) for w in writers
+                 if getattr(w, "partial", None)), None)
+    if note:
+        with contextlib.suppress(OSError, ValueError):
+            sys.stderr.write(f"contactsep: {printable(note)}"
+                             f"{printable(runner_note(store, writers))}\n")
+            sys.stderr.flush()
 
 
 def run_sweep(args: argparse.Namespace) -> int:
@@ -244,7 +251,7 @@ def run_sweep(args: argparse.Namespace) -> int:
                              f"the output: {kept} is not a regular file")
     # every option checked: only now the scheduler and the files
     scheduler = runner.connect(args.scheduler) if args.scheduler else None
-    writers = []
+    writers, store = [], None
     try:
         if args.parquet:
             writers.append(NamedWriter(
@@ -255,12 +262,13 @@ def run_sweep(args: argparse.Namespace) -> int:
             writers.append(NamedWriter(
                 runner.CsvWriter(args.csv, spec, design=args.design),
                 "--csv", args.csv))
-        # the writers hold the outputs' locks: the chunks are this run's
-        store = runner.ChunkStore(kept, spec) if args.resume else None
-        if store is None and kept:
-            # a sweep started afresh: an earlier one's chunks are obsolete
-            from contactsep.studies.resume import store_path
-            shutil.rmtree(store_path(kept), ignore_errors=True)
+        # the writers hold the outputs' locks: the chunks are this run's.
+        # Every sweep into a file keeps its finished chunks beside it
+        # until the outputs are in place: one that does not finish leaves
+        # its old outputs as they were and its chunks for --resume (a
+        # sweep started afresh drops an earlier one's)
+        store = runner.ChunkStore(kept, spec, resume=args.resume) \
+            if kept and _regular_or_new(kept) else None
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
@@ -269,7 +277,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         for writer in writers:
             writer.abort()      # a no-op for a writer run_sweep closed
         if isinstance(error, output.Terminated):
-            _say_partial(writers, args.resume)   # else its error says so
+            _say_unfinished(writers, store)     # else its error says so
         raise
     finally:
         if scheduler is not None:

@@ -57,8 +57,9 @@ from contactsep.studies.writers import (  # noqa: F401 - the runner's API
 
 
 class SweepInterrupted(InputError):
-    """A sweep stopped by the user; the chunks before it are written.
-    The command reports it in one line and exits 130, as for Ctrl-C."""
+    """A sweep stopped by the user; its outputs are left as they were,
+    the chunks it finished are in its store (if it had one).  The
+    command reports it in one line and exits 130, as for Ctrl-C."""
 
     interrupted = True
 
@@ -378,10 +379,11 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     only): also report P(max y3 > threshold);
     ``workers``: local processes (default: the usable cores; 1 runs in
     this process; at most WORKERS_PER_CORE a core); ``scheduler``: a Dask
-    scheduler address (or Client).  An interrupt (Ctrl-C, SIGTERM)
-    closes the writers with the chunks already written, then raises
-    :class:`SweepInterrupted` (SIGTERM: the command's own exception); any
-    other error drops the writers' files (:meth:`CsvWriter.abort`).
+    scheduler address (or Client).  A sweep that does not finish (an
+    interrupt, Ctrl-C or SIGTERM: :class:`SweepInterrupted`, SIGTERM the
+    command's own exception; a dead worker; any other error) drops the
+    writers' files (:meth:`CsvWriter.abort`: the old file, or none,
+    stays under the final name); what it finished is in ``store``.
     ``store``: a :class:`~contactsep.studies.resume.ChunkStore` that
     keeps every finished chunk (and gives those an earlier run kept),
     removed when the writers' files are in place.
@@ -427,8 +429,8 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
         except KeyboardInterrupt:
             ended = "interrupted"
             raise SweepInterrupted(
-                f"interrupted: {done} of {spec.size} designs were evaluated "
-                f"and written") from None
+                f"interrupted: {done} of {spec.size} designs were "
+                f"evaluated{kept_note(store, writers)}") from None
         except OSError:
             ended = "failed"        # a file that cannot be trusted
             raise
@@ -453,11 +455,26 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     return result
 
 
+def kept_note(store, writers) -> str:
+    """What an unfinished sweep left: its outputs unchanged, its finished
+    chunks in ``store`` for a rerun with --resume (or nothing kept)."""
+    files = ", ".join(str(w.path) for w in writers
+                      if getattr(w, "path", None))
+    unchanged = f"; {files} not replaced" if files else ""
+    if store is None:
+        return unchanged
+    return (f"{unchanged}; the finished chunks are kept in {store.path}: "
+            f"the same command with --resume finishes the sweep")
+
+
 def _close(writers, ended: str | None, note: str) -> None:
-    """Put every writer's file in place (a sweep that stopped early with
-    ``note`` as its last comment: its finished chunks are kept), or drop
-    them all after a write error; the first error of a writer is raised
-    after the others are closed."""
+    """Close every writer: a finished sweep's files go in place; one
+    that stopped early (``note``: how far it got) closes them with
+    ``interrupted=note`` (a file writer then leaves the old file: its
+    finished chunks are the store's, which the command always keeps
+    beside its output; an in-memory one keeps its rows); after a write
+    error all are dropped.  The first error of a writer is raised after
+    the others are closed."""
     error = None
     for writer in writers:
         try:

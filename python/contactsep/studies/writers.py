@@ -77,9 +77,9 @@ def _row_format(columns: dict) -> str:
 class CsvWriter:
     """Streams chunks to a CSV file: '#' lines (what the sweep is), a
     header, the rows.  The rows go to a temporary file beside ``path``
-    as the sweep goes, renamed into place by :meth:`close` (an
-    interrupted sweep's finished chunks too, with a last comment line
-    saying so); :meth:`abort` (a failed sweep) leaves ``path`` as it was.
+    as the sweep goes, renamed into place by :meth:`close`; :meth:`abort`
+    (a failed sweep) and the close of one that stopped early leave
+    ``path`` as it was (its finished chunks are the sweep's store's).
     A second sweep writing ``path`` meanwhile is refused (a lock).
     ``design``: the ``--design`` file the designs start from (the first
     comment line names it)."""
@@ -111,14 +111,12 @@ class CsvWriter:
         self._handle.flush()
 
     def close(self, interrupted: str | None = None) -> None:
-        """Finish the file and put it in place; ``interrupted`` (what
-        was done) ends it with a comment line saying so."""
-        try:
-            if interrupted:
-                self._handle.write(csv_comments([interrupted]))
-        except BaseException:
+        """Finish the file and put it in place; a sweep that stopped
+        early (``interrupted``: how far it got) drops it instead, so
+        that a file under the final name is always a finished one."""
+        if interrupted:
             self._file.discard()
-            raise
+            return
         self._file.commit()
 
     def abort(self) -> None:
@@ -135,11 +133,8 @@ class ParquetWriter:
     """Streams chunks to a Parquet file (needs pyarrow), in row groups of
     ROW_GROUP rows; the file's metadata key ``contactsep`` holds what the
     CSV's comments say, as JSON (``title``, ``inputs``, ``notes``).
-    Written, locked and put in place as :class:`CsvWriter`'s file; an
-    interrupted sweep's file keeps its finished rows and says so in the
-    file's metadata: ``partial`` = ``true`` and ``interrupted`` = what
-    was done (the CSV's last comment).  ``design`` as for
-    :class:`CsvWriter`."""
+    Written, locked and put in place as :class:`CsvWriter`'s file.
+    ``design`` as for :class:`CsvWriter`."""
 
     def __init__(self, path: str, spec: SweepSpec | None = None,
                  design: str | None = None):
@@ -185,15 +180,12 @@ class ParquetWriter:
         self._pending_rows = rest.num_rows
 
     def close(self, interrupted: str | None = None) -> None:
-        if interrupted and self._writer is None and not self._pending:
-            self._file.discard()    # stopped before any row: keep the old
+        if interrupted:
+            self.abort()        # as CsvWriter's: the old file stays
             return
         try:
             self._flush(whole_groups=False)
             if self._writer is not None:
-                if interrupted:
-                    self._writer.add_key_value_metadata({
-                        "partial": "true", "interrupted": interrupted})
                 self._writer.close()
         except BaseException:
             self._file.discard()
