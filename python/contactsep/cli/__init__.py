@@ -2,7 +2,7 @@
 model, the contact dynamics and the studies.  Each layer's subcommands are
 registered by a module of this package (``contactsep.cli.restored``:
 legacy, replay, compare; ``.model``: model; ``.studies``: study, sweep;
-``.chatter``: chatter; ``.preload``: preload).
+``.chatter``: chatter; ``.preload``: preload; ``.report``: report).
 
 Errors are reported as ``contactsep: error: <message>`` on stderr with exit
 status 2; listings of the data sets before a bad one are printed first.
@@ -101,7 +101,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 #: The commands of each layer; module ``contactsep.cli.<layer>`` registers
 #: its own subcommands.
-_LAYERS = ("restored", "model", "studies", "chatter", "preload")
+_LAYERS = ("restored", "model", "studies", "chatter", "preload", "report")
 
 
 def _one_line_warning(message, category, filename, lineno, file=None,
@@ -142,6 +142,8 @@ def _main(argv: Sequence[str] | None) -> int:
     warnings.showwarning = _one_line_warning
     try:
         args = parser.parse_args(argv)
+        # the words given, for an output that names its command
+        args.argv = list(sys.argv[1:] if argv is None else argv)
         status = args.handler(args)
         sys.stdout.flush()
         return status

@@ -23,11 +23,6 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep preload``."""
     from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies.preload import DEFAULT_MODES, MODELS
-    from contactsep.studies.preload_robust import (
-        DEFAULT_P_TARGET,
-        DEFAULT_SAMPLES,
-        MAX_SAMPLES,
-    )
     from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
 
     parser = commands.add_parser(
@@ -71,23 +66,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default=None, metavar="IN",
                            help="gap above which a contact is open (in; "
                                 "default 1e-06)")
-    robust = parser.add_argument_group("robust answer")
-    robust.add_argument("--tolerance", action="append", default=[],
-                        metavar="'FIELD=normal(MEAN,SD)'|"
-                                "'FIELD=uniform(LO,HI)'",
-                        help="a design field's distribution (repeatable; "
-                             "the syntax of sweep --sample; quote it)")
-    robust.add_argument("--p-target", default=None, metavar="P",
-                        help=f"the largest acceptable p_open (default "
-                             f"{DEFAULT_P_TARGET:g})")
-    robust.add_argument("--samples", type=integer(1, MAX_SAMPLES),
-                        default=None, metavar="K",
-                        help=f"draws of the tolerances (default "
-                             f"{DEFAULT_SAMPLES}; each preload tried costs "
-                             f"K runs: raise it to resolve a p_open of 1 %%)")
-    robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
-                        help="seed of the draws (default 0; the same "
-                             "designs as sweep --sample with that seed)")
+    add_robust_options(parser)
     converging = run_group.add_mutually_exclusive_group()
     converging.add_argument(
         "--converge", nargs="?", const=True, default=None,
@@ -133,6 +112,33 @@ def register(commands: argparse._SubParsersAction) -> None:
                                 "terminal), always (needs tqdm), never")
     add_design_options(parser)
     parser.set_defaults(handler=run)
+
+
+def add_robust_options(parser: argparse.ArgumentParser) -> None:
+    """The robust answer's options (--tolerance, --p-target, --samples,
+    --seed), shared by ``preload`` and ``report``."""
+    from contactsep.studies.preload_robust import (
+        DEFAULT_P_TARGET,
+        DEFAULT_SAMPLES,
+        MAX_SAMPLES,
+    )
+    robust = parser.add_argument_group("robust answer")
+    robust.add_argument("--tolerance", action="append", default=[],
+                        metavar="'FIELD=normal(MEAN,SD)'|"
+                                "'FIELD=uniform(LO,HI)'",
+                        help="a design field's distribution (repeatable; "
+                             "the syntax of sweep --sample; quote it)")
+    robust.add_argument("--p-target", default=None, metavar="P",
+                        help=f"the largest acceptable p_open (default "
+                             f"{DEFAULT_P_TARGET:g})")
+    robust.add_argument("--samples", type=integer(1, MAX_SAMPLES),
+                        default=None, metavar="K",
+                        help=f"draws of the tolerances (default "
+                             f"{DEFAULT_SAMPLES}; each preload tried costs "
+                             f"K runs: raise it to resolve a p_open of 1 %%)")
+    robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
+                        help="seed of the draws (default 0; the same "
+                             "designs as sweep --sample with that seed)")
 
 
 def _p_target(text):

@@ -384,11 +384,10 @@ def _write(plt, fig, path, dpi: int) -> None:
         plt.close(fig)
 
 
-def save_chatter_png(result, path, dpi: int = 100) -> None:
+def chatter_figure(result, dpi: int = 100):
     """The two gaps against time, each on its own axis (the lower one,
-    which decides opening, is small), the open circuit shaded; written
-    to a temporary file beside ``path`` and renamed when finished (a
-    device written in place: :func:`contactsep.output.open_output`)."""
+    which decides opening, is small), the open circuit shaded: (pyplot,
+    figure); the caller closes the figure."""
     plt = _pyplot()
     fig, (upper, lower) = plt.subplots(
         2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
@@ -410,6 +409,14 @@ def save_chatter_png(result, path, dpi: int = 100) -> None:
     lower.set(xlabel="time from release (s)",
               ylabel="lower gap (0.001 in)")
     fig.tight_layout()
+    return plt, fig
+
+
+def save_chatter_png(result, path, dpi: int = 100) -> None:
+    """:func:`chatter_figure` written to a temporary file beside
+    ``path`` and renamed when finished (a device written in place:
+    :func:`contactsep.output.open_output`)."""
+    plt, fig = chatter_figure(result, dpi)
     try:
         with output.open_output(path, binary=True) as out:
             fig.savefig(out, format="png")

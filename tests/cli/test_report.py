@@ -1,0 +1,168 @@
+"""``contactsep report``: one self-contained HTML page for a design, its
+preload answer planted (a known threshold: tests/planted_preload.py) so
+that the page, not the search, is under test; opened in headless
+Chromium as a person would."""
+
+from __future__ import annotations
+
+import html.parser
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+from contactsep.cli import main
+from contactsep.model.names import FIELDS, OUTPUT_NAMES
+
+pytest.importorskip("matplotlib")
+
+#: A small steel relay of the design family (tests/design_family.py),
+#: N = 4 so that its two releases take seconds.
+RELAY = ["--L1", "1.2", "--b1", "0.25", "--h1", "0.01", "--L3", "1.2",
+         "--b3", "0.25", "--h3", "0.01", "--L2", "0.3", "--b2", "0.1",
+         "--h2", "0.05", "--ys", "0.02", "--E1", "30e6", "--E2", "30e6",
+         "--E3", "30e6", "--gamma1", "0.283", "--gamma2", "0.283",
+         "--gamma3", "0.283", "--n-modes", "4", "--workers", "1"]
+
+
+class _Page(html.parser.HTMLParser):
+    """The page's images, links, scripts and table cells."""
+
+    def __init__(self):
+        super().__init__()
+        self.images, self.links, self.scripts, self.cells = [], [], 0, []
+        self._cell = None
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "img":
+            self.images.append(attrs.get("src", ""))
+        elif tag in ("a", "link") and "href" in attrs:
+            self.links.append(attrs["href"])
+        elif tag == "script":
+            self.scripts += 1
+        elif tag == "td":
+            self._cell = ""
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell += data
+
+    def handle_endtag(self, tag):
+        if tag == "td" and self._cell is not None:
+            self.cells.append(self._cell)
+            self._cell = None
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    """The report of RELAY, planted preloads, without and with a
+    tolerance (the module's tests read the same two pages)."""
+    monkeypatch = pytest.MonkeyPatch()
+    from planted_preload import CALLS, fake_event, fake_sample, fake_simulate
+
+    from contactsep.studies import design_preload, preload, preload_robust
+    monkeypatch.setattr(preload, "_simulate_event", fake_event)
+    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
+    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
+    CALLS.clear()
+    folder = tmp_path_factory.mktemp("report")
+    paths = folder / "plain.html", folder / "robust.html"
+    try:
+        assert main(["report", *RELAY, "-o", str(paths[0])]) == 0
+        assert main(["report", *RELAY, "--tolerance",
+                     "h2=normal(0.05,0.001)", "--samples", "20",
+                     "-o", str(paths[1])]) == 0
+    finally:
+        monkeypatch.undo()
+    return [p.read_text() for p in paths], paths
+
+
+def _parsed(text):
+    parser = _Page()
+    parser.feed(text)
+    return parser
+
+
+def test_the_page_is_self_contained(page):
+    """No script, no link outside the page; every image inside it."""
+    for text in page[0]:
+        parsed = _parsed(text)
+        assert parsed.scripts == 0 and parsed.links == []
+        assert parsed.images and all(
+            src.startswith("data:image/png;base64,") for src in parsed.images)
+        assert text.startswith("<!DOCTYPE html>")
+
+
+def test_every_input_with_its_unit(page):
+    """Each field the relay was given, under its output name, beside its
+    unit as the names table prints it (an independent reading: the
+    options typed above)."""
+    cells = _parsed(page[0][0]).cells
+    given = dict(zip(RELAY[0:-4:2], RELAY[1:-4:2]))
+    for option, value in given.items():
+        field = option[2:]
+        name = OUTPUT_NAMES.get(field, field)
+        at = cells.index(name)
+        assert float(cells[at + 1]) == float(value)
+        assert cells[at + 2] == FIELDS[field][1]
+
+
+def test_the_answer_and_the_command(page):
+    """The planted threshold's answer (a quarter of the largest preload
+    x (1 + 1/N) x (1 + dt/1e-7), found to 1 % by the search) is on the
+    page, with the command that made it and the version."""
+    from planted_preload import threshold
+
+    from contactsep import __version__
+    from contactsep.model import Design
+    text = page[0][0]
+    assert f"contactsep {__version__}" in text
+    assert "contactsep report --L1 1.2" in text
+    design = Design(L1=1.2, b1=0.25, h1=0.01, L3=1.2, b3=0.25, h3=0.01,
+                    L2=0.3, b2=0.1, h2=0.05, ys=0.02, E1=30e6, E2=30e6,
+                    E3=30e6, gamma1=0.283, gamma2=0.283, gamma3=0.283,
+                    n_modes=4)
+    cells = _parsed(text).cells
+    answer = float(cells[cells.index("smallest preload at N = 4") + 1]
+                   .split()[0])
+    truth = threshold(design, {})
+    assert truth <= answer <= truth * 1.0101
+
+
+def test_the_robust_page_has_its_p_open_curve(page):
+    text = page[0][1]
+    assert "the robust preload" in text
+    assert len(_parsed(text).images) == len(_parsed(page[0][0]).images) + 1
+
+
+def _chromium():
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        if shutil.which(name):
+            return shutil.which(name)
+    return None
+
+
+@pytest.mark.skipif(_chromium() is None, reason="needs Chromium (CI "
+                    "installs Debian's chromium)")
+def test_the_page_opens_in_a_browser(page, tmp_path):
+    """Headless Chromium loads the page: its DOM has every image, and a
+    screenshot shows the figures (far more than a blank page's ink)."""
+    matplotlib_image = pytest.importorskip("matplotlib.image")
+    path = page[1][1]
+    browser = [_chromium(), "--headless", "--no-sandbox", "--disable-gpu",
+               f"--user-data-dir={tmp_path / 'profile'}"]
+    dom = subprocess.run(browser + ["--dump-dom", path.as_uri()],
+                         capture_output=True, text=True, timeout=120)
+    assert dom.returncode == 0, dom.stderr[-2000:]
+    assert dom.stdout.count("<img") == len(_parsed(page[0][1]).images)
+    shot = tmp_path / "page.png"
+    done = subprocess.run(browser + [f"--screenshot={shot}",
+                                     "--window-size=1200,3000",
+                                     path.as_uri()],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and shot.exists(), done.stderr[-2000:]
+    pixels = matplotlib_image.imread(shot)[..., :3]
+    ink = np.mean(np.any(pixels < 0.9, axis=-1))
+    assert ink > 0.03, ink
