@@ -10,7 +10,11 @@ import sys
 import warnings
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    with_sources,
+)
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
 
@@ -185,7 +189,8 @@ def run(args: argparse.Namespace) -> int:
         raise
     refuse_blown_up(result)
     if args.json:
-        output.write_json(sys.stdout, result.to_json_dict())
+        output.write_json(sys.stdout, with_sources(result.to_json_dict(),
+                                                   args))
     else:
         output.write_text(sys.stdout, summary_text(result, args.events))
     if args.csv:
