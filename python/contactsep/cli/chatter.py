@@ -15,6 +15,7 @@ from contactsep.cli.design_options import (
     design_overrides,
     with_sources,
 )
+from contactsep.cli.guards import drop_echoes
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
 
@@ -162,8 +163,10 @@ def run(args: argparse.Namespace) -> int:
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
-    if "e" in overrides and args.model == "hertz" and \
-            args.damping != "flores":
+    # a --design file's echo of the rig's e (model --json writes every
+    # field) is not the user's choice of e
+    if "e" in drop_echoes(args, overrides, ("e",)) and \
+            args.model == "hertz" and args.damping != "flores":
         warnings.warn("--e: elastic Hertz contact does not use the "
                       "coefficient of restitution (give --damping flores "
                       "to calibrate its damping to e)", ContactsepWarning)
