@@ -325,3 +325,14 @@ def test_a_hand_written_file_without_units_is_in_the_packages_units(
     same_fields(contactsep.load_design(printed), design)
     assert design.E2 == pytest.approx(30e6, rel=0.02)
     assert design.gamma2 == pytest.approx(0.283, rel=0.02)
+
+
+def test_a_study_notes_the_files_n_without_naming_one_default(capsys,
+                                                              tmp_path):
+    """Each study has its own N: the note names none."""
+    path = tmp_path / "my.json"
+    path.write_text('{"n_modes": 3}')
+    code, _, err = main(capsys, "study", "fig5", "--design", str(path))
+    assert code == 0, err
+    assert err == (f"contactsep: note: n_modes = 3 from the design file "
+                   f"{path} (instead of the command's own default)\n")

@@ -42,7 +42,7 @@ import dataclasses
 import sys
 import warnings
 
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import ContactsepWarning, InputError, printable
 from contactsep.model.design_file import NUMERICS
 from contactsep.studies import design_file
 from contactsep.studies import fields as F
@@ -252,7 +252,8 @@ _COMMAND_MODES = {"chatter": "contactsep.chatter.numerics",
 
 
 def _default_modes(command):
-    """The N a command runs at unless given (None: the study's own)."""
+    """The N a command runs at unless given (None: each study's own,
+    or not one number)."""
     import importlib
     if command in _COMMAND_MODES:
         return importlib.import_module(_COMMAND_MODES[command]).DEFAULT_MODES
@@ -274,9 +275,10 @@ def note_numerics(args: argparse.Namespace, values: dict) -> None:
             else str(value)
         default = _default_modes(getattr(args, "command", None))
         own = f"the command's default is {default}" if default is not None \
-            else "without it, the study's own default"
-        print(f"contactsep: note: {name} = {text} from the design file "
-              f"{args.design} ({own})", file=sys.stderr)
+            else "instead of the command's own default"
+        print(printable(f"contactsep: note: {name} = {text} from the "
+                        f"design file {args.design} ({own})"),
+              file=sys.stderr)
 
 
 def with_sources(data: dict, args: argparse.Namespace) -> dict:
