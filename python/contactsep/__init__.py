@@ -36,6 +36,7 @@ from contactsep.restored.result import Result
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 #: Names of the studies layer, imported on first use.
 _STUDIES_NAMES = {"read": "contactsep.studies.frames",
+                  "load_design": "contactsep.studies.design_file",
                   "preload": "contactsep.studies.design_preload",
                   "sweep": "contactsep.studies.sweep_result"}
 #: The layers, imported on first use.

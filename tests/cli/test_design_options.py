@@ -124,7 +124,10 @@ def test_model_json_keys_carry_their_units(capsys):
             "design"}
     for key in data:
         assert key in bare or UNIT_KEY.fullmatch(key), key
-    for key in data["design"]:
+    # the design's own keys, after the unit system they are in
+    assert list(data["design"])[0] == "units"
+    assert data["design"]["units"] == "us"
+    for key in list(data["design"])[1:]:
         field = fields.field_name(key)
         assert (UNIT_KEY.fullmatch(key) is not None) == bool(
             fields.unit(field)), key

@@ -38,7 +38,7 @@ DIMENSIONLESS = {
     "first_mode_share", "n_maxima", "data", "parameters", "static_correction", "dt_source",
     "contact", "law", "e_apparent", "button",
     "t_end_source", "verify", "dt_halvings", "energy_tolerance",
-    "alias_share",
+    "alias_share", "units", "n_modes_source",
     "verify_n_modes", "verify_status", "check_n_modes", "converged",
     "converged_n_modes", "converged_check_n_modes", "simulations",
     "contact_material",
@@ -149,7 +149,9 @@ def test_every_csv_column_is_in_the_table(outputs):
 
 
 def test_the_design_has_one_set_of_names(outputs):
-    model_design = outputs["model"]["design"]
+    model_design = dict(outputs["model"]["design"])
+    # a design file's unit system, then its fields (n_modes given here)
+    assert model_design.pop("units") == "us"
     chatter_design = outputs["chatter"]["inputs"]["design"]
     assert set(model_design) == set(chatter_design)
     # every field, but those shown only when given (x2_lower: None

@@ -10,7 +10,12 @@ import sys
 import warnings
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    with_sources,
+)
+from contactsep.cli.guards import drop_echoes
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
 
@@ -158,8 +163,10 @@ def run(args: argparse.Namespace) -> int:
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
-    if "e" in overrides and args.model == "hertz" and \
-            args.damping != "flores":
+    # a --design file's echo of the rig's e (model --json writes every
+    # field) is not the user's choice of e
+    if "e" in drop_echoes(args, overrides, ("e",)) and \
+            args.model == "hertz" and args.damping != "flores":
         warnings.warn("--e: elastic Hertz contact does not use the "
                       "coefficient of restitution (give --damping flores "
                       "to calibrate its damping to e)", ContactsepWarning)
@@ -185,7 +192,8 @@ def run(args: argparse.Namespace) -> int:
         raise
     refuse_blown_up(result)
     if args.json:
-        output.write_json(sys.stdout, result.to_json_dict())
+        output.write_json(sys.stdout, with_sources(result.to_json_dict(),
+                                                   args))
     else:
         output.write_text(sys.stdout, summary_text(result, args.events))
     if args.csv:

@@ -11,10 +11,12 @@ sweep, study, chatter): one option per field of
   design), checked by building that design; an error names the option
   as typed (``--d: found -0.1, expected a finite number > 0``).
 
-Precedence: ``--design FILE`` (a JSON object of fields, or the output of
-``contactsep model --json`` whose ``design`` it reads) is the starting
-design; the command line overrides it, and so do a study's own axes and
-a sweep's --vary and --sample (``fields_from_file(args)`` names the
+Precedence: ``--design FILE`` (a design file, read by
+:mod:`contactsep.studies.design_file` as ``contactsep.load_design``
+reads it: a JSON object of fields, or the output of ``contactsep model
+--json`` whose ``design`` it reads) is the starting design; the
+command line overrides it, and so do a study's own axes and a sweep's
+--vary and --sample (``fields_from_file(args)`` names the
 fields only the file gave).  An option given twice: the last one wins
 (a base command line with an override appended); two spellings of one
 field (``--d`` and ``--h2``, ``--set h2=``) with different values are
@@ -25,17 +27,24 @@ whether the preset or an explicit ``--E2`` (in a file the explicit
 fields win).  Values are read by
 :func:`contactsep.studies.fields.parse_value`, the one place that reads
 a field from text.
+
+A numerics field (n_modes) that only the file gave is used, and said so
+in one line on stderr (``contactsep: note: n_modes = 4 from the design
+file my.json (the command's default is 64)``); ``with_sources`` puts
+``n_modes_source`` ("given", "design file" or "default") in a
+command's JSON ``inputs``.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
+import sys
 import warnings
 
-from contactsep import output
-from contactsep.errors import ContactsepWarning, InputError
+from contactsep.errors import ContactsepWarning, InputError, printable
+from contactsep.model.design_file import NUMERICS
+from contactsep.studies import design_file
 from contactsep.studies import fields as F
 
 #: Where the command line's design values are kept: (field or name,
@@ -43,6 +52,9 @@ from contactsep.studies import fields as F
 _GIVEN = "design_given"
 #: Where design_overrides notes the fields only the --design file gave.
 _FROM_FILE = "design_from_file"
+#: Where design_overrides notes where each numerics field came from:
+#: "given" (the command line), "design file" or "default".
+_SOURCES = "design_numerics_sources"
 
 #: Option spellings of the fields whose option is not ``--FIELD``.
 _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
@@ -57,9 +69,6 @@ _SPELLINGS = {"h2": ("--d", "--h2"), "e": ("--e", "--restitution"),
 #: whose E, gamma and nu they fill.
 PRESETS = {"--material": "123", "--material1": "1", "--material2": "2",
            "--material3": "3"}
-#: The same in a --design file.
-_FILE_PRESETS = {option[2:]: members for option, members in
-                 PRESETS.items()}
 
 
 class _Preset(argparse.Action):
@@ -149,35 +158,18 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
 
 def design_overrides(args: argparse.Namespace) -> dict:
     """The design fields the user gave (Design field -> value), checked
-    by making the design; errors name the option as typed."""
+    by making the design; errors name the option as typed.  A numerics
+    field the --design file alone gave is noted on stderr (note_numerics).
+    """
     values, labels = {}, {}
     path = getattr(args, "design", None)
     if path:
-        data = _read_design_file(path)
-        for key, value in data.items():
-            if key in _FILE_PRESETS:
-                # the file's own fields win over its presets
-                for field, number in _preset(
-                        value, _FILE_PRESETS[key], f"{path}: {key}").items():
-                    values[field] = number
-                    labels[field] = f"{path}: {key}"
-        for key, value in data.items():
-            if key in _FILE_PRESETS:
-                continue
-            label = f"{path}: {key}"
-            field = F.field_name(key, label)
-            if field in labels and labels[field] not in (
-                    f"{path}: {k}" for k in _FILE_PRESETS):
-                # two names of one field ("d_in" and "h2"), refused as
-                # on the command line (issue 31: the last one won)
-                raise InputError(f"{label}: the {F.FIELDS[field][2]} is "
-                                 f"already given by {labels[field]}")
-            values[field] = F.parse_value(field, value, label)
-            labels[field] = label
+        values, labels = design_file.read_fields(path, f"--design {path}")
     typed = {}
     for field, option, text in getattr(args, _GIVEN, None) or ():
         if isinstance(field, tuple):    # --materialN NAME: E, gamma, nu
-            for name, number in _preset(text, field[1], option).items():
+            for name, number in design_file.preset_fields(
+                    text, field[1], option).items():
                 typed[name] = option
                 values[name] = number
                 labels[name] = f"{option} {text}"
@@ -205,10 +197,14 @@ def design_overrides(args: argparse.Namespace) -> dict:
             if field not in values:
                 values[field] = value
                 labels[field] = "--separator physical"
-    _check(values, labels)
+    design_file.make_design(values, labels)
     for message in unit_system_doubts(values, labels):
         warnings.warn(message, ContactsepWarning)
     setattr(args, _FROM_FILE, set(values) - set(typed))
+    setattr(args, _SOURCES, {name: "given" if name in typed else
+                             "design file" if name in values else "default"
+                             for name in NUMERICS})
+    note_numerics(args, values)
     return values
 
 
@@ -244,77 +240,58 @@ def unit_system_doubts(values: dict, labels: dict) -> list[str]:
     return doubts
 
 
-def _preset(name, members: str, label: str) -> dict:
-    """The fields a material preset fills, or an InputError naming the
-    option (or file key) as given."""
-    from contactsep.model.materials import material_fields
-    try:
-        return material_fields(name, members)
-    except InputError as error:
-        raise InputError(f"{label}: {error}") from None
-
-
 def fields_from_file(args: argparse.Namespace) -> set:
     """The fields of design_overrides(args) that only --design gave: a
     study's own axes and a sweep's varied fields take their place."""
     return set(getattr(args, _FROM_FILE, ()))
 
 
-#: The largest --design file read (a design is a few hundred bytes; the
-#: output of model --json with N = 100,000 modes about 10 MB).
-MAX_DESIGN_BYTES = 16 << 20
+#: The command whose default N is not the Design's -> where it is kept.
+_COMMAND_MODES = {"chatter": "contactsep.chatter.numerics",
+                  "preload": "contactsep.studies.preload"}
 
 
-def _read_design_file(path: str) -> dict:
-    with open(path, "rb") as handle:
-        raw = handle.read(MAX_DESIGN_BYTES + 1)
-    if len(raw) > MAX_DESIGN_BYTES:
-        raise InputError(f"--design {path}: larger than "
-                         f"{MAX_DESIGN_BYTES >> 20} MB, not a design")
-    try:
-        data = json.loads(raw.decode("utf-8"),
-                          object_pairs_hook=_no_duplicates)
-    except _DuplicateKey as error:
-        raise InputError(f"--design {path}: {error.args[0]}: given twice "
-                         f"(JSON keeps only the last; give it once)"
-                         ) from None
-    except (UnicodeDecodeError, json.JSONDecodeError) as error:
-        raise InputError(f"--design {path}: not a JSON file "
-                         f"({output.one_line(error)})") from None
-    except RecursionError:
-        raise InputError(f"--design {path}: not a design (JSON nested "
-                         f"too deeply)") from None
-    if isinstance(data, dict) and isinstance(data.get("design"), dict):
-        data = data["design"]
-    if not isinstance(data, dict):
-        raise InputError(f"--design {path}: expected a JSON object of "
-                         f"design fields")
-    return data
+def _default_modes(command):
+    """The N a command runs at unless given (None: each study's own,
+    or not one number)."""
+    import importlib
+    if command in _COMMAND_MODES:
+        return importlib.import_module(_COMMAND_MODES[command]).DEFAULT_MODES
+    if command in ("model", "sweep"):
+        from contactsep.model import Design
+        return Design.__dataclass_fields__["n_modes"].default
+    return None
 
 
-class _DuplicateKey(Exception):
-    """A JSON object with a key twice (args[0] the key)."""
+def note_numerics(args: argparse.Namespace, values: dict) -> None:
+    """One line on stderr for each numerics field the --design file
+    alone set: a file's N is a choice of numerics, not of the design,
+    and the command would otherwise have run at its own default."""
+    for name in NUMERICS:
+        if getattr(args, _SOURCES)[name] != "design file":
+            continue
+        value = values[name]
+        text = ",".join(map(str, value)) if isinstance(value, tuple) \
+            else str(value)
+        default = _default_modes(getattr(args, "command", None))
+        own = f"the command's default is {default}" if default is not None \
+            else "instead of the command's own default"
+        print(printable(f"contactsep: note: {name} = {text} from the "
+                        f"design file {args.design} ({own})"),
+              file=sys.stderr)
 
 
-def _no_duplicates(pairs) -> dict:
-    """json's object_pairs_hook: a dict, or _DuplicateKey."""
+def with_sources(data: dict, args: argparse.Namespace) -> dict:
+    """A command's JSON with ``n_modes_source`` ("given", "design file"
+    or "default") beside ``n_modes`` in its ``inputs``, as ``dt_source``
+    is beside ``dt_s``."""
+    sources = getattr(args, _SOURCES, None) or {}
+    inputs = data.get("inputs")
+    if not isinstance(inputs, dict):
+        return data
     out = {}
-    for key, value in pairs:
-        if key in out:
-            raise _DuplicateKey(key)
+    for key, value in inputs.items():
         out[key] = value
-    return out
-
-
-def _check(values: dict, labels: dict) -> None:
-    """Make the design once: its own checks, reported under the name
-    the user gave the field."""
-    from contactsep.model import thesis_design
-    try:
-        thesis_design(**values)
-    except InputError as error:
-        message = str(error)
-        field, sep, rest = message.partition(":")
-        if sep and field in labels:
-            message = f"{labels[field]}:{rest}"
-        raise InputError(message) from None
+        if key in sources:
+            out[f"{key}_source"] = sources[key]
+    return {**data, "inputs": out}

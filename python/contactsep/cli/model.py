@@ -12,6 +12,7 @@ from contactsep import output
 from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
+from contactsep.model.design_file import NUMERICS
 from contactsep.model.names import FLAGS, PER_MODE, RESULTS
 
 EXAMPLES = examples(
@@ -46,15 +47,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     modes.register(commands)
 
 
-def results_dict(design, result) -> dict:
-    """The design (output names, the form --design reads back) and every
-    result under a key that carries its unit."""
-    from contactsep.model.names import SHOWN_WHEN_GIVEN
-    from contactsep.studies.fields import describe
-    fields = {name: getattr(design, name) for name in design_fields()
-              if name not in SHOWN_WHEN_GIVEN
-              or getattr(design, name) is not None}
-    data = {"design": describe(fields)}
+def results_dict(design, result, numerics=()) -> dict:
+    """The design (its design file's object, the form --design and
+    contactsep.load_design read back: n_modes only where named in
+    ``numerics``, the fields given) and every result under a key that
+    carries its unit."""
+    from contactsep.model.design_file import file_fields
+    data = {"design": file_fields(design, numerics)}
     for name, key, _, _ in RESULTS:
         data[key] = float(getattr(result, name))
     for name, key in FLAGS:
@@ -69,18 +68,12 @@ def results_dict(design, result) -> dict:
     return data
 
 
-def design_fields() -> tuple:
-    import dataclasses
-
-    from contactsep.model import Design
-    return tuple(f.name for f in dataclasses.fields(Design))
-
-
 def run(args: argparse.Namespace) -> int:
     """Evaluate and print; status other than 0 is an error (exit 2)."""
     from contactsep.model import evaluate, status, thesis_design
 
-    design = thesis_design(**design_overrides(args))
+    overrides = design_overrides(args)
+    design = thesis_design(**overrides)
     result = evaluate(design, backend=args.backend)
     code = int(result.status)
     if code != status.OK:
@@ -95,7 +88,11 @@ def run(args: argparse.Namespace) -> int:
             warnings.warn(f"a later peak comes within 1e-12 of y3_{name}: "
                           f"t_{name} is the earliest", ContactsepWarning)
     if args.json:
-        output.write_json(sys.stdout, results_dict(design, result))
+        # n_modes only where asked for (issue 49): a file from --json
+        # would otherwise fix a simulation's N at eq. 23's default
+        output.write_json(sys.stdout, results_dict(
+            design, result, numerics=[n for n in NUMERICS
+                                      if n in overrides]))
         return 0
     for name, key, unit, label in RESULTS:
         print(f"{key:>13} = {float(getattr(result, name)):<13.6g} "

@@ -9,7 +9,11 @@ import sys
 
 from contactsep import output
 from contactsep.cli import journal as journals
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    with_sources,
+)
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
@@ -210,7 +214,8 @@ def run(args: argparse.Namespace) -> int:
             output.write_text(out, answer.csv_text())
         journals.finished(args.csv, journal)
     if args.json:
-        output.write_json(sys.stdout, answer.to_json_dict())
+        output.write_json(sys.stdout, with_sources(answer.to_json_dict(),
+                                                   args))
     else:
         output.write_text(sys.stdout, summary_text(answer))
     return 0

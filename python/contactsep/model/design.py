@@ -311,6 +311,13 @@ class Design:
         """A copy with some fields changed."""
         return dataclasses.replace(self, **changes)
 
+    def to_file(self, path) -> None:
+        """Write this design's file (``contactsep.load_design`` and
+        ``--design`` read it; contactsep.model.design_file): JSON keys
+        with units, ``"units": "us"``, n_modes only where not 4."""
+        from contactsep.model import design_file
+        design_file.write(self, path)
+
     def problems(self) -> list[str]:
         """One message per kind of out-of-range value (empty: all good):
         the kernel's own checks, then the model's domain (DOMAIN)."""

@@ -1,6 +1,7 @@
 """Tables as pandas DataFrames (issue 30, item 5): ``contactsep.read``
-reads any CSV or Parquet file the package writes, and
-:class:`DataFrameWriter` collects a sweep's rows in memory.
+reads any CSV or Parquet file the package writes (and a design file,
+as a Design), and :class:`DataFrameWriter` collects a sweep's rows in
+memory.
 
 Every CSV the package writes starts (and, if a sweep was interrupted,
 ends) with comment lines that begin with ``#``; ``pandas.read_csv``
@@ -24,27 +25,35 @@ from contactsep.errors import InputError
 
 #: Parquet files start with these bytes.
 _PARQUET_MAGIC = b"PAR1"
+#: How much of a file read() looks at to tell its kind (white space
+#: before a design file's "{" included).
+_SNIFF_BYTES = 4096
 
 
 def read(path):
     """The table in ``path`` (a CSV or Parquet file that contactsep
     wrote: a study, a sweep, ``chatter --csv``) as a DataFrame, with its
-    comment lines in ``attrs["comments"]``.
+    comment lines in ``attrs["comments"]``; or the design in a design
+    file (``Design.to_file``, ``contactsep model --json``), as
+    :func:`contactsep.load_design` reads it.
 
     Parameters
     ----------
     path : str or os.PathLike
-        The file.  Parquet is recognised by its first bytes, anything
-        else is read as CSV.
+        The file.  Parquet is recognised by its first bytes, a design
+        file by its first character other than white space, ``{`` (a
+        CSV file the package writes starts with ``#`` or a column name);
+        anything else is read as CSV.
 
     Returns
     -------
-    pandas.DataFrame
-        One column per column of the file, under the file's own names
-        (the quantity and its unit: ``y3_max_in``, ``t_s``);
+    pandas.DataFrame or contactsep.Design
+        A table: one column per column of the file, under the file's
+        own names (the quantity and its unit: ``y3_max_in``, ``t_s``);
         ``attrs["comments"]``: the ``#`` lines, in order, without the
         ``# `` (for Parquet: its title, notes and inputs);
         ``attrs["contactsep"]`` (Parquet only): its metadata as a dict.
+        A design file: the Design (pandas not needed).
 
     Examples
     --------
@@ -55,14 +64,17 @@ def read(path):
     >>> frame.columns.tolist()
     ['ys_in', 'd_in', 'y3_max_in', 't_max_s']
     """
-    pandas = output.require_pandas()
     try:
         with open(path, "rb") as handle:
-            head = handle.read(len(_PARQUET_MAGIC))
+            head = handle.read(_SNIFF_BYTES)
     except OSError as error:
         raise InputError(f"{os.fspath(path)}: {output.one_line(error)}") \
             from None
-    if head == _PARQUET_MAGIC:
+    if head.lstrip()[:1] == b"{":
+        from contactsep.studies.design_file import load_design
+        return load_design(path)
+    pandas = output.require_pandas()
+    if head[:len(_PARQUET_MAGIC)] == _PARQUET_MAGIC:
         return _read_parquet(pandas, path)
     return _read_csv(pandas, path)
 
