@@ -23,7 +23,7 @@ NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/")
 #: Commands run only in the slow set (a minute or a large file).
 SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
         "tolerance.csv", "study conclusion", "--preload 20",
-        "contactsep preload", "study separator-fit")
+        "contactsep preload", "study separator-fit", "contactsep report")
 #: A command's limit: the slowest example (chatter.md's robust preload
 #: search, said there to take about 18 minutes on two cores) fits with
 #: room for a loaded machine; below pytest's own per-test limit (1800 s).
