@@ -276,6 +276,10 @@ def run_sweep(args: argparse.Namespace) -> int:
     except BaseException as error:
         for writer in writers:
             writer.abort()      # a no-op for a writer run_sweep closed
+        if isinstance(error, OSError) and store is not None and \
+                not args.resume:
+            store.remove()      # a write error (a full disk): no place
+            #                     for a fresh sweep's chunks either
         if isinstance(error, output.Terminated):
             _say_unfinished(writers, store)     # else its error says so
         raise
