@@ -9,7 +9,11 @@ import warnings
 import numpy as np
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    in_units,
+)
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design_file import NUMERICS
@@ -90,9 +94,9 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         # n_modes only where asked for (issue 49): a file from --json
         # would otherwise fix a simulation's N at eq. 23's default
-        output.write_json(sys.stdout, results_dict(
+        output.write_json(sys.stdout, in_units(results_dict(
             design, result, numerics=[n for n in NUMERICS
-                                      if n in overrides]))
+                                      if n in overrides]), args))
         return 0
     for name, key, unit, label in RESULTS:
         print(f"{key:>13} = {float(getattr(result, name)):<13.6g} "

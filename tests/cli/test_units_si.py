@@ -1,0 +1,120 @@
+"""``--units si`` (issue 49, item 4): bare numbers on the command line
+read in m, N, s, Pa, kg/m^3, and the --json of model, chatter and
+preload in SI under SI key suffixes; refused in one line where an
+output would stay in inch-pound units.  With the default ``us`` every
+output is unchanged (the other tests of the commands hold that).
+
+The factors are written here from the units' definitions (1 in = 0.0254
+m, 1 lbf = 4.4482216152605 N, 1 lb = 0.45359237 kg), not taken from the
+package's table."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from contactsep.cli import main
+from contactsep.model import names
+from contactsep.studies import fields
+
+M = 0.0254
+N = 4.4482216152605
+PA = N / M**2
+KG_M3 = 0.45359237 / M**3
+
+
+def run_json(argv, capsys) -> dict:
+    assert main(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_model_in_si_is_its_inch_pound_run_converted(capsys):
+    us = run_json(["model", "--json", "--L1", "19", "--d", "0.25"], capsys)
+    si = run_json(["model", "--json", "--units", "si", "--L1",
+                   repr(19 * M), "--d", repr(0.25 * M)], capsys)
+    assert si["design"]["units"] == "si"
+    assert si["design"]["L1_m"] == pytest.approx(19 * M, rel=1e-14)
+    assert si["design"]["d_m"] == pytest.approx(0.25 * M, rel=1e-14)
+    assert si["design"]["E1_Pa"] == pytest.approx(
+        us["design"]["E1_psi"] * PA, rel=1e-14)
+    assert si["design"]["gamma2_kg_m3"] == pytest.approx(
+        us["design"]["gamma2_lb_in3"] * KG_M3, rel=1e-14)
+    assert si["design"]["mass1_N"] == 0.0
+    expected = {"y3_max_m": us["y3_max_in"] * M,
+                "t_max_s": us["t_max_s"],
+                "v0_m_s": us["v0_in_s"] * M,
+                "psi_N_s": us["psi_lb_s"] * N,
+                "M1_kg": us["M1_lb_s2_in"] * N / M,
+                "R": us["R"]}
+    for key, value in expected.items():
+        assert si[key] == pytest.approx(value, rel=1e-12), key
+    assert si["p1_rad_s"] == pytest.approx(us["p1_rad_s"], rel=1e-12)
+    assert si["c3_m"] == pytest.approx([c * M for c in us["c3_in"]],
+                                       rel=1e-12)
+
+
+def test_a_bare_si_number_equals_the_same_value_typed_with_its_unit(
+        capsys):
+    bare = run_json(["model", "--json", "--units", "si", "--L1", "0.4826",
+                     "--E2", "200e9", "--gamma3", "7850"], capsys)
+    typed = run_json(["model", "--json", "--units", "si", "--L1",
+                      "482.6mm", "--E2", "200GPa", "--gamma3",
+                      "7.85g/cm3"], capsys)
+    assert bare == typed
+    # a value typed with a unit is read as typed, whatever --units says
+    inches = run_json(["model", "--json", "--units", "si", "--L1", "19in"],
+                      capsys)
+    assert inches["design"]["L1_m"] == pytest.approx(19 * M, rel=1e-14)
+
+
+def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
+    argv = ["chatter", "--model", "hertz", "--n-modes", "4", "--t-end",
+            "0.01", "--json"]
+    us = run_json([*argv, "--preload", "1"], capsys)
+    si = run_json([*argv, "--units", "si", "--preload", repr(N)], capsys)
+    assert si["inputs"]["preload_N"] == pytest.approx(N, rel=1e-14)
+    assert us["inputs"]["preload_lb"] == 1.0
+    assert si["n_events"] == us["n_events"]
+    assert si["max_lower_gap_m"] == pytest.approx(
+        us["max_lower_gap_in"] * M, rel=1e-9)
+    assert si["energy_initial_J"] == pytest.approx(
+        us["energy_initial_lbin"] * N * M, rel=1e-9)
+    assert si["inputs"]["button_radius_m"] == pytest.approx(
+        us["inputs"]["button_radius_in"] * M, rel=1e-14)
+    assert not any(key.endswith(("_in", "_lb", "_psi", "_lbin"))
+                   for key in si)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["sweep", "--units", "si"], "--units si: sweep writes in, lb, s; the "
+                                 "commands that take it are model, "
+                                 "chatter, preload"),
+    (["study", "fig5", "--units", "si"], "--units si: study writes"),
+    (["model", "--units", "si"], "--units si: only the --json output"),
+    (["preload", "--units", "si"], "--units si: only the --json output"),
+    (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
+     "--units si: --csv stays in in, lb, s"),
+])
+def test_units_si_is_refused_where_an_output_would_stay_inch_pound(
+        argv, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1
+    assert not (tmp_path / "gaps.csv").exists()
+
+
+def test_every_unit_suffix_of_the_outputs_has_an_si_twin():
+    suffixes = {entry[0] for entry in fields.FIELDS.values()} | \
+        {entry[0] for entry in fields.SETTINGS.values()}
+    keys = [key for _, key, _, _ in names.RESULTS] + \
+        [key for key, _, _ in names.ENERGY_BOOK + names.CONTACT_LAW] + \
+        [key for _, key, _ in names.PER_MODE]
+    for suffix in suffixes - {""}:
+        assert suffix in names.SI_SUFFIXES, suffix
+    for key in keys:
+        if key in ("R", "contact"):
+            assert names.si_key(key) is None
+        else:
+            assert names.si_key(key) is not None, key
