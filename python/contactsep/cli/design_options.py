@@ -313,3 +313,23 @@ def with_sources(data: dict, args: argparse.Namespace) -> dict:
         if key in sources:
             out[f"{key}_source"] = sources[key]
     return in_units({**data, "inputs": out}, args)
+
+
+def damping_law(args: argparse.Namespace, overrides: dict, model: str):
+    """The Hertz contact's damping law a simulation runs with: the one
+    named by --damping; where none is named and the user gave e (--e,
+    --set e=, or a --design file whose e is not an echo of the rig's),
+    "flores", calibrated to that e, said in one line on stderr (an
+    elastic law would drop the e without a word); else None (the
+    simulation's default, elastic "none").  Only Hertz contact has a
+    damping law: Newton's impact law reads e itself."""
+    named = getattr(args, "damping", None)
+    if named is not None or model != "hertz":
+        return named
+    from contactsep.cli.guards import drop_echoes   # guards imports us
+    if "e" not in drop_echoes(args, overrides, ("e",)):
+        return None
+    print(printable(f"contactsep: note: damping flores, calibrated to the "
+                    f"given e = {overrides['e']:g} (--damping none: elastic "
+                    f"Hertz contact, e unused)"), file=sys.stderr)
+    return "flores"
