@@ -101,3 +101,15 @@ def test_preload_runs_and_names_the_law(argv, law, seen_settings, capsys):
     first = capsys.readouterr().out.splitlines()[0]
     assert first.endswith("simulations" if law is None else
                           f"simulations, damping {law}")
+
+
+def test_report_searches_with_the_law_preload_would(seen_settings,
+                                                    tmp_path):
+    pytest.importorskip("matplotlib")
+    relay = ["--L1", "1.2", "--b1", "0.25", "--h1", "0.01", "--L3", "1.2",
+             "--b3", "0.25", "--h3", "0.01", "--L2", "0.3", "--b2", "0.1",
+             "--h2", "0.05", "--ys", "0.02", "--material", "steel",
+             "--n-modes", "4", "--workers", "1"]
+    assert main(["report", *relay, "--e", "0.5", "-o",
+                 str(tmp_path / "r.html")]) == 0
+    assert {s.get("damping") for s in seen_settings} == {"flores"}
