@@ -91,8 +91,10 @@ def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
                                  "commands that take it are model, "
                                  "chatter, preload"),
     (["study", "fig5", "--units", "si"], "--units si: study writes"),
-    (["model", "--units", "si"], "--units si: only the --json output"),
-    (["preload", "--units", "si"], "--units si: only the --json output"),
+    (["chatter", "--units", "si"], "--units si: only the --json output "
+                                   "of chatter"),
+    (["preload", "--units", "si"], "--units si: only the --json output "
+                                   "of preload"),
     (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
      "--units si: --csv stays in in, lb, s"),
 ])
@@ -118,3 +120,21 @@ def test_every_unit_suffix_of_the_outputs_has_an_si_twin():
             assert names.si_key(key) is None
         else:
             assert names.si_key(key) is not None, key
+
+
+def test_model_text_in_si_is_its_inch_pound_text_converted(capsys):
+    def rows(argv):
+        assert main(["model", *argv]) == 0
+        return {line.split()[0]: (float(line.split()[2]), line.split()[3])
+                for line in capsys.readouterr().out.splitlines()}
+    us, si = rows([]), rows(["--units", "si"])
+    assert si["y3_max_m"] == (pytest.approx(us["y3_max_in"][0] * M,
+                                            rel=1e-5), "m")
+    assert si["v0_m_s"] == (pytest.approx(us["v0_in_s"][0] * M, rel=1e-5),
+                            "m/s")
+    assert si["psi_N_s"][0] == pytest.approx(us["psi_lb_s"][0] * N,
+                                             rel=1e-5)
+    assert si["M2_kg"] == (pytest.approx(us["M2_lb_s2_in"][0] * N / M,
+                                         rel=1e-5), "kg")
+    assert si["t1_s"] == us["t1_s"] and si["R"] == us["R"]
+    assert len(si) == len(us)

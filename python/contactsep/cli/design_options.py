@@ -159,10 +159,10 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                             "say otherwise")
     group.add_argument("--units", choices=UNIT_SYSTEMS, default="us",
                        help="the unit system of bare numbers on the "
-                            "command line and of the --json output: us "
-                            "(in, lb, s, psi, lb/in^3; default) or si (m, "
-                            "N, s, Pa, kg/m^3; commands "
-                            + ", ".join(SI_COMMANDS) + ", with --json)")
+                            "command line and of the output: us (in, lb, "
+                            "s, psi, lb/in^3; default) or si (m, N, s, Pa, "
+                            "kg/m^3; commands " + ", ".join(SI_COMMANDS)
+                            + "; chatter and preload with --json)")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "

@@ -17,7 +17,13 @@ from contactsep.cli.design_options import (
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design_file import NUMERICS
-from contactsep.model.names import FLAGS, PER_MODE, RESULTS
+from contactsep.model.names import (
+    FLAGS,
+    PER_MODE,
+    RESULTS,
+    si_key,
+    si_unit,
+)
 
 EXAMPLES = examples(
     "contactsep model --x3 14.82 --n-modes 20           # contact at 0.78 L3",
@@ -98,7 +104,11 @@ def run(args: argparse.Namespace) -> int:
             design, result, numerics=[n for n in NUMERICS
                                       if n in overrides]), args))
         return 0
+    si = getattr(args, "units", "us") == "si"
     for name, key, unit, label in RESULTS:
-        print(f"{key:>13} = {float(getattr(result, name)):<13.6g} "
-              f"{unit:<10} {label}")
+        value = float(getattr(result, name))
+        if si and si_key(key) is not None:
+            (key, factor), unit = si_key(key), si_unit(key)
+            value *= factor
+        print(f"{key:>13} = {value:<13.6g} {unit:<10} {label}")
     return 0

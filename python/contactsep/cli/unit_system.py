@@ -5,9 +5,10 @@ system of the command line's bare numbers and of the ``--json`` output
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit
 suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
-the one table).  Only ``model``, ``chatter`` and ``preload`` take it,
-with ``--json``: their text, CSV and PNG outputs stay in inch-pound
-units, so ``si`` is refused there in one line rather than half done.
+the one table), and so does ``model``'s text.  Only ``model``,
+``chatter`` and ``preload`` take it, the last two with ``--json``: their
+text, CSV and PNG outputs stay in inch-pound units, so ``si`` is
+refused there in one line rather than half done.
 With the default ``us`` nothing changes.
 """
 
@@ -37,9 +38,10 @@ def si_asked(args: argparse.Namespace) -> bool:
                          f"commands that take it are "
                          f"{', '.join(SI_COMMANDS)} (or give each value "
                          f"its unit: --L1 25mm)")
-    if not getattr(args, "json", False):
-        raise InputError("--units si: only the --json output is in SI "
-                         "(add --json); the text stays in in, lb, s")
+    if command != "model" and not getattr(args, "json", False):
+        raise InputError(f"--units si: only the --json output of "
+                         f"{command} is in SI (add --json); its text "
+                         f"stays in in, lb, s")
     for option in ("csv", "png"):
         if getattr(args, option, None):
             raise InputError(f"--units si: --{option} stays in in, lb, s "
@@ -56,7 +58,7 @@ def from_si(suffix: str, text, value):
     if suffix not in SI_SUFFIXES or not isinstance(value, float) or \
             (isinstance(text, str) and units.split(text) is not None):
         return value
-    return float(f"{value / SI_SUFFIXES[suffix][1]:.15g}")
+    return float(f"{value / SI_SUFFIXES[suffix][2]:.15g}")
 
 
 def apply_units(args: argparse.Namespace, si: bool) -> None:
