@@ -138,3 +138,41 @@ def test_model_text_in_si_is_its_inch_pound_text_converted(capsys):
                                          rel=1e-5), "kg")
     assert si["t1_s"] == us["t1_s"] and si["R"] == us["R"]
     assert len(si) == len(us)
+
+
+def test_an_si_design_file_reads_back_as_its_design(tmp_path, capsys):
+    """Every design of the family through model --units si --json and
+    back: the same Design (a bare SI number divided back and rounded to
+    15 digits is the inch-pound number)."""
+    from design_family import FAMILY, UNSEEN
+
+    import contactsep
+    for name, design in {**FAMILY, **UNSEEN}.items():
+        us = tmp_path / f"{name}.json"
+        design.to_file(us)
+        si = tmp_path / f"{name}_si.json"
+        si.write_text(json.dumps(run_json(
+            ["model", "--json", "--units", "si", "--design", str(us)],
+            capsys)))
+        data = json.loads(si.read_text())
+        assert data["design"]["units"] == "si"
+        assert data["design"]["L1_m"] == pytest.approx(design.L1 * M,
+                                                       rel=1e-14)
+        back = contactsep.load_design(si)
+        assert back == contactsep.load_design(us), name
+
+
+def test_an_si_file_written_by_hand_is_read_in_si(tmp_path, capsys):
+    path = tmp_path / "relay.json"
+    path.write_text(json.dumps({"units": "si", "L1_m": 0.0305, "h1": 2.5e-4,
+                                "E1_Pa": 200e9, "gamma1": 7850,
+                                "b1_m": "6 mm", "ys": 0.0005}))
+    got = run_json(["model", "--json", "--design", str(path)], capsys)
+    design = got["design"]
+    assert design["L1_in"] == pytest.approx(0.0305 / M, rel=1e-14)
+    assert design["h1_in"] == pytest.approx(2.5e-4 / M, rel=1e-14)
+    assert design["b1_in"] == pytest.approx(6 / 25.4, rel=1e-14)
+    assert design["E1_psi"] == pytest.approx(200e9 / PA, rel=1e-14)
+    assert design["gamma1_lb_in3"] == pytest.approx(7850 / KG_M3,
+                                                    rel=1e-14)
+    assert design["ys_in"] == pytest.approx(0.0005 / M, rel=1e-14)
