@@ -176,3 +176,28 @@ def test_an_si_file_written_by_hand_is_read_in_si(tmp_path, capsys):
     assert design["gamma1_lb_in3"] == pytest.approx(7850 / KG_M3,
                                                     rel=1e-14)
     assert design["ys_in"] == pytest.approx(0.0005 / M, rel=1e-14)
+
+
+def test_preload_in_si_is_its_inch_pound_answer_converted(planted_preload,
+                                                          capsys):
+    """The search planted (tests/planted_preload.py): the same answer,
+    in newtons, and every window and tested preload with it."""
+    argv = ["preload", "--n-modes", "4", "--workers", "1", "--progress",
+            "never", "--json"]
+    us = run_json([*argv, "--open-threshold", "1e-6"], capsys)
+    si = run_json([*argv, "--units", "si", "--open-threshold",
+                   repr(1e-6 * M)], capsys)
+    assert us["inputs"]["settings"]["open_threshold"] == 1e-6
+    assert si["inputs"]["settings"]["open_threshold_m"] == pytest.approx(
+        1e-6 * M, rel=1e-14)
+    assert si["inputs"]["design"]["E1_Pa"] == pytest.approx(
+        us["inputs"]["design"]["E1"] * PA, rel=1e-14)
+    assert si["min_preload_N"] == pytest.approx(us["min_preload_lb"] * N,
+                                                rel=1e-14)
+    assert len(si["event_windows_N"]) == len(us["event_windows_lb"])
+    for window, twin in zip(si["event_windows_N"], us["event_windows_lb"]):
+        assert window == pytest.approx([p * N for p in twin], rel=1e-14)
+    assert [t["preload_N"] for t in si["tested"]] == pytest.approx(
+        [t["preload_lb"] * N for t in us["tested"]], rel=1e-14)
+    assert si["inputs"]["design"]["L1_m"] == pytest.approx(19 * M,
+                                                           rel=1e-14)

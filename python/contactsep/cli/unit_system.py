@@ -90,7 +90,7 @@ def in_units(data, args: argparse.Namespace):
             return value * factor if factor != 1.0 else value
         return value
 
-    def walk(value):
+    def walk(value, bare=None):
         if isinstance(value, list):
             return [walk(v) for v in value]
         if not isinstance(value, dict):
@@ -98,11 +98,28 @@ def in_units(data, args: argparse.Namespace):
         out = {}
         for key, item in value.items():
             twin = si_key(key) if isinstance(key, str) else None
+            if twin is None and bare and key in bare:
+                twin = si_key(bare[key])
             if key == "units" and item == "us":
                 out[key] = "si"
             elif twin is None or isinstance(item, dict):
-                out[key] = walk(item)
+                out[key] = walk(item, _BARE_NAMES.get(key))
             else:
                 out[twin[0]] = convert(item, twin[1])
         return out
     return walk(data)
+
+
+def _bare_names() -> dict:
+    """Objects whose keys are bare names of quantities with a unit
+    (preload's inputs: "design": {"L1": 19}, "settings": {"dt": ...}) ->
+    each name's key with its unit ('L1' -> 'L1_in'), which in_units
+    converts as it converts a key with its suffix."""
+    from contactsep.studies import fields as F
+    design = {f: F.column_name(f) for f in F.FIELDS if F.FIELDS[f][0]}
+    settings = {s: F.column_name(s) for s in F.SETTINGS if F.SETTINGS[s][0]}
+    settings["open_threshold"] = "open_threshold_in"
+    return {"design": design, "settings": settings}
+
+
+_BARE_NAMES = _bare_names()
