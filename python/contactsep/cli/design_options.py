@@ -326,8 +326,11 @@ def damping_law(args: argparse.Namespace, overrides: dict, model: str):
     named = getattr(args, "damping", None)
     if named is not None or model != "hertz":
         return named
-    from contactsep.cli.guards import drop_echoes   # guards imports us
-    if "e" not in drop_echoes(args, overrides, ("e",)):
+    from contactsep.model import thesis_design
+    # as guards.drop_echoes reads it: the file's e at the rig's is an echo
+    echo = "e" in fields_from_file(args) and \
+        overrides.get("e") == thesis_design().e
+    if "e" not in overrides or echo:
         return None
     print(printable(f"contactsep: note: damping flores, calibrated to the "
                     f"given e = {overrides['e']:g} (--damping none: elastic "
