@@ -62,11 +62,12 @@ MATERIALS = {
         "(precipitation hardened)", 18.5e6, 0.298, 0.30, 140.0e3),
     "aluminium": Material("aluminium", "aluminium 6061-T6", 10.0e6, 0.0975,
                           0.33, 40.0e3),
-    # the relay contact-spring alloy; the Copper Development
-    # Association's and Olin Brass's C51000 data sheets: E = 16,000 ksi
-    # (110 GPa), density 0.320 lb/in^3 (8.86 g/cm^3) at 68 F, spring
-    # temper yield 100 ksi (nominal); they give no Poisson's ratio:
-    # 0.34 is MakeItFrom's C51000 entry
+    # the relay contact-spring alloy; Olin Brass's C51000 (ASTM B103)
+    # data sheet: E = 16,000,000 psi (110 kN/mm^2), density 0.320 lb/in^3
+    # (8.86 g/cm^3) at 68 F, spring hard yield 100 ksi (nominal); the
+    # CDA alloy C510 figures suppliers reproduce give the same E (16,000
+    # ksi) and density; neither gives Poisson's ratio: 0.34 is
+    # MakeItFrom's C51000 entry
     "phosphor-bronze": Material(
         "phosphor-bronze", "phosphor bronze C51000 (5 % Sn), spring "
         "temper H08", 16.0e6, 0.320, 0.34, 100.0e3),
