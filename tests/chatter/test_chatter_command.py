@@ -109,8 +109,10 @@ def test_the_json_echoes_the_inputs_and_carries_the_answers(capsys):
         names.SHOWN_WHEN_GIVEN)
     assert Design(**{fields.field_name(k): v
                      for k, v in echoed.items()}) == design
+    # the e given and no law named: Flores's law, calibrated to it
+    assert inputs["damping"] == "flores"
     r = chatter.simulate(design, model="hertz", t_end=0.03, min_open=2e-5,
-                         dt=5e-8)
+                         dt=5e-8, damping="flores")
     for key in ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",
                 "circuit_open_s", "first_circuit_open_s", "longest_open_s",
                 "n_events", "chatters", "energy_ratio"):

@@ -240,8 +240,12 @@ def test_the_default_n_is_one_named_constant(capsys):
 
 
 @pytest.mark.parametrize("argv, warned", [
-    (["--e", "0.5"], True),
-    (["--restitution", "0.5"], True),
+    # a given e and no law named: the law calibrated to e (no warning;
+    # tests/cli/test_damping_law.py)
+    (["--e", "0.5"], False),
+    (["--e", "0.5", "--damping", "none"], True),
+    (["--restitution", "0.5", "--damping", "none"], True),
+    (["--e", "0.5", "--damping", "hunt-crossley", "--alpha", "0.1"], True),
     (["--e", "0.5", "--damping", "flores"], False),
     (["--e", "0.5", "--model", "newton"], False),
     ([], False)])

@@ -288,9 +288,12 @@ def test_preload_json_says_where_n_came_from(capsys, monkeypatch):
     ('{"end2": 3}', "F: end2: found 3, expected one of clamped-free,"),
     ('{"n_modes": 2.5}', "F: n_modes: found 2.5, expected an integer >= 1"),
     ('{"d_in": -0.1}', "F: d_in: found -0.1, expected a finite number > 0"),
-    ('{"units": "si", "d_in": 0.3}', "F: units: found 'si', expected us "
+    ('{"units": "SI", "d_in": 0.3}', "F: units: found 'SI', expected us "
                                      "(in, lb, s; E psi, densities "
-                                     "lb/in^3)"),
+                                     "lb/in^3); si (m, N, s;"),
+    # an SI file (model --units si --json) keys its values in SI
+    ('{"units": "si", "d_in": 0.3}', "F: d_in: an inch-pound key in a "
+                                     "file whose units are si (give d_m)"),
     ('{"units": 1}', "F: units: found 1, expected us"),
     ('{"design": {"units": "SI"}}', "F: units: found 'SI', expected us"),
 ])

@@ -12,6 +12,7 @@ import warnings
 from contactsep import output
 from contactsep.cli.design_options import (
     add_design_options,
+    damping_law,
     design_overrides,
     with_sources,
 )
@@ -53,10 +54,12 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="hertz", help="default hertz")
     run_group.add_argument("--damping",
                            choices=("none", "flores", "hunt-crossley"),
-                           default="none",
-                           help="Hertz damping (default none: elastic; "
-                                "flores: calibrated to --e; hunt-crossley: "
-                                "the material constant --alpha)")
+                           default=None,
+                           help="Hertz damping (default: flores where e is "
+                                "given, none otherwise; none: elastic, e "
+                                "unused; flores: calibrated to --e; "
+                                "hunt-crossley: the material constant "
+                                "--alpha)")
     run_group.add_argument("--alpha", type=finite("s/in"), default=None,
                            metavar="S_PER_IN",
                            help="Hunt-Crossley's constant (s/in): F = k "
@@ -163,6 +166,7 @@ def run(args: argparse.Namespace) -> int:
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
+    args.damping = damping_law(args, overrides, args.model) or "none"
     # a --design file's echo of the rig's e (model --json writes every
     # field) is not the user's choice of e
     if "e" in drop_echoes(args, overrides, ("e",)) and \

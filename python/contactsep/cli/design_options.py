@@ -42,6 +42,14 @@ import dataclasses
 import sys
 import warnings
 
+from contactsep.cli.unit_system import (  # noqa: F401 - in_units: API
+    SI_COMMANDS,
+    UNIT_SYSTEMS,
+    apply_units,
+    from_si,
+    in_units,
+    si_asked,
+)
 from contactsep.errors import ContactsepWarning, InputError, printable
 from contactsep.model.design_file import NUMERICS
 from contactsep.studies import design_file
@@ -149,6 +157,12 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                             "Table II (study separator-fit: Timoshenko, "
                             "kr2 = 2.19e4 lb in/rad), unless --beam2/--kr2 "
                             "say otherwise")
+    group.add_argument("--units", choices=UNIT_SYSTEMS, default="us",
+                       help="the unit system of bare numbers on the "
+                            "command line and of the output: us (in, lb, "
+                            "s, psi, lb/in^3; default) or si (m, N, s, Pa, "
+                            "kg/m^3; commands " + ", ".join(SI_COMMANDS)
+                            + "; chatter and preload with --json)")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "
@@ -161,6 +175,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
     by making the design; errors name the option as typed.  A numerics
     field the --design file alone gave is noted on stderr (note_numerics).
     """
+    si = si_asked(args)
     values, labels = {}, {}
     path = getattr(args, "design", None)
     if path:
@@ -181,6 +196,8 @@ def design_overrides(args: argparse.Namespace) -> dict:
                 raise InputError(f"--set {name}: expected FIELD=VALUE")
             field = F.field_name(name, option)
         value = F.parse_value(field, text, option)
+        if si:
+            value = from_si(F.FIELDS[field][0], text, value)
         if field in typed and typed[field] != option and \
                 typed[field] not in PRESETS and values[field] != value:
             raise InputError(f"{option}: the {F.FIELDS[field][2]} is "
@@ -191,6 +208,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
         typed[field] = option
         values[field] = value
         labels[field] = option
+    apply_units(args, si)
     if getattr(args, "separator", "thesis") == "physical":
         from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
         for field, value in PHYSICAL_SEPARATOR.items():
@@ -284,14 +302,37 @@ def note_numerics(args: argparse.Namespace, values: dict) -> None:
 def with_sources(data: dict, args: argparse.Namespace) -> dict:
     """A command's JSON with ``n_modes_source`` ("given", "design file"
     or "default") beside ``n_modes`` in its ``inputs``, as ``dt_source``
-    is beside ``dt_s``."""
+    is beside ``dt_s``; in SI with ``--units si`` (in_units)."""
     sources = getattr(args, _SOURCES, None) or {}
     inputs = data.get("inputs")
     if not isinstance(inputs, dict):
-        return data
+        return in_units(data, args)
     out = {}
     for key, value in inputs.items():
         out[key] = value
         if key in sources:
             out[f"{key}_source"] = sources[key]
-    return {**data, "inputs": out}
+    return in_units({**data, "inputs": out}, args)
+
+
+def damping_law(args: argparse.Namespace, overrides: dict, model: str):
+    """The Hertz contact's damping law a simulation runs with: the one
+    named by --damping; where none is named and the user gave e (--e,
+    --set e=, or a --design file whose e is not an echo of the rig's),
+    "flores", calibrated to that e, said in one line on stderr (an
+    elastic law would drop the e without a word); else None (the
+    simulation's default, elastic "none").  Only Hertz contact has a
+    damping law: Newton's impact law reads e itself."""
+    named = getattr(args, "damping", None)
+    if named is not None or model != "hertz":
+        return named
+    from contactsep.model import thesis_design
+    # as guards.drop_echoes reads it: the file's e at the rig's is an echo
+    echo = "e" in fields_from_file(args) and \
+        overrides.get("e") == thesis_design().e
+    if "e" not in overrides or echo:
+        return None
+    print(printable(f"contactsep: note: damping flores, calibrated to the "
+                    f"given e = {overrides['e']:g} (--damping none: elastic "
+                    f"Hertz contact, e unused)"), file=sys.stderr)
+    return "flores"

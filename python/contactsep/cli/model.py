@@ -9,11 +9,21 @@ import warnings
 import numpy as np
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    design_overrides,
+    in_units,
+)
 from contactsep.cli.help import examples
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design_file import NUMERICS
-from contactsep.model.names import FLAGS, PER_MODE, RESULTS
+from contactsep.model.names import (
+    FLAGS,
+    PER_MODE,
+    RESULTS,
+    si_key,
+    si_unit,
+)
 
 EXAMPLES = examples(
     "contactsep model --x3 14.82 --n-modes 20           # contact at 0.78 L3",
@@ -90,11 +100,15 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         # n_modes only where asked for (issue 49): a file from --json
         # would otherwise fix a simulation's N at eq. 23's default
-        output.write_json(sys.stdout, results_dict(
+        output.write_json(sys.stdout, in_units(results_dict(
             design, result, numerics=[n for n in NUMERICS
-                                      if n in overrides]))
+                                      if n in overrides]), args))
         return 0
+    si = getattr(args, "units", "us") == "si"
     for name, key, unit, label in RESULTS:
-        print(f"{key:>13} = {float(getattr(result, name)):<13.6g} "
-              f"{unit:<10} {label}")
+        value = float(getattr(result, name))
+        if si and si_key(key) is not None:
+            (key, factor), unit = si_key(key), si_unit(key)
+            value *= factor
+        print(f"{key:>13} = {value:<13.6g} {unit:<10} {label}")
     return 0

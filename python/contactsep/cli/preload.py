@@ -11,6 +11,7 @@ from contactsep import output
 from contactsep.cli import journal as journals
 from contactsep.cli.design_options import (
     add_design_options,
+    damping_law,
     design_overrides,
     with_sources,
 )
@@ -54,7 +55,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     run_group.add_argument("--model", choices=MODELS, default="hertz",
                            help="default hertz")
     run_group.add_argument("--damping", choices=DAMPINGS, default=None,
-                           help="Hertz damping (default none: elastic)")
+                           help="Hertz damping (default: flores, "
+                                "calibrated to e, where e is given; none, "
+                                "elastic, otherwise)")
     run_group.add_argument("--dt", type=finite("s"), default=None,
                            metavar="S", help="time step (s; default the "
                                              "simulation's)")
@@ -170,6 +173,7 @@ def run(args: argparse.Namespace) -> int:
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
+    args.damping = damping_law(args, overrides, args.model)
     if args.tolerance:      # refused before any simulation
         parse_tolerances(args.tolerance, args.samples or 1, args.seed)
     elif args.samples is not None:
@@ -242,12 +246,21 @@ def _answer_line(answer) -> list:
             f"{answer.converged_check_n_modes} (below)"]
 
 
+def _law(answer) -> str:
+    """', damping flores' where a damping law was named or chosen from
+    e (the answer depends on it); nothing for elastic Hertz contact by
+    default, whose line is as it was."""
+    law = answer.settings.get("damping")
+    return f", damping {law}" if law is not None else ""
+
+
 def summary_text(answer) -> str:
     """The answer, its change, the windows and the robust answer."""
     change = answer.min_preload_change
     at_n = f"min preload at N = {answer.n_modes}"
     lines = [f"model {answer.model}, N = {answer.n_modes}, dt = "
-             f"{answer.dt_s:g} s; {answer.simulations} simulations",
+             f"{answer.dt_s:g} s; {answer.simulations} simulations"
+             + _law(answer),
              *_answer_line(answer),
              f"  {at_n:<24} {_g(answer.min_preload_lb, ' lb')}",
              f"  at dt/2 and 2N           "

@@ -9,7 +9,11 @@ import argparse
 import shlex
 
 from contactsep import output
-from contactsep.cli.design_options import add_design_options, design_overrides
+from contactsep.cli.design_options import (
+    add_design_options,
+    damping_law,
+    design_overrides,
+)
 from contactsep.cli.help import examples
 from contactsep.cli.preload import _p_target, add_robust_options
 from contactsep.cli.values import integer
@@ -62,9 +66,12 @@ def run(args: argparse.Namespace) -> int:
     design = thesis_design(**overrides)
     output.check_targets({"-o": args.output},
                          {"--design": args.design} if args.design else {})
+    # as `contactsep preload` runs it: a given e, Flores's law
+    law = damping_law(args, overrides, "hertz")
     answer = preload(design, tolerance=args.tolerance, p_target=p_target,
                      samples=args.samples, seed=args.seed,
-                     workers=args.workers)
+                     workers=args.workers,
+                     **({"damping": law} if law else {}))
     runs = releases(design, answer, answer.model, dict(answer.settings))
     command = shlex.join(["contactsep", *args.argv])
     page = html_report(design, answer, runs, command=command,

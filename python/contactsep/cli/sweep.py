@@ -79,7 +79,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--sample", action="append", default=[],
                        metavar="'NAME=normal(MEAN,SD)'|'NAME=uniform(LO,HI)'",
                        help="a distribution of a numeric field (repeatable;"
-                            " quote it for the shell)")
+                            " quote it for the shell; each number may carry"
+                            " a unit: 'd=normal(1mm,0.02mm)')")
     sweep.add_argument("--samples", type=integer(1, MAX_DESIGNS),
                        default=None, metavar="K",
                        help="samples per grid point (default 1000)")

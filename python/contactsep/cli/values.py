@@ -48,6 +48,25 @@ def finite(unit: str = ""):
             raise argparse.ArgumentTypeError(
                 f"found {text!r}, expected a finite number"
                 + (f" ({unit})" if unit else ""))
+        if unit and units.split(text) is None:
+            return Bare(value, unit)
         return value
     convert.__name__ = "number"
     return convert
+
+
+class Bare(float):
+    """A bare number an option read (no unit typed), with the package
+    unit it was read in: ``--units si`` rereads it in SI
+    (contactsep.cli.design_options.apply_units); with the default
+    ``us`` it is that float."""
+
+    __slots__ = ("unit",)
+
+    def __new__(cls, value: float, unit: str):
+        number = super().__new__(cls, value)
+        number.unit = unit
+        return number
+
+    def __reduce__(self):       # a plain float wherever it travels
+        return float, (float(self),)

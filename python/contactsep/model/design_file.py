@@ -25,7 +25,9 @@ from contactsep.model import names
 #: densities in lb/in^3), as the keys say.
 UNITS = "us"
 #: The unit systems a design file may name, with what each means.
-UNIT_SYSTEMS = {"us": "in, lb, s; E psi, densities lb/in^3"}
+UNIT_SYSTEMS = {"us": "in, lb, s; E psi, densities lb/in^3",
+                "si": "m, N, s; E Pa, densities kg/m^3, as model --units si "
+                      "--json writes"}
 #: Design fields that set how the model is computed, not what is built:
 #: written only where asked for.
 NUMERICS = ("n_modes",)

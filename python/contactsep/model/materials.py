@@ -1,6 +1,7 @@
 """Named material presets (issue 28, item 5: the thesis's recommendation
 4, the materials of the contacts and the separator): steel, brass,
-beryllium copper and aluminium.
+beryllium copper, aluminium and (a relay contact spring's alloy)
+phosphor bronze.
 
 A preset fills a member's Young's modulus ``E``, weight density
 ``gamma`` and Poisson's ratio ``nu`` (``--material2 steel`` on the
@@ -61,10 +62,24 @@ MATERIALS = {
         "(precipitation hardened)", 18.5e6, 0.298, 0.30, 140.0e3),
     "aluminium": Material("aluminium", "aluminium 6061-T6", 10.0e6, 0.0975,
                           0.33, 40.0e3),
+    # the relay contact-spring alloy; Olin Brass's C51000 (ASTM B103)
+    # data sheet: E = 16,000,000 psi (110 kN/mm^2), density 0.320 lb/in^3
+    # (8.86 g/cm^3) at 68 F, spring hard yield 100 ksi (nominal); the
+    # CDA alloy C510 figures suppliers reproduce give the same E (16,000
+    # ksi) and density; neither gives Poisson's ratio: 0.34 is
+    # MakeItFrom's C51000 entry
+    "phosphor-bronze": Material(
+        "phosphor-bronze", "phosphor bronze C51000 (5 % Sn), spring "
+        "temper H08", 16.0e6, 0.320, 0.34, 100.0e3),
 }
+#: The presets of the materials study's grid: the four of its committed
+#: rows (a preset added later is for designs, not a new study).
+STUDY_MATERIALS = ("steel", "brass", "beryllium-copper", "aluminium")
 #: Other spellings of a preset's name.
 ALIASES = {"aluminum": "aluminium", "becu": "beryllium-copper",
-           "beryllium_copper": "beryllium-copper"}
+           "beryllium_copper": "beryllium-copper",
+           "phosphor_bronze": "phosphor-bronze",
+           "c51000": "phosphor-bronze", "c510": "phosphor-bronze"}
 
 
 class MaterialError(InputError):

@@ -151,3 +151,57 @@ CONTACT_LAW = (
 #: The columns of ``contactsep study conclusion4`` (a contract).
 CONCLUSION4_COLUMNS = ("law", "d_in", "ys_in", "impact_velocity_in_s",
                        "e_apparent")
+
+
+#: One inch in metres and one pound-force in newtons (exact by
+#: definition: the international inch and pound, standard gravity).
+INCH_M = 0.0254
+LBF_N = 4.4482216152605
+#: ``--units si``: each unit suffix of the package -> its SI suffix, the
+#: SI unit as printed, and the SI value of one package unit.  A weight
+#: density becomes the mass density that weighs it under standard
+#: gravity (1 lbf/in^3 is the weight of 1 lb/in^3 of mass); a mass in
+#: lb s^2/in becomes kg.
+SI_SUFFIXES = {
+    "in": ("m", "m", INCH_M),
+    "s": ("s", "s", 1.0),
+    "lb": ("N", "N", LBF_N),
+    "psi": ("Pa", "Pa", LBF_N / INCH_M**2),
+    "lb_in3": ("kg_m3", "kg/m^3", 0.45359237 / INCH_M**3),
+    "lb_s": ("N_s", "N s", LBF_N),
+    "in_s": ("m_s", "m/s", INCH_M),
+    "rad_s": ("rad_s", "rad/s", 1.0),
+    "cps": ("Hz", "Hz", 1.0),
+    "lb_s2_in": ("kg", "kg", LBF_N / INCH_M),
+    "lb_in_rad": ("N_m_rad", "N m/rad", LBF_N * INCH_M),
+    "lb_per_in": ("N_per_m", "N/m", LBF_N / INCH_M),
+    "s_per_in": ("s_per_m", "s/m", 1.0 / INCH_M),
+    "lbin": ("J", "J", LBF_N * INCH_M),
+    "in_lb": ("J", "J", LBF_N * INCH_M),
+}
+#: The suffixes longest first, so that 'v0_in_s' is a speed, not a time.
+_BY_LENGTH = sorted(SI_SUFFIXES, key=len, reverse=True)
+
+
+def si_key(key: str) -> tuple[str, float] | None:
+    """An output key's SI twin and the factor its values are multiplied
+    by ('y3_max_in' -> ('y3_max_m', 0.0254)); None for a key without a
+    unit suffix ('e', 'status', 'n_modes')."""
+    suffix = _suffix(key)
+    if suffix is None:
+        return None
+    si, _, factor = SI_SUFFIXES[suffix]
+    return key[:-len(suffix)] + si, factor
+
+
+def si_unit(key: str) -> str | None:
+    """The SI unit as printed of an output key ('v0_in_s' -> 'm/s')."""
+    suffix = _suffix(key)
+    return None if suffix is None else SI_SUFFIXES[suffix][1]
+
+
+def _suffix(key: str) -> str | None:
+    for suffix in _BY_LENGTH:
+        if key.endswith("_" + suffix) and len(key) > len(suffix) + 1:
+            return suffix
+    return None

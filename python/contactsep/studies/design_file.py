@@ -4,10 +4,11 @@ and the command line's ``--design FILE`` read it here, the same way.
 The format is :mod:`contactsep.model.design_file`'s: one JSON object of
 design fields (output names with units such as ``d_in``, names as in
 ``--set`` such as ``h2``, aliases ``d`` and ``restitution``, material
-presets ``"material2": "steel"``), optionally ``"units": "us"``; or the
-output of ``contactsep model --json``, whose ``design`` object it reads.
-A file without ``units`` is in the package's units (every file written
-before the key existed).  Each value is read by
+presets ``"material2": "steel"``), optionally ``"units": "us"`` (or
+``"si"``: keys such as ``d_m`` and bare numbers in SI, as ``model
+--units si --json`` writes them); or the output of ``contactsep model
+--json``, whose ``design`` object it reads.  A file without ``units`` is
+in the package's units (every file written before the key existed).  Each value is read by
 :func:`contactsep.studies.fields.parse_value`, so a file accepts what
 the command line accepts and refuses it with the same one line, naming
 the file and the key.
@@ -128,7 +129,53 @@ def read_object(path: str, label: str) -> dict:
         accepted = "; ".join(f"{k} ({v})" for k, v in UNIT_SYSTEMS.items())
         raise InputError(f"{path}: units: found {units!r}, expected "
                          f"{accepted}")
-    return data
+    return _from_si_file(data, path) if units == "si" else data
+
+
+def _si_columns() -> dict:
+    """SI key ('d_m', 'E1_Pa') -> (field, factor) of each field with a
+    unit (model.names.SI_SUFFIXES)."""
+    from contactsep.model.names import si_key
+    out = {}
+    for field in F.FIELDS:
+        twin = si_key(F.column_name(field)) if F.FIELDS[field][0] else None
+        if twin is not None:
+            out[twin[0]] = (field, twin[1])
+    return out
+
+
+def _from_si_file(data: dict, path: str) -> dict:
+    """A file of ``"units": "si"`` in the package's units: its SI keys
+    ('L1_m') as field names, its bare numbers (under an SI key or a
+    field's name) divided by the SI value of the field's unit, rounded as
+    contactsep.units rounds; a value with its unit ('25 mm') as typed; an
+    inch-pound key ('L1_in') refused in one line."""
+    from contactsep import units
+    columns = _si_columns()
+    by_field = {field: factor for field, factor in columns.values()}
+    inch_pound = {F.column_name(f): key for key, (f, _) in columns.items()
+                  if F.column_name(f) != key}
+    out = {}
+    for key, value in data.items():
+        if key in inch_pound:
+            raise InputError(f"{path}: {key}: an inch-pound key in a file "
+                             f"whose units are si (give {inch_pound[key]})")
+        field, factor = columns.get(key, (key, by_field.get(key)))
+        if factor is not None and not isinstance(value, bool) and (
+                isinstance(value, (int, float)) or (
+                    isinstance(value, str) and units.split(value) is None
+                    and _number(value))):
+            value = float(f"{float(value) / factor:.15g}")
+        out[field] = value
+    return out
+
+
+def _number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def make_design(values: dict, labels: dict):

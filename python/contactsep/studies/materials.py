@@ -34,7 +34,11 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
-from contactsep.model.materials import MATERIALS, material, material_fields
+from contactsep.model.materials import (
+    STUDY_MATERIALS,
+    material,
+    material_fields,
+)
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, refuse_fixed, thesis_design
@@ -63,8 +67,8 @@ def _run(task):
     return r.circuit_open_s, r.n_events, r.max_lower_gap_in
 
 
-def materials(*, n_modes: int = MODES, contacts=tuple(MATERIALS),
-              separators=tuple(MATERIALS), preloads=(0.0, PRELOAD),
+def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
+              separators=STUDY_MATERIALS, preloads=(0.0, PRELOAD),
               min_preload: bool = False, workers=None, progress=None,
               journal=None, **overrides) -> Study:
     """Opening of the circuit against the materials of the contacts

@@ -24,6 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactsep import units
+from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
@@ -153,15 +155,30 @@ def parse_vary(text: str) -> tuple[str, object]:
 _SAMPLE = re.compile(r"^\s*(normal|uniform)\(\s*([^,]+),\s*([^)]+)\)\s*$")
 
 
+def _sample_number(text: str, field: str, label: str) -> float:
+    """One parameter of a distribution: a bare number in the field's
+    unit, or a number with a unit converted as the design options
+    convert theirs (contactsep.units: '1mm' is 1/25.4 in); ValueError
+    for what is not a number."""
+    if units.split(text) is not None:
+        return units.convert(text, design_fields.unit(field), label)
+    return float(text)
+
+
 def parse_sample(text: str) -> tuple[str, str, float, float]:
     """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)' (numeric
-    fields, any of their names)."""
+    fields, any of their names); each number may carry a unit,
+    'd=normal(1mm,0.02mm)'."""
     name, _, spec = text.partition("=")
     field = _field(name, "--sample", _SAMPLED)
     match = _SAMPLE.match(spec)
+    label = f"--sample {name.strip()}"
     try:
-        kind, a, b = match.group(1), float(match.group(2)), \
-            float(match.group(3))
+        kind = match.group(1)
+        a = _sample_number(match.group(2), field, label)
+        b = _sample_number(match.group(3), field, label)
+    except InputError as error:     # a unit pint refuses: its own line
+        raise SweepError(str(error)) from None
     except (AttributeError, ValueError):
         raise SweepError(f"--sample {text}: expected NAME=normal(MEAN,SD) or "
                          f"NAME=uniform(LO,HI)") from None

@@ -1,0 +1,125 @@
+"""``--units us|si`` on the commands that take design options: the unit
+system of the command line's bare numbers and of the ``--json`` output
+(docs/studies.md, "Names and units").
+
+With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
+with its unit is read as typed), and every key of the JSON with a unit
+suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
+the one table), and so does ``model``'s text.  Only ``model``,
+``chatter`` and ``preload`` take it, the last two with ``--json``: their
+text, CSV and PNG outputs stay in inch-pound units, so ``si`` is
+refused there in one line rather than half done.
+With the default ``us`` nothing changes.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from contactsep.errors import InputError
+
+#: --units: the unit system of the command line's bare numbers.
+UNIT_SYSTEMS = ("us", "si")
+#: The commands whose outputs --units si converts (their --json).
+SI_COMMANDS = ("model", "chatter", "preload")
+#: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
+_PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
+            "lb/in^3": "lb_in3", "s/in": "s_per_in"}
+
+
+def si_asked(args: argparse.Namespace) -> bool:
+    """Whether --units si is asked for, refused in one line where the
+    command's outputs would stay in inch-pound units."""
+    if getattr(args, "units", "us") != "si":
+        return False
+    command = getattr(args, "command", None)
+    if command not in SI_COMMANDS:
+        raise InputError(f"--units si: {command} writes in, lb, s; the "
+                         f"commands that take it are "
+                         f"{', '.join(SI_COMMANDS)} (or give each value "
+                         f"its unit: --L1 25mm)")
+    if command != "model" and not getattr(args, "json", False):
+        raise InputError(f"--units si: only the --json output of "
+                         f"{command} is in SI (add --json); its text "
+                         f"stays in in, lb, s")
+    for option in ("csv", "png"):
+        if getattr(args, option, None):
+            raise InputError(f"--units si: --{option} stays in in, lb, s "
+                             f"(leave it out, or drop --units si)")
+    return True
+
+
+def from_si(suffix: str, text, value):
+    """A bare number of the command line read in SI ('0.025' for a
+    length is 0.025 m, 0.984... in), rounded as contactsep.units rounds
+    a converted value; a value typed with its unit is already converted."""
+    from contactsep import units
+    from contactsep.model.names import SI_SUFFIXES
+    if suffix not in SI_SUFFIXES or not isinstance(value, float) or \
+            (isinstance(text, str) and units.split(text) is not None):
+        return value
+    return float(f"{value / SI_SUFFIXES[suffix][2]:.15g}")
+
+
+def apply_units(args: argparse.Namespace, si: bool) -> None:
+    """The command's own options read as bare numbers (--preload 0.7,
+    --t-end 0.01: values.Bare) in SI where --units si is asked for;
+    plain floats either way."""
+    from contactsep.cli.values import Bare
+    for name, value in list(vars(args).items()):
+        if isinstance(value, Bare):
+            setattr(args, name, from_si(_PRINTED.get(value.unit, ""),
+                                         None, float(value))
+                    if si else float(value))
+
+
+def in_units(data, args: argparse.Namespace):
+    """A command's JSON in the unit system of --units: unchanged for us;
+    for si every key with a unit suffix renamed to its SI twin
+    (model.names.SI_SUFFIXES: 'y3_max_in' -> 'y3_max_m') and its
+    numbers converted, at any depth, and the design's "units" "si"."""
+    if getattr(args, "units", "us") != "si":
+        return data
+    from contactsep.model.names import si_key
+
+    def convert(value, factor):
+        if isinstance(value, list):
+            return [convert(v, factor) for v in value]
+        if isinstance(value, float) or (isinstance(value, int) and
+                                        not isinstance(value, bool)):
+            return value * factor if factor != 1.0 else value
+        return value
+
+    def walk(value, bare=None):
+        if isinstance(value, list):
+            return [walk(v) for v in value]
+        if not isinstance(value, dict):
+            return value
+        out = {}
+        for key, item in value.items():
+            twin = si_key(key) if isinstance(key, str) else None
+            if twin is None and bare and key in bare:
+                twin = si_key(bare[key])
+            if key == "units" and item == "us":
+                out[key] = "si"
+            elif twin is None or isinstance(item, dict):
+                out[key] = walk(item, _BARE_NAMES.get(key))
+            else:
+                out[twin[0]] = convert(item, twin[1])
+        return out
+    return walk(data)
+
+
+def _bare_names() -> dict:
+    """Objects whose keys are bare names of quantities with a unit
+    (preload's inputs: "design": {"L1": 19}, "settings": {"dt": ...}) ->
+    each name's key with its unit ('L1' -> 'L1_in'), which in_units
+    converts as it converts a key with its suffix."""
+    from contactsep.studies import fields as F
+    design = {f: F.column_name(f) for f in F.FIELDS if F.FIELDS[f][0]}
+    settings = {s: F.column_name(s) for s in F.SETTINGS if F.SETTINGS[s][0]}
+    settings["open_threshold"] = "open_threshold_in"
+    return {"design": design, "settings": settings}
+
+
+_BARE_NAMES = _bare_names()

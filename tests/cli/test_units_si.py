@@ -1,0 +1,203 @@
+"""``--units si`` (issue 49, item 4): bare numbers on the command line
+read in m, N, s, Pa, kg/m^3, and the --json of model, chatter and
+preload in SI under SI key suffixes; refused in one line where an
+output would stay in inch-pound units.  With the default ``us`` every
+output is unchanged (the other tests of the commands hold that).
+
+The factors are written here from the units' definitions (1 in = 0.0254
+m, 1 lbf = 4.4482216152605 N, 1 lb = 0.45359237 kg), not taken from the
+package's table."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from contactsep.cli import main
+from contactsep.model import names
+from contactsep.studies import fields
+
+M = 0.0254
+N = 4.4482216152605
+PA = N / M**2
+KG_M3 = 0.45359237 / M**3
+
+
+def run_json(argv, capsys) -> dict:
+    assert main(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_model_in_si_is_its_inch_pound_run_converted(capsys):
+    us = run_json(["model", "--json", "--L1", "19", "--d", "0.25"], capsys)
+    si = run_json(["model", "--json", "--units", "si", "--L1",
+                   repr(19 * M), "--d", repr(0.25 * M)], capsys)
+    assert si["design"]["units"] == "si"
+    assert si["design"]["L1_m"] == pytest.approx(19 * M, rel=1e-14)
+    assert si["design"]["d_m"] == pytest.approx(0.25 * M, rel=1e-14)
+    assert si["design"]["E1_Pa"] == pytest.approx(
+        us["design"]["E1_psi"] * PA, rel=1e-14)
+    assert si["design"]["gamma2_kg_m3"] == pytest.approx(
+        us["design"]["gamma2_lb_in3"] * KG_M3, rel=1e-14)
+    assert si["design"]["mass1_N"] == 0.0
+    expected = {"y3_max_m": us["y3_max_in"] * M,
+                "t_max_s": us["t_max_s"],
+                "v0_m_s": us["v0_in_s"] * M,
+                "psi_N_s": us["psi_lb_s"] * N,
+                "M1_kg": us["M1_lb_s2_in"] * N / M,
+                "R": us["R"]}
+    for key, value in expected.items():
+        assert si[key] == pytest.approx(value, rel=1e-12), key
+    assert si["p1_rad_s"] == pytest.approx(us["p1_rad_s"], rel=1e-12)
+    assert si["c3_m"] == pytest.approx([c * M for c in us["c3_in"]],
+                                       rel=1e-12)
+
+
+def test_a_bare_si_number_equals_the_same_value_typed_with_its_unit(
+        capsys):
+    bare = run_json(["model", "--json", "--units", "si", "--L1", "0.4826",
+                     "--E2", "200e9", "--gamma3", "7850"], capsys)
+    typed = run_json(["model", "--json", "--units", "si", "--L1",
+                      "482.6mm", "--E2", "200GPa", "--gamma3",
+                      "7.85g/cm3"], capsys)
+    assert bare == typed
+    # a value typed with a unit is read as typed, whatever --units says
+    inches = run_json(["model", "--json", "--units", "si", "--L1", "19in"],
+                      capsys)
+    assert inches["design"]["L1_m"] == pytest.approx(19 * M, rel=1e-14)
+
+
+def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
+    argv = ["chatter", "--model", "hertz", "--n-modes", "4", "--t-end",
+            "0.01", "--json"]
+    us = run_json([*argv, "--preload", "1"], capsys)
+    si = run_json([*argv, "--units", "si", "--preload", repr(N)], capsys)
+    assert si["inputs"]["preload_N"] == pytest.approx(N, rel=1e-14)
+    assert us["inputs"]["preload_lb"] == 1.0
+    assert si["n_events"] == us["n_events"]
+    assert si["max_lower_gap_m"] == pytest.approx(
+        us["max_lower_gap_in"] * M, rel=1e-9)
+    assert si["energy_initial_J"] == pytest.approx(
+        us["energy_initial_lbin"] * N * M, rel=1e-9)
+    assert si["inputs"]["button_radius_m"] == pytest.approx(
+        us["inputs"]["button_radius_in"] * M, rel=1e-14)
+    assert not any(key.endswith(("_in", "_lb", "_psi", "_lbin"))
+                   for key in si)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["sweep", "--units", "si"], "--units si: sweep writes in, lb, s; the "
+                                 "commands that take it are model, "
+                                 "chatter, preload"),
+    (["study", "fig5", "--units", "si"], "--units si: study writes"),
+    (["chatter", "--units", "si"], "--units si: only the --json output "
+                                   "of chatter"),
+    (["preload", "--units", "si"], "--units si: only the --json output "
+                                   "of preload"),
+    (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
+     "--units si: --csv stays in in, lb, s"),
+])
+def test_units_si_is_refused_where_an_output_would_stay_inch_pound(
+        argv, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1
+    assert not (tmp_path / "gaps.csv").exists()
+
+
+def test_every_unit_suffix_of_the_outputs_has_an_si_twin():
+    suffixes = {entry[0] for entry in fields.FIELDS.values()} | \
+        {entry[0] for entry in fields.SETTINGS.values()}
+    keys = [key for _, key, _, _ in names.RESULTS] + \
+        [key for key, _, _ in names.ENERGY_BOOK + names.CONTACT_LAW] + \
+        [key for _, key, _ in names.PER_MODE]
+    for suffix in suffixes - {""}:
+        assert suffix in names.SI_SUFFIXES, suffix
+    for key in keys:
+        if key in ("R", "contact"):
+            assert names.si_key(key) is None
+        else:
+            assert names.si_key(key) is not None, key
+
+
+def test_model_text_in_si_is_its_inch_pound_text_converted(capsys):
+    def rows(argv):
+        assert main(["model", *argv]) == 0
+        return {line.split()[0]: (float(line.split()[2]), line.split()[3])
+                for line in capsys.readouterr().out.splitlines()}
+    us, si = rows([]), rows(["--units", "si"])
+    assert si["y3_max_m"] == (pytest.approx(us["y3_max_in"][0] * M,
+                                            rel=1e-5), "m")
+    assert si["v0_m_s"] == (pytest.approx(us["v0_in_s"][0] * M, rel=1e-5),
+                            "m/s")
+    assert si["psi_N_s"][0] == pytest.approx(us["psi_lb_s"][0] * N,
+                                             rel=1e-5)
+    assert si["M2_kg"] == (pytest.approx(us["M2_lb_s2_in"][0] * N / M,
+                                         rel=1e-5), "kg")
+    assert si["t1_s"] == us["t1_s"] and si["R"] == us["R"]
+    assert len(si) == len(us)
+
+
+def test_an_si_design_file_reads_back_as_its_design(tmp_path, capsys):
+    """Every design of the family through model --units si --json and
+    back: the same Design (a bare SI number divided back and rounded to
+    15 digits is the inch-pound number)."""
+    from design_family import FAMILY, UNSEEN
+
+    import contactsep
+    for name, design in {**FAMILY, **UNSEEN}.items():
+        us = tmp_path / f"{name}.json"
+        design.to_file(us)
+        si = tmp_path / f"{name}_si.json"
+        si.write_text(json.dumps(run_json(
+            ["model", "--json", "--units", "si", "--design", str(us)],
+            capsys)))
+        data = json.loads(si.read_text())
+        assert data["design"]["units"] == "si"
+        assert data["design"]["L1_m"] == pytest.approx(design.L1 * M,
+                                                       rel=1e-14)
+        back = contactsep.load_design(si)
+        assert back == contactsep.load_design(us), name
+
+
+def test_an_si_file_written_by_hand_is_read_in_si(tmp_path, capsys):
+    path = tmp_path / "relay.json"
+    path.write_text(json.dumps({"units": "si", "L1_m": 0.0305, "h1": 2.5e-4,
+                                "E1_Pa": 200e9, "gamma1": 7850,
+                                "b1_m": "6 mm", "ys": 0.0005}))
+    got = run_json(["model", "--json", "--design", str(path)], capsys)
+    design = got["design"]
+    assert design["L1_in"] == pytest.approx(0.0305 / M, rel=1e-14)
+    assert design["h1_in"] == pytest.approx(2.5e-4 / M, rel=1e-14)
+    assert design["b1_in"] == pytest.approx(6 / 25.4, rel=1e-14)
+    assert design["E1_psi"] == pytest.approx(200e9 / PA, rel=1e-14)
+    assert design["gamma1_lb_in3"] == pytest.approx(7850 / KG_M3,
+                                                    rel=1e-14)
+    assert design["ys_in"] == pytest.approx(0.0005 / M, rel=1e-14)
+
+
+def test_preload_in_si_is_its_inch_pound_answer_converted(planted_preload,
+                                                          capsys):
+    """The search planted (tests/planted_preload.py): the same answer,
+    in newtons, and every window and tested preload with it."""
+    argv = ["preload", "--n-modes", "4", "--workers", "1", "--progress",
+            "never", "--json"]
+    us = run_json([*argv, "--open-threshold", "1e-6"], capsys)
+    si = run_json([*argv, "--units", "si", "--open-threshold",
+                   repr(1e-6 * M)], capsys)
+    assert us["inputs"]["settings"]["open_threshold"] == 1e-6
+    assert si["inputs"]["settings"]["open_threshold_m"] == pytest.approx(
+        1e-6 * M, rel=1e-14)
+    assert si["inputs"]["design"]["E1_Pa"] == pytest.approx(
+        us["inputs"]["design"]["E1"] * PA, rel=1e-14)
+    assert si["min_preload_N"] == pytest.approx(us["min_preload_lb"] * N,
+                                                rel=1e-14)
+    assert len(si["event_windows_N"]) == len(us["event_windows_lb"])
+    for window, twin in zip(si["event_windows_N"], us["event_windows_lb"]):
+        assert window == pytest.approx([p * N for p in twin], rel=1e-14)
+    assert [t["preload_N"] for t in si["tested"]] == pytest.approx(
+        [t["preload_lb"] * N for t in us["tested"]], rel=1e-14)
+    assert si["inputs"]["design"]["L1_m"] == pytest.approx(19 * M,
+                                                           rel=1e-14)
