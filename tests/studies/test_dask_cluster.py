@@ -231,3 +231,45 @@ def _kill_after(journal, count, process):
     thread = threading.Thread(target=watch, daemon=True)
     thread.start()
     return thread
+
+
+def test_workers_running_other_code_are_refused(deployment, monkeypatch):
+    """This process made to report another code digest: the workers'
+    real one then differs, and the search is refused before any run."""
+    from contactsep.studies import code_digest
+    # the workers import their own, unpatched
+    monkeypatch.setattr(code_digest, "code_digest", lambda: "0" * 64)
+    with distributed.Client(scheduler_file=str(deployment.path)) as client, \
+            distributed.get_task_stream(client) as stream:
+        with pytest.raises(InputError) as error:
+            _robust(client)
+    message = str(error.value)
+    assert "runs other simulation code" in message, message
+    assert "2 of 2 workers differ" in message and "\n" not in message
+    assert not stream.data
+
+
+@pytest.mark.slow
+def test_a_worker_lost_mid_search_loses_nothing(tmp_path):
+    """One of two workers SIGKILLed after 20 runs: Dask runs its tasks
+    again on the other, and the answer is the local pool's.  (Slow: 180 s
+    on a loaded machine, a deployment of its own and one worker left.)"""
+    local = _robust(1)
+    cluster = Deployment(tmp_path / "workers.json")
+    done = []
+
+    def progress(count):
+        done.append(count)
+        if len(done) == 20:
+            os.killpg(cluster.workers[0].pid, signal.SIGKILL)
+    try:
+        with distributed.Client(scheduler_file=str(cluster.path)) as client:
+            remote = contactsep.preload(DESIGN, workers=client,
+                                        progress=progress, **ROBUST,
+                                        **SETTINGS)
+            left = len(client.nthreads())
+    finally:
+        cluster.close()
+    assert len(done) > 20 and left == 1
+    assert remote.to_json_dict() == local.to_json_dict()
+    assert remote.csv_text() == local.csv_text()
