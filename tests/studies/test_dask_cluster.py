@@ -157,6 +157,23 @@ def test_the_preload_command_runs_on_the_scheduler_the_file_names(
     assert capsys.readouterr().err.strip().endswith("reached")
 
 
+def test_the_study_command_runs_on_the_scheduler_it_is_given(
+        deployment, monkeypatch, capsys):
+    """study preload hands the chart a Client of --scheduler's."""
+    from contactsep.cli import main
+    from contactsep.studies import preload
+    seen = []
+
+    def reached(**kwargs):
+        seen.append(kwargs["workers"].scheduler.address)
+        raise InputError("reached")
+    monkeypatch.setattr(preload, "preload_chart", reached)
+    assert main(["study", "preload", "--n-modes", "4", "--scheduler",
+                 deployment.address]) == 2
+    assert seen == [deployment.address]
+    assert capsys.readouterr().err.strip().endswith("reached")
+
+
 @pytest.mark.parametrize("argv, message", [
     (["preload", "--scheduler-file", "missing.json"],
      "--scheduler-file missing.json: no such file (a Dask scheduler "
