@@ -9,6 +9,7 @@ import sys
 
 from contactsep import output
 from contactsep.cli import journal as journals
+from contactsep.cli.cluster import add_cluster_options, check_cluster, cluster
 from contactsep.cli.design_options import (
     add_design_options,
     damping_law,
@@ -112,6 +113,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default=None,
                            help=f"local processes (default: the usable "
                                 f"cores; at most {WORKERS_PER_CORE} a core)")
+    add_cluster_options(out_group, "the simulations")
     out_group.add_argument("--progress", choices=("auto", "always",
                                                   "never"),
                            default="auto",
@@ -164,10 +166,8 @@ def _p_target(text):
 
 def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
-    from contactsep.studies.design_preload import journal_inputs, preload
     from contactsep.studies.preload import DEFAULT_MODES
     from contactsep.studies.preload_robust import parse_tolerances
-    from contactsep.studies.runner import _progress
 
     p_target = _p_target(args.p_target)
     overrides = design_overrides(args)
@@ -182,6 +182,17 @@ def run(args: argparse.Namespace) -> int:
     output.check_targets({"--csv": args.csv},
                          {"--design": args.design} if args.design else {})
     journals.check_resume(args.resume, args.csv)
+    check_cluster(args)
+    with cluster(args) as client:
+        return _run(args, design, p_target,
+                    args.workers if client is None else client)
+
+
+def _run(args, design, p_target, workers) -> int:
+    """The search (on ``workers``: local processes or a Dask client) and
+    its outputs."""
+    from contactsep.studies.design_preload import journal_inputs, preload
+    from contactsep.studies.runner import _progress
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
@@ -195,7 +206,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         answer = preload(design, model=args.model, tolerance=args.tolerance,
                          p_target=p_target, samples=args.samples,
-                         seed=args.seed, workers=args.workers,
+                         seed=args.seed, workers=workers,
                          converge=args.converge,
                          perturbation=args.perturbation,
                          progress=None if bar is None else bar.update,

@@ -11,6 +11,12 @@ from pathlib import Path
 from contactsep import output
 from contactsep.cli import journal as journals
 from contactsep.cli import sweep
+from contactsep.cli.cluster import (
+    add_cluster_options,
+    check_cluster,
+    cluster,
+    given,
+)
 from contactsep.cli.design_options import (
     add_design_options,
     design_overrides,
@@ -126,6 +132,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                             f"processes for the simulations (default: the "
                             f"usable cores; at most {WORKERS_PER_CORE} a "
                             f"core)")
+    add_cluster_options(study, "the simulations (the studies that take "
+                               "--workers)")
     study.add_argument("--resume", action="store_true",
                        help=f"{', '.join(RESUMABLE)} only: keep every "
                             f"finished simulation beside the CSV (--csv "
@@ -171,6 +179,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
     if name in ADVICE:
         return _recommendation(name, args, overrides, journal)
     searches = ("preload", *CONCLUSIONS)
+    _refuse_cluster(name, args)
     if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
@@ -253,8 +262,23 @@ def _buttons(args, overrides: dict, journal=None):
                          "--n-modes (and --workers): it runs the thesis "
                          "rig with each button")
     with _bar(args, None) as bar:
-        return buttons.buttons(n_modes=n_modes, workers=args.workers,
+        return buttons.buttons(n_modes=n_modes, workers=_workers(args),
                                progress=bar, journal=journal)
+
+
+def _refuse_cluster(name: str, args) -> None:
+    """A scheduler only for the studies of three-beam simulations."""
+    if given(args) and name not in RESUMABLE:
+        raise InputError(f"--scheduler and --scheduler-file are options of "
+                         f"study {', '.join(RESUMABLE)}, not study "
+                         f"{name}'s")
+
+
+def _workers(args):
+    """What runs a study's simulations: the Dask client of --scheduler
+    or --scheduler-file, else --workers (local processes)."""
+    client = getattr(args, "cluster", None)
+    return args.workers if client is None else client
 
 
 def _search_study(name: str, args, overrides: dict, journal=None):
@@ -268,7 +292,7 @@ def _search_study(name: str, args, overrides: dict, journal=None):
     overrides = dict(overrides)
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
-               "workers": args.workers, "journal": journal}
+               "workers": _workers(args), "journal": journal}
     from contactsep.studies.search_checks import SearchError
     try:
         with _bar(args, None) as bar:
@@ -302,7 +326,7 @@ def _recommendation(name: str, args, overrides: dict, journal=None):
     own = {k: v for k, v in overrides.items() if k not in fields_from_file(
         args) or k not in fixed}
     with _bar(args, None) as bar:
-        return study(workers=args.workers, progress=bar, journal=journal,
+        return study(workers=_workers(args), progress=bar, journal=journal,
                      **own)
 
 
@@ -384,13 +408,16 @@ def run_study(args: argparse.Namespace) -> int:
     if args.resume and not args.csv:
         # the journal lies beside DIR/NAME.csv: DIR is made now
         Path(args.out).mkdir(parents=True, exist_ok=True)
-    journal = journals.open_journal(args.resume, csv, _journal_inputs(
-        args, overrides))
-    try:
-        study = _compute(args.name, args, overrides, journal)
-    except BaseException as error:
-        journals.stopped(journal, csv, error)
-        raise
+    check_cluster(args)
+    _refuse_cluster(args.name, args)
+    with cluster(args) as args.cluster:
+        journal = journals.open_journal(args.resume, csv, _journal_inputs(
+            args, overrides))
+        try:
+            study = _compute(args.name, args, overrides, journal)
+        except BaseException as error:
+            journals.stopped(journal, csv, error)
+            raise
     sys.stdout.write(study.table_text())
     if args.csv:
         _write_csv(args.csv, study)

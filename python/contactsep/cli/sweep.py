@@ -10,6 +10,8 @@ import sys
 import warnings
 
 from contactsep import output
+from contactsep.cli import cluster
+from contactsep.cli.cluster import add_cluster_options, check_cluster
 from contactsep.cli.design_options import (
     add_design_options,
     design_overrides,
@@ -141,6 +143,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                             f"at most {WORKERS_PER_CORE} a core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the chunks on this Dask scheduler")
+    add_cluster_options(sweep, "the chunks", address=False)
     sweep.add_argument("--progress", choices=("auto", "always", "never"),
                        default="auto",
                        help="progress bar on stderr: auto (on a terminal),"
@@ -251,7 +254,8 @@ def run_sweep(args: argparse.Namespace) -> int:
             raise InputError(f"--resume keeps the finished chunks beside "
                              f"the output: {kept} is not a regular file")
     # every option checked: only now the scheduler and the files
-    scheduler = runner.connect(args.scheduler) if args.scheduler else None
+    check_cluster(args, workers=False)
+    scheduler = cluster.connect(args)
     writers, store = [], None
     try:
         if args.parquet:

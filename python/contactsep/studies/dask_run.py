@@ -22,7 +22,9 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import json
 import logging
+import numbers
 import os
 import re
 import socket
@@ -119,11 +121,14 @@ def _host_port(address: str) -> tuple[str, int] | None:
                          ) from None
 
 
-def probe(address: str, timeout: float | None = None) -> None:
+def probe(address: str, timeout: float | None = None,
+          label: str | None = None) -> None:
     """Refuse (InputError) an address where no Dask scheduler speaks:
     nothing listening, nothing said within ``timeout`` s (a Dask
     scheduler sends its handshake as soon as it accepts), or a first
-    message that is not a Dask frame."""
+    message that is not a Dask frame; ``label`` names the address in
+    messages (default ``--scheduler ADDRESS``)."""
+    label = label or f"--scheduler {address}"
     where = _host_port(address)
     if where is None:
         return
@@ -140,49 +145,97 @@ def probe(address: str, timeout: float | None = None) -> None:
                 sock.settimeout(left)
                 more = sock.recv(8 - len(data))
                 if not more:
-                    raise InputError(f"--scheduler {address}: the server "
+                    raise InputError(f"{label}: the server "
                                      f"closed the connection without "
                                      f"answering; not a Dask scheduler")
                 data += more
     except (TimeoutError, socket.timeout):
-        raise InputError(f"--scheduler {address}: accepts connections but "
+        raise InputError(f"{label}: accepts connections but "
                          f"said nothing within {timeout:g} s; not a Dask "
                          f"scheduler (or one that does not answer)"
                          ) from None
     except OSError as error:
-        raise InputError(f"--scheduler {address}: no scheduler answered "
+        raise InputError(f"{label}: no scheduler answered "
                          f"({error.strerror or error})") from None
     (length,) = struct.unpack("Q", data)
     if not 0 < length <= _LARGEST_HANDSHAKE:
-        raise InputError(f"--scheduler {address}: answers another protocol"
+        raise InputError(f"{label}: answers another protocol"
                          f" ({data!r}...), not Dask's")
 
 
-def connect(address: str):
-    """A Client of the scheduler at ``address``; an address Dask cannot
-    read, or a scheduler that does not answer, is one InputError."""
+def read_scheduler_file(path) -> str:
+    """The address in a Dask scheduler file (``dask scheduler
+    --scheduler-file FILE`` writes it: JSON with an "address"); a file
+    missing, unreadable or not one is one InputError.  (Dask's own
+    ``Client(scheduler_file=...)`` waits for a missing file to appear:
+    here it is refused at once.)"""
+    option = f"--scheduler-file {path}"
+    try:
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read(_LARGEST_HANDSHAKE)
+    except FileNotFoundError:
+        raise InputError(f"{option}: no such file (a Dask scheduler "
+                         f"started with --scheduler-file FILE writes it)"
+                         ) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"{option}: cannot be read "
+                         f"({one_line(error)})") from None
+    try:
+        address = json.loads(text)["address"]
+    except (ValueError, KeyError, TypeError):
+        address = None
+    if not isinstance(address, str) or not address.strip():
+        raise InputError(f"{option}: not a Dask scheduler file (JSON "
+                         f"naming the scheduler's \"address\")")
+    return address
+
+
+def connect(address: str | None = None, scheduler_file=None):
+    """A Client of the scheduler at ``address``, or of the one a Dask
+    scheduler file names (``scheduler_file``); an address Dask cannot
+    read, or a scheduler that does not answer, is one InputError naming
+    the option (--scheduler or --scheduler-file)."""
+    option = "--scheduler" if scheduler_file is None else \
+        "--scheduler-file"
     try:
         from distributed import Client
     except ImportError:
-        raise InputError("--scheduler needs dask.distributed: pip install "
-                         "'contactsep[scale]'") from None
+        raise InputError(f"{option} needs dask.distributed: pip install "
+                         f"'contactsep[scale]'") from None
+    if scheduler_file is not None:
+        address = read_scheduler_file(scheduler_file)
+        label = f"--scheduler-file {scheduler_file} (scheduler {address})"
+    else:
+        label = f"--scheduler {address}"
     if not isinstance(address, str) or not address.strip():
         raise InputError(f"--scheduler: found {address!r}, expected a "
                          f"scheduler address such as tcp://HOST:8786")
-    probe(address)
+    probe(address, label=label)
     # Dask's log lines (ERROR ... failed to reconnect) stay off stderr
     # for the rest of the command: the sweep says what happened
     silence_dask()
     try:
         return Client(address, timeout=SCHEDULER_TIMEOUT_S)
     except (ValueError, TypeError) as error:
-        raise InputError(f"--scheduler: found {address!r}, expected a "
+        raise InputError(f"{option}: found {address!r}, expected a "
                          f"scheduler address such as tcp://HOST:8786 "
                          f"({error})") from None
     except (OSError, TimeoutError) as error:
-        raise InputError(f"--scheduler {address}: no scheduler answered "
+        raise InputError(f"{label}: no scheduler answered "
                          f"within {SCHEDULER_TIMEOUT_S} s "
                          f"({error})") from None
+
+
+def is_client(value) -> bool:
+    """Whether ``value`` is a ``distributed.Client`` (without importing
+    Dask for a number or None)."""
+    if value is None or isinstance(value, (bool, numbers.Number, str)):
+        return False
+    try:
+        from distributed import Client
+    except ImportError:
+        return False
+    return isinstance(value, Client)
 
 
 def _dask_loggers() -> list:
@@ -238,20 +291,23 @@ def gather_finished(client, futures) -> dict:
     return {f.key: value for f, value in zip(ready, values)}
 
 
-def wait(client, future, stop, done_designs: int):
+def wait(client, future, stop, done_designs: int, kept: str | None = None):
     """A chunk's result, listening for a stop every quarter second and
     for the scheduler's loss (SchedulerLost: at once when Dask cancels
-    the chunk, or after SCHEDULER_LOST_S without a connection).  The
+    the chunk, or after SCHEDULER_LOST_S without a connection; ``kept``
+    says what the work finished before it became, default "the
+    ``done_designs`` designs finished before it are kept ...").  The
     wait is on a done-callback, not ``Future.result(timeout=...)``
     (which distributed 2026.8 can answer with an UnboundLocalError)."""
     try:
         where = f" {client.scheduler.address}"
     except Exception:        # noqa: BLE001 - only a name in a message
         where = ""
+    if kept is None:
+        kept = (f"the {done_designs} designs finished before it are kept "
+                f"(rerun with --resume to continue)")
     lost = SchedulerLost(f"the Dask scheduler{where} was lost (its "
-                         f"connection closed); the {done_designs} designs "
-                         f"finished before it are kept (rerun with --resume "
-                         f"to continue)")
+                         f"connection closed); {kept}")
     ready = threading.Event()
     future.add_done_callback(lambda _: ready.set())
     lost_since = None

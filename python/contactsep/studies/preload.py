@@ -91,12 +91,17 @@ def _simulate_event(task) -> bool:
 
 class Simulations:
     """Batches of simulations on worker processes (one pool for the whole
-    search; ``workers`` 1 runs them here).  Counts the runs and their
-    time for the caller's notes."""
+    search; ``workers`` 1 runs them here), or on a Dask cluster
+    (``workers`` a ``distributed.Client``: :mod:`dask_map`; the caller
+    keeps and closes it).  Counts the runs and their time for the
+    caller's notes."""
 
-    def __init__(self, workers: int | None = None, progress=None,
-                 journal=None):
-        self.workers = workers or usable_cores()
+    def __init__(self, workers=None, progress=None, journal=None):
+        from contactsep.studies.dask_run import is_client
+        #: The Dask client the batches run on, or None (local).
+        self.client = workers if is_client(workers) else None
+        self.workers = 1 if self.client is not None else \
+            workers or usable_cores()
         #: Called with the number of simulations each time some finish
         #: (a progress bar's update), or None.
         self.progress = progress
@@ -112,7 +117,10 @@ class Simulations:
         self._pool = None
 
     def __enter__(self) -> "Simulations":
-        if self.workers > 1:
+        if self.client is not None:
+            from contactsep.studies.dask_map import check_code
+            check_code(self.client)
+        elif self.workers > 1:
             self._pool = worker_pool(self.workers)
         return self
 
@@ -138,6 +146,13 @@ class Simulations:
         return out
 
     def _run(self, function, tasks: list, finished=None) -> list:
+        if self.client is not None:
+            from contactsep.studies.dask_map import run_tasks
+            order = sorted(range(len(tasks)),
+                           key=lambda i: -_preload_of(tasks[i]))
+            return run_tasks(self.client, function, tasks, order=order,
+                             finished=finished, progress=self.progress,
+                             kept=self._kept)
         if self._pool is None:
             out = []
             for i, task in enumerate(tasks):
@@ -151,6 +166,14 @@ class Simulations:
         return map_longest_first(self._pool, function, tasks,
                                  cost=_preload_of, done=self.progress,
                                  finished=finished)
+
+    def _kept(self, done: int) -> str:
+        """What a lost scheduler's line says of the finished runs."""
+        if self.journal is None:
+            return (f"{done} simulations of this batch had finished, not "
+                    f"kept (keep them with --csv FILE --resume)")
+        return (f"the {len(self.journal)} simulations finished before it "
+                f"are kept (rerun with --resume to continue)")
 
     def _run_journaled(self, function, tasks: list) -> list:
         from contactsep.studies.run_journal import task_key
@@ -197,8 +220,9 @@ def min_preloads(designs, model: str = "hertz", settings=None,
         The three-beam model (:func:`contactsep.chatter.simulate`).
     settings : dict, optional
         Further keywords of ``simulate()`` (dt, damping, min_open, ...).
-    workers : int, optional
-        Processes for the batches of simulations (1: this process).
+    workers : int or distributed.Client, optional
+        Processes for the batches of simulations (1: this process), or
+        a Client whose Dask cluster runs them.
     simulations : Simulations, optional
         An open :class:`Simulations` to use instead of ``workers``.
 

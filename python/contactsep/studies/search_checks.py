@@ -17,14 +17,18 @@ class SearchError(InputError):
 
 
 def check_workers(workers) -> None:
-    """None (the usable cores) or a whole number of processes >= 1."""
+    """None (the usable cores), a whole number of processes >= 1, or a
+    ``distributed.Client`` (the simulations on its Dask cluster)."""
     if workers is None:
+        return
+    from contactsep.studies.dask_run import is_client
+    if is_client(workers):
         return
     if isinstance(workers, (bool, np.bool_)) or not isinstance(
             workers, (int, np.integer)) or workers < 1:
         raise SearchError(f"workers: found {shown(workers)}, expected a "
                           f"whole number of processes >= 1 (or None: the "
-                          f"usable cores)")
+                          f"usable cores, or a distributed.Client)")
 
 
 def check_modes(n_modes) -> None:
