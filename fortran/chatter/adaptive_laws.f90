@@ -13,7 +13,7 @@ module chatter_adaptive_laws
   use chatter_adaptive_crossings, only: watch_fixed, watch_grid
   use chatter_hertz_series, only: series_forces
   use chatter_contact_law, only: law_force, law_elastic_force, &
-      law_remember
+      law_remember, max_contacts
   implicit none
   private
   public :: hertz_step, newton_step
@@ -22,12 +22,17 @@ contains
 
   !> A step of the fixed-step splitting from step `step`, as
   !> chatter_hertz takes it: half kick, exact flow, half kick.
+  !> The work arrays are fixed-size (k <= max_contacts): no heap
+  !> traffic a step.
   subroutine hertz_step(run, step)
     type(adaptive_run), intent(inout) :: run
     integer, intent(in) :: step
     logical :: kicked
-    real(wp) :: force_a(run%k), gap_a(run%k)
+    real(wp) :: force_a(max_contacts), gap_a(max_contacts)
+    real(wp) :: ga(max_contacts), gb(max_contacts)
+    integer :: k
 
+    k = run%k
     call contact_forces(run)
     if (run%force(1) > 0.0_wp .and. run%episode == 0) then
       run%episode = 1
@@ -48,15 +53,16 @@ contains
     if (run%series) then
       ! the end's forces first: where either end has one, the physical
       ! gaps are watched on the grid (watch_grid)
-      force_a = run%force
-      gap_a = run%gap
+      force_a(1:k) = run%force
+      gap_a(1:k) = run%gap
       run%gap(:) = run%gap_new
       call contact_forces(run)
-      if (any(force_a /= 0.0_wp) .or. any(run%force /= 0.0_wp)) then
-        call watch_grid(run, gap_a + matmul(run%cmat, force_a), &
-            run%gap + matmul(run%cmat, run%force), run%t_now)
+      if (any(force_a(1:k) /= 0.0_wp) .or. any(run%force /= 0.0_wp)) then
+        call physical_gaps(run, gap_a, force_a, ga)
+        call physical_gaps(run, run%gap, run%force, gb)
+        call watch_grid(run, ga, gb, run%t_now)
       else
-        run%gap(:) = gap_a
+        run%gap(:) = gap_a(1:k)
         call watch_fixed(run, run%dt, 1, run%t_now)
         run%gap(:) = run%gap_new
       end if
@@ -72,6 +78,24 @@ contains
     if (run%rate_fresh) run%rate(:) = run%rate_new
     run%e_fresh = run%e_fresh .and. .not. kicked
   end subroutine hertz_step
+
+  !> g + C lambda, the physical gaps of modal gaps g and forces lambda,
+  !> summed as matmul sums C lambda.
+  pure subroutine physical_gaps(run, g, force, physical)
+    type(adaptive_run), intent(in) :: run
+    real(wp), intent(in) :: g(run%k), force(run%k)
+    real(wp), intent(out) :: physical(run%k)
+    real(wp) :: row
+    integer :: i, j
+
+    do i = 1, run%k
+      row = 0.0_wp
+      do j = 1, run%k
+        row = row + run%cmat(i, j) * force(j)
+      end do
+      physical(i) = g(i) + row
+    end do
+  end subroutine physical_gaps
 
   !> One Newton step from step `step`: flow dt/2, the impulses, flow
   !> dt/2.
@@ -144,7 +168,7 @@ contains
   !> (chatter_contact_law).
   subroutine contact_forces(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: stiff(run%k)
+    real(wp) :: stiff(max_contacts)
     integer :: j
 
     if (run%series) then
@@ -154,7 +178,7 @@ contains
         run%force(:) = 0.0_wp
         return
       end if
-      stiff = run%stiffness
+      stiff(1:run%k) = run%stiffness
       if (run%chi /= 0.0_wp) then
         do j = 1, run%k
           stiff(j) = run%stiffness * max(1.0_wp - run%chi &
@@ -181,11 +205,11 @@ contains
   subroutine elastic_forces(run, force)
     type(adaptive_run), intent(in) :: run
     real(wp), intent(out) :: force(run%k)
-    real(wp) :: stiff(run%k)
+    real(wp) :: stiff(max_contacts)
     integer :: j
 
     if (run%series) then
-      stiff = run%stiffness
+      stiff(1:run%k) = run%stiffness
       call series_forces(run%k, stiff, run%cmat, run%gap, force, &
           run%law%linear)
     else
@@ -200,7 +224,7 @@ contains
   !> energy, its damping part) into run%damped_work.
   subroutine kick(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: before(run%k), elastic(run%k)
+    real(wp) :: before(max_contacts), elastic(max_contacts)
     logical :: damped
     integer :: j
 

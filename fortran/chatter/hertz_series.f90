@@ -18,6 +18,7 @@
 !> Twin: contactsep/chatter/contacts.py (series_forces, series_energy).
 module chatter_hertz_series
   use contactsep_kinds, only: wp
+  use chatter_contact_law, only: max_contacts
   implicit none
   private
   public :: series_forces, series_energy, element_depth, max_sweeps
@@ -66,7 +67,8 @@ contains
     real(wp), intent(in) :: stiff(k), cmat(k, k), g(k)
     real(wp), intent(out) :: force(k)
     logical, intent(in), optional :: linear
-    real(wp) :: a, depth, old(k)
+    ! fixed size (k <= max_contacts): no heap traffic in a step
+    real(wp) :: a, depth, old(max_contacts)
     integer :: sweep, i, j
     logical :: line
 
@@ -76,7 +78,7 @@ contains
     force = 0.0_wp
     if (all(g >= 0.0_wp)) return
     do sweep = 1, max_sweeps
-      old = force
+      old(1:k) = force
       do i = 1, k
         a = -g(i)
         do j = 1, k
@@ -92,7 +94,8 @@ contains
         end if
       end do
       if (k == 1) exit
-      if (all(abs(force - old) <= 4.0_wp * epsilon(1.0_wp) * force)) exit
+      if (all(abs(force - old(1:k)) <= 4.0_wp * epsilon(1.0_wp) * force)) &
+          exit
     end do
   end subroutine series_forces
 
@@ -104,15 +107,27 @@ contains
     integer, intent(in) :: k
     real(wp), intent(in) :: stiffness, cmat(k, k), g(k)
     logical, intent(in), optional :: linear
-    real(wp) :: total, force(k), stiff(k), depth
-    integer :: i
+    real(wp) :: total, force(max_contacts), stiff(max_contacts), depth
+    real(wp) :: row
+    integer :: i, j
 
-    stiff = stiffness
+    ! every gap open: no force, no energy (the sums below give +0 too)
+    total = 0.0_wp
+    if (all(g >= 0.0_wp)) return
+    stiff(1:k) = stiffness
     call series_forces(k, stiff, cmat, g, force, linear)
-    total = 0.5_wp * dot_product(force, matmul(cmat, force))
+    ! lambda^T C lambda, summed in matmul's and dot_product's order
+    do i = 1, k
+      row = 0.0_wp
+      do j = 1, k
+        row = row + cmat(i, j) * force(j)
+      end do
+      total = total + force(i) * row
+    end do
+    total = 0.5_wp * total
     if (present(linear)) then
       if (linear) then
-        total = total + 0.5_wp * sum(force**2) / stiffness
+        total = total + 0.5_wp * sum(force(1:k)**2) / stiffness
         return
       end if
     end if
