@@ -44,7 +44,13 @@ contains
       depth = a
       return
     end if
-    depth = min(a, (a / b)**(2.0_wp / 3.0_wp))
+    ! (a/b)^{2/3} / a = (a b^2)^{-1/3} >= 1.26 where a b^2 <= 1/2: the
+    ! bound is a there, and the pow (the dearest part of a step) spared
+    if (a * b * b <= 0.5_wp) then
+      depth = a
+    else
+      depth = min(a, (a / b)**(2.0_wp / 3.0_wp))
+    end if
     do it = 1, max_newton
       root = sqrt(depth)
       next = depth - (depth + b * depth * root - a) &
@@ -62,13 +68,16 @@ contains
   !> a sweep changes no force by more than 4 ulps.
   !> With ``linear`` the elements are linear springs (F = s delta, a
   !> cylindrical button): each root is a / (1 + c_ii s).
+  !> An element whose a is the same bits as at its last root keeps that
+  !> root's force (the same call gives the same bits): a sweep after the
+  !> first solves only the elements the other's force moved.
   pure subroutine series_forces(k, stiff, cmat, g, force, linear)
     integer, intent(in) :: k
     real(wp), intent(in) :: stiff(k), cmat(k, k), g(k)
     real(wp), intent(out) :: force(k)
     logical, intent(in), optional :: linear
     ! fixed size (k <= max_contacts): no heap traffic in a step
-    real(wp) :: a, depth, old(max_contacts)
+    real(wp) :: a, depth, old(max_contacts), solved(max_contacts)
     integer :: sweep, i, j
     logical :: line
 
@@ -77,6 +86,8 @@ contains
 
     force = 0.0_wp
     if (all(g >= 0.0_wp)) return
+    ! a > 0 wherever a root is taken: 0 matches none
+    solved = 0.0_wp
     do sweep = 1, max_sweeps
       old(1:k) = force
       do i = 1, k
@@ -87,10 +98,14 @@ contains
         if (a > 0.0_wp .and. stiff(i) > 0.0_wp .and. line) then
           force(i) = stiff(i) * a / (1.0_wp + cmat(i, i) * stiff(i))
         else if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
-          depth = element_depth(a, cmat(i, i) * stiff(i))
-          force(i) = stiff(i) * depth * sqrt(depth)
+          if (a /= solved(i)) then
+            depth = element_depth(a, cmat(i, i) * stiff(i))
+            force(i) = stiff(i) * depth * sqrt(depth)
+            solved(i) = a
+          end if
         else
           force(i) = 0.0_wp
+          solved(i) = 0.0_wp
         end if
       end do
       if (k == 1) exit
