@@ -185,7 +185,7 @@ contains
       if (run%chi /= 0.0_wp) then
         do j = 1, run%k
           stiff(j) = run%stiffness * max(1.0_wp - run%chi &
-              * dot_product(run%ht(:, j), run%v), 0.0_wp)
+              * rate(run, j), 0.0_wp)
         end do
       end if
       call series_forces(run%k, stiff, run%cmat, run%gap, run%force, &
@@ -196,7 +196,7 @@ contains
       if (run%gap(j) < 0.0_wp) then
         call law_remember(run%law, j, -run%gap(j))
         run%force(j) = law_force(run%law, j, -run%gap(j), &
-            dot_product(run%ht(:, j), run%v))
+            rate(run, j))
       else
         run%force(j) = 0.0_wp
       end if
@@ -243,21 +243,32 @@ contains
         run%elastic_at = at
       end if
       do j = 1, run%k
-        before(j) = dot_product(run%ht(:, j), run%v)
+        before(j) = rate(run, j)
       end do
     end if
     do j = 1, run%k
-      if (run%force(j) /= 0.0_wp) call axpy(run%n, run%force(j), &
-          run%half_kick(:, j), run%v)
+      if (run%force(j) /= 0.0_wp) call axpy(run%hi(j) - run%lo(j) + 1, &
+          run%force(j), run%half_kick(run%lo(j):run%hi(j), j), &
+          run%v(run%lo(j):run%hi(j)))
     end do
     if (damped) then
       do j = 1, run%k
         run%damped_work = run%damped_work - 0.25_wp * run%dt &
             * (run%force(j) - run%elastic(j)) * (before(j) &
-            + dot_product(run%ht(:, j), run%v))
+            + rate(run, j))
       end do
     end if
   end subroutine kick
+
+  !> The rate h_c v of contact c's gap, over the modes its Jacobian
+  !> touches (the rest add only zeros), in dot_product's order.
+  pure real(wp) function rate(run, c)
+    type(adaptive_run), intent(in) :: run
+    integer, intent(in) :: c
+
+    rate = dot_product(run%ht(run%lo(c):run%hi(c), c), &
+        run%v(run%lo(c):run%hi(c)))
+  end function rate
 
   !> y += alpha x.
   pure subroutine axpy(nm, alpha, x, y)

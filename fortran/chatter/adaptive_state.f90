@@ -66,6 +66,10 @@ module chatter_adaptive_state
     !> Half a step's kick of a unit force at contact c: dt/2 h_c / m;
     !> an impulse's: h_c / m.
     real(wp), allocatable :: half_kick(:, :), inv_mh(:, :)
+    !> Contact c's Jacobian is 0 outside modes lo(c)..hi(c) (each
+    !> contact touches two of the three members): its kicks and rates
+    !> skip the rest.
+    integer :: lo(max_contacts) = 1, hi(max_contacts) = 0
     !> D = H M^-1 H^T: an impulse P changes the contact rates by D P.
     real(wp), allocatable :: coupling(:, :)
     !> A bound of |g_c''| from the energy bound of the run (free).
