@@ -12,7 +12,8 @@ the adaptive stepper takes: elastic Hertz, Flores's and Hunt-Crossley's
 damping, with the static correction and without, Thornton's plastic law
 (without: it takes none), and the cylindrical button (elastic, both).
 Each run covers ``--window`` of the design's own window (0.1 by
-default, so that the whole set takes minutes) with 40 samples.
+default, so that the whole set takes minutes) with 40 samples;
+``--laws`` and ``--static-only`` narrow the set (a whole-window check).
 
 What is compared: the sampled times, gaps and energies, the contacts'
 and the circuit's open intervals, the events, the first impact and
@@ -56,7 +57,7 @@ LAWS = {
 }
 
 
-def cases(quick=False):
+def cases(quick=False, laws=tuple(LAWS), plain=True):
     """(name, design, settings) of every case."""
     sys.path.insert(0, os.path.join(HERE, "..", "tests"))
     from design_family import FAMILY
@@ -67,9 +68,12 @@ def cases(quick=False):
         for n in (16,) if quick else (16, 32, 64):
             sized = design.replace(n_modes=n)
             for preload in (0.0, min(5.0, 0.5 * largest_preload(sized))):
-                for law, settings in LAWS.items():
+                for law in laws:
+                    settings = LAWS[law]
                     for static in (True, False):
-                        if law == "thornton" and static:
+                        if (law == "thornton" and static) or (
+                                law != "thornton" and not static
+                                and not plain):
                             continue
                         yield (f"{name}/N{n}/P{preload:.4g}/{law}/"
                                f"{'static' if static else 'plain'}",
@@ -88,12 +92,12 @@ def window(design) -> float:
         n_upper=parts[0].p.size), parts)
 
 
-def dump(path, fraction, quick):
+def dump(path, fraction, quick, laws, plain):
     """Run every case in this interpreter and save its results."""
     from contactsep.chatter import simulate
 
     out, start = {}, time.time()
-    for name, design, settings in cases(quick):
+    for name, design, settings in cases(quick, laws, plain):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
@@ -118,9 +122,11 @@ def dump(path, fraction, quick):
           f"{time.time() - start:.0f} s", file=sys.stderr)
 
 
-def run_dump(python, path, fraction, quick):
+def run_dump(python, path, args):
     command = [python, os.path.abspath(__file__), "--dump", path,
-               "--window", repr(fraction)] + (["--quick"] if quick else [])
+               "--window", repr(args.window), "--laws", args.laws] + \
+        (["--quick"] if args.quick else []) + \
+        (["--static-only"] if args.static_only else [])
     return subprocess.Popen(command, env=dict(
         os.environ, OPENBLAS_NUM_THREADS="1"))
 
@@ -180,22 +186,28 @@ def main() -> int:
     parser.add_argument("--window", type=float, default=0.1,
                         help="share of each design's window (0.1)")
     parser.add_argument("--quick", action="store_true", help="N = 16 only")
+    parser.add_argument("--laws", default=",".join(LAWS),
+                        help=f"comma-separated, of {', '.join(LAWS)}")
+    parser.add_argument("--static-only", action="store_true",
+                        help="no plain-truncation runs (but Thornton's)")
     parser.add_argument("--tolerance", type=float, default=None,
                         help="allow headline figures this close (relative)")
     args = parser.parse_args()
+    laws = tuple(args.laws.split(","))
+    if not set(laws) <= set(LAWS):
+        parser.error(f"--laws: expected some of {', '.join(LAWS)}")
     if args.dump:
-        dump(args.dump, args.window, args.quick)
+        dump(args.dump, args.window, args.quick, laws, not args.static_only)
         return 0
     if not (args.base_python or args.against):
         parser.error("give --base-python or --against")
     with tempfile.TemporaryDirectory() as scratch:
         new_path = args.save or os.path.join(scratch, "new.npz")
-        jobs = [run_dump(sys.executable, new_path, args.window, args.quick)]
+        jobs = [run_dump(sys.executable, new_path, args)]
         base_path = args.against
         if not base_path:
             base_path = os.path.join(scratch, "base.npz")
-            jobs.append(run_dump(args.base_python, base_path, args.window,
-                                 args.quick))
+            jobs.append(run_dump(args.base_python, base_path, args))
         if any(job.wait() != 0 for job in jobs):
             print("a dump failed", file=sys.stderr)
             return 2
