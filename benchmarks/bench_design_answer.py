@@ -25,7 +25,10 @@ the commit before a change) in a subprocess, one tree after the other;
 without it, this tree alone.  ``--measure`` prints one tree's figures
 as JSON and stops (what the subprocess runs); ``--base-json FILE`` takes
 the base's figures from such a saved print instead of measuring them
-(with ``--base-python``, which names the base's tree).  The output is
+(with ``--base-python``, which names the base's tree), and
+``--this-json FILE`` this tree's (both measured at once on a loaded
+machine, each in its own process: the CPU time counts each alone).
+The output is
 a markdown table: each tree's ns a step, the ratio base / this, and
 this tree's ns a step in numpy.sin elements; ``--save``: also into
 benchmarks/results/bench_design_answer.md (docs/performance.md quotes
@@ -176,6 +179,8 @@ def main() -> int:
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--base-json",
                         help="the base's saved --measure output")
+    parser.add_argument("--this-json",
+                        help="this tree's saved --measure output")
     parser.add_argument("--save", action="store_true",
                         help="also into benchmarks/results/")
     parser.add_argument("--measure", action="store_true",
@@ -196,11 +201,17 @@ def main() -> int:
         base = json.loads(subprocess.run(
             command, capture_output=True, text=True, check=True,
             env=dict(os.environ, OPENBLAS_NUM_THREADS="1")).stdout)
-    new = measure(sizes, args.repeats)
+    if args.this_json:
+        with open(args.this_json) as saved:
+            new = json.load(saved)
+    else:
+        new = measure(sizes, args.repeats)
     say = Report()
     command = ("OPENBLAS_NUM_THREADS=1 python benchmarks/"
                "bench_design_answer.py"
                + (" --base-python BASE" if base else "")
+               + (" --base-json BASE.json" if args.base_json else "")
+               + (" --this-json THIS.json" if args.this_json else "")
                + (" --quick" if args.quick else "")
                + (" --save" if args.save else ""))
     say(f"this tree: commit {commit(os.path.join(HERE, '..'))}"
