@@ -299,6 +299,13 @@ contains
     allocate(run%force(k))
     run%force(:) = 0.0_wp
     do c = 1, k
+      run%lo(c) = 1
+      run%hi(c) = 0
+      do level = n, 1, -1
+        if (run%ht(level, c) /= 0.0_wp) run%lo(c) = level
+        if (run%ht(level, c) /= 0.0_wp .and. run%hi(c) == 0) &
+            run%hi(c) = level
+      end do
       run%half_kick(:, c) = 0.5_wp * dt * run%ht(:, c) / m
       run%inv_mh(:, c) = run%ht(:, c) / m
       ! |g''| <= sqrt(2 E sum h^2 p^2 / m) (Cauchy-Schwarz on the modal

@@ -13,7 +13,7 @@ module chatter_adaptive_laws
   use chatter_adaptive_crossings, only: watch_fixed, watch_grid
   use chatter_hertz_series, only: series_forces
   use chatter_contact_law, only: law_force, law_elastic_force, &
-      law_remember
+      law_remember, max_contacts
   implicit none
   private
   public :: hertz_step, newton_step
@@ -22,13 +22,20 @@ contains
 
   !> A step of the fixed-step splitting from step `step`, as
   !> chatter_hertz takes it: half kick, exact flow, half kick.
+  !> The start's forces are the last step's end forces where that step
+  !> ended here and chi = 0 (the same call on the same gaps); the work
+  !> arrays are fixed-size (k <= max_contacts): no heap traffic a step.
   subroutine hertz_step(run, step)
     type(adaptive_run), intent(inout) :: run
     integer, intent(in) :: step
     logical :: kicked
-    real(wp) :: force_a(run%k), gap_a(run%k)
+    real(wp) :: force_a(max_contacts), gap_a(max_contacts)
+    real(wp) :: ga(max_contacts), gb(max_contacts)
+    integer :: k
 
-    call contact_forces(run)
+    k = run%k
+    if (run%chi /= 0.0_wp .or. run%forces_at /= step) &
+        call contact_forces(run)
     if (run%force(1) > 0.0_wp .and. run%episode == 0) then
       run%episode = 1
       run%first(1) = real(step, wp) * run%dt
@@ -42,21 +49,22 @@ contains
       end if
     end if
     kicked = any(run%force /= 0.0_wp)
-    call kick(run)
+    call kick(run, step)
     call flow(run, 1)
     run%t_now = real(step + 1, wp) * run%dt
     if (run%series) then
       ! the end's forces first: where either end has one, the physical
       ! gaps are watched on the grid (watch_grid)
-      force_a = run%force
-      gap_a = run%gap
+      force_a(1:k) = run%force
+      gap_a(1:k) = run%gap
       run%gap(:) = run%gap_new
       call contact_forces(run)
-      if (any(force_a /= 0.0_wp) .or. any(run%force /= 0.0_wp)) then
-        call watch_grid(run, gap_a + matmul(run%cmat, force_a), &
-            run%gap + matmul(run%cmat, run%force), run%t_now)
+      if (any(force_a(1:k) /= 0.0_wp) .or. any(run%force /= 0.0_wp)) then
+        call physical_gaps(run, gap_a, force_a, ga)
+        call physical_gaps(run, run%gap, run%force, gb)
+        call watch_grid(run, ga, gb, run%t_now)
       else
-        run%gap(:) = gap_a
+        run%gap(:) = gap_a(1:k)
         call watch_fixed(run, run%dt, 1, run%t_now)
         run%gap(:) = run%gap_new
       end if
@@ -65,13 +73,32 @@ contains
       run%gap(:) = run%gap_new
       call contact_forces(run)
     end if
+    run%forces_at = step + 1
     kicked = kicked .or. any(run%force /= 0.0_wp)
-    call kick(run)
+    call kick(run, step + 1)
     run%amp_fresh = run%amp_fresh .and. .not. kicked
     run%rate_fresh = .not. kicked
     if (run%rate_fresh) run%rate(:) = run%rate_new
     run%e_fresh = run%e_fresh .and. .not. kicked
   end subroutine hertz_step
+
+  !> g + C lambda, the physical gaps of modal gaps g and forces lambda,
+  !> summed as matmul sums C lambda.
+  pure subroutine physical_gaps(run, g, force, physical)
+    type(adaptive_run), intent(in) :: run
+    real(wp), intent(in) :: g(run%k), force(run%k)
+    real(wp), intent(out) :: physical(run%k)
+    real(wp) :: row
+    integer :: i, j
+
+    do i = 1, run%k
+      row = 0.0_wp
+      do j = 1, run%k
+        row = row + run%cmat(i, j) * force(j)
+      end do
+      physical(i) = g(i) + row
+    end do
+  end subroutine physical_gaps
 
   !> One Newton step from step `step`: flow dt/2, the impulses, flow
   !> dt/2.
@@ -144,7 +171,7 @@ contains
   !> (chatter_contact_law).
   subroutine contact_forces(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: stiff(run%k)
+    real(wp) :: stiff(max_contacts)
     integer :: j
 
     if (run%series) then
@@ -154,11 +181,11 @@ contains
         run%force(:) = 0.0_wp
         return
       end if
-      stiff = run%stiffness
+      stiff(1:run%k) = run%stiffness
       if (run%chi /= 0.0_wp) then
         do j = 1, run%k
           stiff(j) = run%stiffness * max(1.0_wp - run%chi &
-              * dot_product(run%ht(:, j), run%v), 0.0_wp)
+              * rate(run, j), 0.0_wp)
         end do
       end if
       call series_forces(run%k, stiff, run%cmat, run%gap, run%force, &
@@ -169,7 +196,7 @@ contains
       if (run%gap(j) < 0.0_wp) then
         call law_remember(run%law, j, -run%gap(j))
         run%force(j) = law_force(run%law, j, -run%gap(j), &
-            dot_product(run%ht(:, j), run%v))
+            rate(run, j))
       else
         run%force(j) = 0.0_wp
       end if
@@ -181,11 +208,11 @@ contains
   subroutine elastic_forces(run, force)
     type(adaptive_run), intent(in) :: run
     real(wp), intent(out) :: force(run%k)
-    real(wp) :: stiff(run%k)
+    real(wp) :: stiff(max_contacts)
     integer :: j
 
     if (run%series) then
-      stiff = run%stiffness
+      stiff(1:run%k) = run%stiffness
       call series_forces(run%k, stiff, run%cmat, run%gap, force, &
           run%law%linear)
     else
@@ -197,32 +224,51 @@ contains
 
   !> Half a step's kick of the Hertz forces in run%force; with damping,
   !> its work (as chatter_hertz's kick: the exact change of kinetic
-  !> energy, its damping part) into run%damped_work.
-  subroutine kick(run)
+  !> energy, its damping part) into run%damped_work.  `at`: the fixed
+  !> step whose start the state is; the undamped forces depend on the
+  !> gaps (and the law's memory, which the same gaps leave as it is)
+  !> alone, so the end kick's serve the next step's start kick.
+  subroutine kick(run, at)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: before(run%k), elastic(run%k)
+    integer, intent(in) :: at
+    real(wp) :: before(max_contacts), elastic(max_contacts)
     logical :: damped
     integer :: j
 
     damped = run%chi /= 0.0_wp .and. any(run%gap < 0.0_wp)
     if (damped) then
-      call elastic_forces(run, elastic)
+      if (run%elastic_at /= at) then
+        call elastic_forces(run, elastic)
+        run%elastic(1:run%k) = elastic(1:run%k)
+        run%elastic_at = at
+      end if
       do j = 1, run%k
-        before(j) = dot_product(run%ht(:, j), run%v)
+        before(j) = rate(run, j)
       end do
     end if
     do j = 1, run%k
-      if (run%force(j) /= 0.0_wp) call axpy(run%n, run%force(j), &
-          run%half_kick(:, j), run%v)
+      if (run%force(j) /= 0.0_wp) call axpy(run%hi(j) - run%lo(j) + 1, &
+          run%force(j), run%half_kick(run%lo(j):run%hi(j), j), &
+          run%v(run%lo(j):run%hi(j)))
     end do
     if (damped) then
       do j = 1, run%k
         run%damped_work = run%damped_work - 0.25_wp * run%dt &
-            * (run%force(j) - elastic(j)) * (before(j) &
-            + dot_product(run%ht(:, j), run%v))
+            * (run%force(j) - run%elastic(j)) * (before(j) &
+            + rate(run, j))
       end do
     end if
   end subroutine kick
+
+  !> The rate h_c v of contact c's gap, over the modes its Jacobian
+  !> touches (the rest add only zeros), in dot_product's order.
+  pure real(wp) function rate(run, c)
+    type(adaptive_run), intent(in) :: run
+    integer, intent(in) :: c
+
+    rate = dot_product(run%ht(run%lo(c):run%hi(c), c), &
+        run%v(run%lo(c):run%hi(c)))
+  end function rate
 
   !> y += alpha x.
   pure subroutine axpy(nm, alpha, x, y)

@@ -7,7 +7,7 @@
 module chatter_adaptive_state
   use contactsep_kinds, only: wp
   use chatter_status, only: status_ok
-  use chatter_contact_law, only: contact_law
+  use chatter_contact_law, only: contact_law, max_contacts
   implicit none
   private
   public :: adaptive_run
@@ -66,6 +66,10 @@ module chatter_adaptive_state
     !> Half a step's kick of a unit force at contact c: dt/2 h_c / m;
     !> an impulse's: h_c / m.
     real(wp), allocatable :: half_kick(:, :), inv_mh(:, :)
+    !> Contact c's Jacobian is 0 outside modes lo(c)..hi(c) (each
+    !> contact touches two of the three members): its kicks and rates
+    !> skip the rest.
+    integer :: lo(max_contacts) = 1, hi(max_contacts) = 0
     !> D = H M^-1 H^T: an impulse P changes the contact rates by D P.
     real(wp), allocatable :: coupling(:, :)
     !> A bound of |g_c''| from the energy bound of the run (free).
@@ -84,6 +88,12 @@ module chatter_adaptive_state
     !> driver's module comment); the contact forces of a Hertz step.
     real(wp), allocatable :: gap(:), gap_new(:), rate(:), rate_new(:)
     real(wp), allocatable :: bound(:), force(:)
+    !> The fixed step whose start the forces in force (and the undamped
+    !> ones in elastic) are of: a Hertz step's end forces are the next
+    !> step's start forces where no force depends on v (chi = 0; the
+    !> undamped ones never do), so it reuses them (-1: none held).
+    integer :: forces_at = -1, elastic_at = -1
+    real(wp) :: elastic(max_contacts) = 0.0_wp
     !> The amplitudes of the segment being searched (valid if amp_now).
     real(wp), allocatable :: amp(:)
     logical :: amp_now = .false.

@@ -18,6 +18,7 @@
 !> Twin: contactsep/chatter/contacts.py (series_forces, series_energy).
 module chatter_hertz_series
   use contactsep_kinds, only: wp
+  use chatter_contact_law, only: max_contacts
   implicit none
   private
   public :: series_forces, series_energy, element_depth, max_sweeps
@@ -43,7 +44,13 @@ contains
       depth = a
       return
     end if
-    depth = min(a, (a / b)**(2.0_wp / 3.0_wp))
+    ! (a/b)^{2/3} / a = (a b^2)^{-1/3} >= 1.26 where a b^2 <= 1/2: the
+    ! bound is a there, and the pow (the dearest part of a step) spared
+    if (a * b * b <= 0.5_wp) then
+      depth = a
+    else
+      depth = min(a, (a / b)**(2.0_wp / 3.0_wp))
+    end if
     do it = 1, max_newton
       root = sqrt(depth)
       next = depth - (depth + b * depth * root - a) &
@@ -61,12 +68,16 @@ contains
   !> a sweep changes no force by more than 4 ulps.
   !> With ``linear`` the elements are linear springs (F = s delta, a
   !> cylindrical button): each root is a / (1 + c_ii s).
+  !> An element whose a is the same bits as at its last root keeps that
+  !> root's force (the same call gives the same bits): a sweep after the
+  !> first solves only the elements the other's force moved.
   pure subroutine series_forces(k, stiff, cmat, g, force, linear)
     integer, intent(in) :: k
     real(wp), intent(in) :: stiff(k), cmat(k, k), g(k)
     real(wp), intent(out) :: force(k)
     logical, intent(in), optional :: linear
-    real(wp) :: a, depth, old(k)
+    ! fixed size (k <= max_contacts): no heap traffic in a step
+    real(wp) :: a, depth, old(max_contacts), solved(max_contacts)
     integer :: sweep, i, j
     logical :: line
 
@@ -75,8 +86,10 @@ contains
 
     force = 0.0_wp
     if (all(g >= 0.0_wp)) return
+    ! a > 0 wherever a root is taken: 0 matches none
+    solved = 0.0_wp
     do sweep = 1, max_sweeps
-      old = force
+      old(1:k) = force
       do i = 1, k
         a = -g(i)
         do j = 1, k
@@ -85,14 +98,19 @@ contains
         if (a > 0.0_wp .and. stiff(i) > 0.0_wp .and. line) then
           force(i) = stiff(i) * a / (1.0_wp + cmat(i, i) * stiff(i))
         else if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
-          depth = element_depth(a, cmat(i, i) * stiff(i))
-          force(i) = stiff(i) * depth * sqrt(depth)
+          if (a /= solved(i)) then
+            depth = element_depth(a, cmat(i, i) * stiff(i))
+            force(i) = stiff(i) * depth * sqrt(depth)
+            solved(i) = a
+          end if
         else
           force(i) = 0.0_wp
+          solved(i) = 0.0_wp
         end if
       end do
       if (k == 1) exit
-      if (all(abs(force - old) <= 4.0_wp * epsilon(1.0_wp) * force)) exit
+      if (all(abs(force - old(1:k)) <= 4.0_wp * epsilon(1.0_wp) * force)) &
+          exit
     end do
   end subroutine series_forces
 
@@ -104,15 +122,27 @@ contains
     integer, intent(in) :: k
     real(wp), intent(in) :: stiffness, cmat(k, k), g(k)
     logical, intent(in), optional :: linear
-    real(wp) :: total, force(k), stiff(k), depth
-    integer :: i
+    real(wp) :: total, force(max_contacts), stiff(max_contacts), depth
+    real(wp) :: row
+    integer :: i, j
 
-    stiff = stiffness
+    ! every gap open: no force, no energy (the sums below give +0 too)
+    total = 0.0_wp
+    if (all(g >= 0.0_wp)) return
+    stiff(1:k) = stiffness
     call series_forces(k, stiff, cmat, g, force, linear)
-    total = 0.5_wp * dot_product(force, matmul(cmat, force))
+    ! lambda^T C lambda, summed in matmul's and dot_product's order
+    do i = 1, k
+      row = 0.0_wp
+      do j = 1, k
+        row = row + cmat(i, j) * force(j)
+      end do
+      total = total + force(i) * row
+    end do
+    total = 0.5_wp * total
     if (present(linear)) then
       if (linear) then
-        total = total + 0.5_wp * sum(force**2) / stiffness
+        total = total + 0.5_wp * sum(force(1:k)**2) / stiffness
         return
       end if
     end if
