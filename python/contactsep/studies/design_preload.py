@@ -58,7 +58,7 @@ from contactsep.studies.preload_robust import (
     parse_tolerances,
     robust_preload,
 )
-from contactsep.studies.preload_verify import verify_search
+from contactsep.studies.preload_verify import search_design, verify_design
 from contactsep.studies.run_journal import RunJournal
 
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
@@ -225,13 +225,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                             band_below=band_below)
     with _journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
-        found = _search(design, model, settings, sims, ceiling,
-                        band_below=band_below)
+        found = search_design(design, model, settings, sims, ceiling,
+                              band_below=band_below)
         answer = found.min_preload_lb
         verify_found = local = None
         if verify:
-            verify_found, local = _verify(finer, model, verify_settings,
-                                          sims, answer, band_below)
+            verify_found, local = verify_design(
+                finer, model, verify_settings, sims, answer, band_below)
         perturbed = None
         if perturbation is not None:
             perturbed = _perturbed(design, model, settings, sims, ceiling,
@@ -462,39 +462,6 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
                 converged_check_n_modes=row.check_n_modes,
                 converged=row.converged,
                 converge_history=((n, answer),) + row.history), notes
-
-
-def _search(design, model, settings, sims, ceiling, start=None,
-            band_below=False, known=None):
-    """The search on one design; ``known`` (preload lb -> has an event):
-    runs already made, answered from there."""
-    known = known or {}
-
-    def has_event(tasks):
-        missing = [load for _, load in tasks if load not in known]
-        found = dict(zip(missing, sims.events(
-            [(design, model, settings, load) for load in missing])))
-        return [known[load] if load in known else found[load]
-                for _, load in tasks]
-
-    found, = search(1, has_event, ceilings=[ceiling],
-                    starts=[start if start is not None and
-                            math.isfinite(start) else None],
-                    band_below=band_below, ceiling_first=True)
-    return found
-
-
-def _verify(finer, model, settings, sims, answer, band_below):
-    """The search at 2N, dt/2 (preload_verify.verify_search) and whether
-    it is the local check."""
-    ceiling = largest_preload(finer)
-    return verify_search(
-        lambda loads: sims.events([(finer, model, settings, load)
-                                   for load in loads]),
-        answer, ceiling,
-        lambda known: _search(finer, model, settings, sims, ceiling,
-                              start=answer, band_below=band_below,
-                              known=known))
 
 
 def _notes(found, probe) -> list:

@@ -121,17 +121,19 @@ class RowAnswer:
 
 def window_answer(answer: float, tested) -> float | None:
     """Where ``answer`` holds to MARGIN on the preloads ``tested``
-    ((preload lb, has an event) at the finer N and step): none of those
-    from the answer to MARGIN above it has an event, and one within
-    MARGIN below it has one.  Then the answer restricted to that window:
-    the smallest of its tested preloads above its highest event (within
-    MARGIN of ``answer`` by construction); None where it does not hold.
-    The one test of a check, the chart's and the preload command's."""
+    ((preload lb, has an event) at the finer N and step): of those
+    within MARGIN either side of it, one has an event and one above
+    the highest such has none (the threshold there lies between them,
+    within MARGIN of the answer).  Then the answer restricted to that
+    window: the smallest of its tested preloads above its highest event
+    (within MARGIN of ``answer`` by construction); None where it does
+    not hold.  The one test of a check, the chart's and the preload
+    command's."""
     lo = answer * (1.0 - MARGIN) * (1.0 - 1e-12)
     hi = answer * (1.0 + MARGIN) * (1.0 + 1e-12)
     inside = [(p, bool(e)) for p, e in tested if lo <= p <= hi]
     events = [p for p, e in inside if e]
-    if not events or max(events) >= answer:
+    if not events:
         return None
     above = [p for p, _ in inside if p > max(events)]
     return min(above) if above else None
