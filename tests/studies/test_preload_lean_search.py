@@ -221,3 +221,29 @@ def test_the_lean_search_answers_as_the_whole_one(drawn):
             # its runs: the whole search's and the ceiling, each once
             assert set(b.tested) <= set(a.tested) | {(top, False)}
             assert len(lean_asked[r]) == len(set(lean_asked[r]))
+
+
+def test_the_command_runs_the_band_below_on_request(monkeypatch, capsys):
+    import json
+
+    from contactsep.cli import main
+    plant_threshold(monkeypatch, lambda d, s: 0.25 * largest_preload(d))
+    argv = ["preload", "--n-modes", "8", "--workers", "1", "--json",
+            "--no-converge", "--progress", "never"]
+    found = {}
+    for extra in ([], ["--band-below"]):
+        assert main(argv + extra) == 0
+        data = json.loads(capsys.readouterr().out)
+        a = data["min_preload_lb"]
+        found[bool(extra)] = (a, [t["preload_lb"] for t in data["tested"]
+                                  if 0.7 * a <= t["preload_lb"] < a / 1.01])
+    assert found[True][0] == found[False][0]
+    assert len(found[True][1]) >= 30 and len(found[False][1]) <= 8
+
+
+def test_a_journal_names_band_below_only_when_asked():
+    from contactsep.studies.design_preload import journal_inputs
+    design = FAMILY["thesis"]
+    assert "band_below" not in journal_inputs(design, "hertz", {})
+    assert journal_inputs(design, "hertz", {}, band_below=True)[
+        "band_below"] is True
