@@ -247,3 +247,19 @@ def test_a_journal_names_band_below_only_when_asked():
     assert "band_below" not in journal_inputs(design, "hertz", {})
     assert journal_inputs(design, "hertz", {}, band_below=True)[
         "band_below"] is True
+
+
+def test_with_tolerances_the_nominal_band_below_runs(monkeypatch):
+    """The robust search tries the nominal design's events above its own
+    answer, which may lie below the nominal one: the nominal band below
+    runs whenever tolerances are given."""
+    from planted_preload import fake_sample
+
+    from contactsep.studies import preload_robust
+    design = FAMILY["thesis"].replace(n_modes=8)
+    plant_threshold(monkeypatch, lambda d, s: 0.25 * largest_preload(d))
+    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
+    answer = contactsep.preload(design, workers=1, verify=False,
+                                tolerance=["d=uniform(0.245,0.255)"],
+                                samples=5)
+    assert len(_below(answer)) >= 30

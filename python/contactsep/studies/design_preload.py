@@ -173,7 +173,9 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         The fine band from 0.7 times the answer in every search at N
         (default False: from 0.7 only where the scan saw a closed preload
         below its last event; the band below never moves the answer, it
-        finds the closed windows below it).
+        finds the closed windows below it; with ``tolerance`` the
+        nominal search runs it anyway, as the robust search tries the
+        nominal design's events).
     workers : int, optional
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
@@ -225,8 +227,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                             band_below=band_below)
     with _journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
+        # with tolerances the band below too: the robust search tries
+        # the nominal design's events above its own answer
         found = search_design(design, model, settings, sims, ceiling,
-                              band_below=band_below)
+                              band_below=band_below or spec is not None)
         answer = found.min_preload_lb
         verify_found = local = None
         if verify:
