@@ -115,9 +115,10 @@ def register(commands: argparse._SubParsersAction) -> None:
     run_group.add_argument(
         "--band-below", action="store_true",
         help="the fine band from 0.7 times the answer in every search at N "
-             "(default: from the answer, and from 0.7 only where the scan "
-             "saw a closed preload below its last event): the closed "
-             "windows below the answer; the same answer")
+             "(default: from just below the answer, from 0.7 only where "
+             "the scan saw a closed preload below its last event, or with "
+             "--tolerance): the closed windows below the answer; the same "
+             "answer")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
