@@ -37,7 +37,7 @@ HERE = Path(__file__).resolve()
 DEFAULT_DESIGNS = "steel_relay:8,becu_light:8,thesis:4"
 
 
-def _rows(designs: str) -> list:
+def _rows(designs: str, settings=None) -> list:
     """Run the searches in this process (this interpreter's install)."""
     sys.path.insert(0, str(HERE.parents[1] / "tests"))
     from design_family import FAMILY
@@ -50,9 +50,9 @@ def _rows(designs: str) -> list:
         cpu, wall = _cpu(), time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            answer = preload(design, workers=1)
+            answer = preload(design, workers=1, **(settings or {}))
         rows.append({
-            "design": name, "n_modes": int(n),
+            "design": name, "n_modes": int(n), "settings": settings or {},
             "min_preload_lb": _finite(answer.min_preload_lb),
             "verify_min_preload_lb": _finite(answer.verify_min_preload_lb),
             "min_preload_change": answer.min_preload_change,
@@ -95,16 +95,25 @@ def table(results: dict) -> str:
     lines = ["| design, N | code | answer (lb) | at 2N, dt/2 (lb) | change "
              "| runs at N | at 2N | all | CPU (s) |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for label, rows in results.items():
-        for r in rows:
-            change = r["min_preload_change"]
-            lines.append(
-                f"| {r['design']}, {r['n_modes']} | {label} | "
-                f"{_g(r['min_preload_lb'])} | "
-                f"{_g(r['verify_min_preload_lb'])} | "
-                f"{_g(change, '{:+.2%}')} | {r['nominal_runs']} | "
-                f"{r['verify_runs']} | {r['simulations']} | "
-                f"{r['cpu_s']:.0f} |")
+    # each design's rows together, this tree's first
+    pairs = [(label, r) for label, rows in results.items()
+             for r in rows]
+    order = list(dict.fromkeys((r["design"], r["n_modes"])
+                               for _, r in pairs))
+    pairs.sort(key=lambda lr: order.index((lr[1]["design"],
+                                           lr[1]["n_modes"])))
+    for label, r in pairs:
+        change = r["min_preload_change"]
+        given = ", ".join(f"{k} {v}" for k, v in
+                          r.get("settings", {}).items())
+        lines.append(
+            f"| {r['design']}, {r['n_modes']}"
+            f"{f' ({given})' if given else ''} | {label} | "
+            f"{_g(r['min_preload_lb'])} | "
+            f"{_g(r['verify_min_preload_lb'])} | "
+            f"{_g(change, '{:+.2%}')} | {r['nominal_runs']} | "
+            f"{r['verify_runs']} | {r['simulations']} | "
+            f"{r['cpu_s']:.0f} |")
     return "\n".join(lines)
 
 
@@ -113,6 +122,9 @@ def main(argv=None) -> None:
     parser.add_argument("--base-python", help="another install's python")
     parser.add_argument("--designs", default=DEFAULT_DESIGNS,
                         help="NAME:N,... of tests/design_family.py")
+    parser.add_argument("--settings", type=json.loads, default=None,
+                        help="simulate()'s keywords for every search, as "
+                             "a JSON object")
     parser.add_argument("--json", help="also write the rows here")
     parser.add_argument("--save", action="store_true",
                         help="also into benchmarks/results/bench_search.md")
@@ -122,16 +134,18 @@ def main(argv=None) -> None:
                         help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.rows_only:
-        print(json.dumps(_rows(args.designs), allow_nan=False))
+        print(json.dumps(_rows(args.designs, args.settings),
+                         allow_nan=False))
         return
     results = {"this tree": _read_rows(args.rows) if args.rows
-               else _rows(args.designs)}
+               else _rows(args.designs, args.settings)}
     if args.base_rows:
         results["base"] = _read_rows(args.base_rows)
     elif args.base_python:
         done = subprocess.run(
             [args.base_python, str(HERE), "--rows-only", "--designs",
-             args.designs], check=True, capture_output=True, text=True,
+             args.designs, *(["--settings", json.dumps(args.settings)]
+                             if args.settings else [])], check=True, capture_output=True, text=True,
             cwd=str(HERE.parents[1]))
         results["base"] = json.loads(done.stdout.splitlines()[-1])
     sys.path.insert(0, str(HERE.parent))
