@@ -61,6 +61,28 @@ def planted_preload(monkeypatch):
     CALLS.clear()
 
 
+def plant_threshold(monkeypatch, where):
+    """Plant an event below ``where(design, settings)`` lb instead of
+    :func:`threshold`; every run is kept in CALLS as ("event", preload,
+    N), so that a test can tell the runs at N from those at 2N."""
+    def event(task):
+        design, _, settings, load = task
+        CALLS.append(("event", load, design.n_modes))
+        return load < where(design, settings)
+
+    def simulate(design, model, preload=0.0, **settings):
+        settings.pop("samples", None)
+        settings.pop("single_impulse", None)
+        return types.SimpleNamespace(
+            dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
+            min_open_s=1e-5, t_end_s=0.06,
+            longest_open_s=2e-5 if preload < where(design, settings)
+            else 5e-6)
+    monkeypatch.setattr(preload, "_simulate_event", event)
+    monkeypatch.setattr(design_preload, "simulate", simulate)
+    CALLS.clear()
+
+
 def fake_zero_preload(task):
     """A conclusion study's run with no preload: (largest lower gap,
     open time, events) from the separator's thickness alone."""

@@ -20,14 +20,14 @@ ROOT = Path(__file__).resolve().parents[2]
 COLUMNS = ["model", "n_modes", "d_in", "ys_in", "min_preload_lb"]
 
 
-def _search(*functions):
+def _search(*functions, **options):
     calls = []
 
     def has_event(tasks):
         calls.append(len(tasks))
         return [functions[row](p) for row, p in tasks]
 
-    return preload.search(len(functions), has_event), calls
+    return preload.search(len(functions), has_event, **options), calls
 
 
 # the search, on event functions with a known answer
@@ -42,16 +42,26 @@ def test_a_monotone_threshold_is_found_to_one_percent():
         assert result.min_preload_lb <= max(events) * 1.01
         assert result.closed_below == ()
     # one batch per scan octave, bisection step or band, for all rows
-    # at once; the band: every step of at most 1 % (relative) from 0.7
-    # to 2 times each answer, counted here independently of fine_band
+    # at once; the band: every step of at most 1 % (relative) from the
+    # answer to 2 times it (the scan is monotone: nothing below it), and
+    # with band_below from 0.7 times it, counted here independently of
+    # fine_band; the same answers
     assert len(calls) < 25
-    for t, result in zip(thresholds, found):
+    below, _ = _search(*(lambda p, t=t: p < t for t in thresholds),
+                       band_below=True)
+    for result, looked in zip(found, below):
         answer = result.min_preload_lb
-        band = sorted(p for p, _ in result.tested
-                      if 0.7 * answer <= p <= 2.0 * answer)
-        assert band[0] <= 0.7 * answer * 1.01
-        assert band[-1] >= 2.0 * answer / 1.01
-        assert all(b / a <= 1.01 for a, b in zip(band, band[1:]))
+        assert looked.min_preload_lb == answer
+        for tested, low in ((result.tested, 1.0), (looked.tested, 0.7)):
+            band = sorted(p for p, _ in tested
+                          if low * answer <= p <= 2.0 * answer)
+            assert band[0] <= low * answer * 1.01
+            assert band[-1] >= 2.0 * answer / 1.01
+            assert all(b / a <= 1.01 for a, b in zip(band, band[1:]))
+        # by default not the ~35 fine steps from 0.7 to 0.99 times it
+        def under(tested, a=answer):
+            return [p for p, _ in tested if 0.7 * a <= p < a / 1.01]
+        assert len(under(looked.tested)) - len(under(result.tested)) >= 25
 
 
 def test_above_the_answer_every_tested_preload_is_closed():

@@ -161,7 +161,9 @@ def test_the_cheapest_row_is_what_the_library_computes_now():
             workers=2, converge=True)
     assert math.isclose(answer.min_preload_lb,
                         float(committed["min_preload_lb"]), rel_tol=1e-5)
-    assert math.isclose(answer.verify_min_preload_lb,
-                        float(committed["verify_min_preload_lb"]),
-                        rel_tol=1e-5)
+    # the committed 2N answer is the whole search's there (the threshold
+    # at 2N within 1 % below it); the check 2 % either side now answers
+    # the first fine step (0.99 %) above that threshold
+    whole = float(committed["verify_min_preload_lb"])
+    assert whole / 1.01 <= answer.verify_min_preload_lb <= whole * 1.0099
     assert answer.converged == (committed["converged"] == "1")

@@ -37,10 +37,13 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="The smallest lower-contact preload with no "
                     "discontinuity event for this design (the thesis rig, "
                     "any design field changed): the search of the "
-                    "preload chart (every 0.99 % step from 0.7 to 2 times "
-                    "the answer simulated, so that windows of events 1 % "
-                    "wide are found), its change at half the step and "
-                    "twice the modes (min_preload_change), the windows of "
+                    "preload chart (every 0.99 % step from the answer to 2 "
+                    "times it simulated, so that windows of events 1 % "
+                    "wide are found; from 0.7 times it where the scan is "
+                    "not monotone, or with --band-below), its change at "
+                    "half the step and twice the modes "
+                    "(min_preload_change, checked 2 % either side), the "
+                    "windows of "
                     "events and the closed windows below the answer. "
                     "With --tolerance, also the robust answer: the "
                     "smallest preload whose p_open over the tolerances "
@@ -96,6 +99,13 @@ def register(commands: argparse._SubParsersAction) -> None:
              "the answer moves far more than R, the threshold is "
              "ill-conditioned and no N or step converges it closer "
              "(min_preload_spread; two more searches)")
+    run_group.add_argument(
+        "--band-below", action="store_true",
+        help="the fine band from 0.7 times the answer in every search at N "
+             "(default: from just below the answer, from 0.7 only where "
+             "the scan saw a closed preload below its last event, or with "
+             "--tolerance): the closed windows below the answer; the same "
+             "answer")
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
@@ -199,7 +209,8 @@ def _run(args, design, p_target, workers) -> int:
     journal = journals.open_journal(args.resume, args.csv, journal_inputs(
         design, args.model, settings, tolerance=args.tolerance,
         p_target=p_target, samples=args.samples, seed=args.seed,
-        converge=args.converge, perturbation=args.perturbation))
+        converge=args.converge, perturbation=args.perturbation,
+        band_below=args.band_below))
     bar = _progress(None, enabled)
     if bar is not None:
         bar.unit = "run"
@@ -209,6 +220,7 @@ def _run(args, design, p_target, workers) -> int:
                          seed=args.seed, workers=workers,
                          converge=args.converge,
                          perturbation=args.perturbation,
+                         band_below=args.band_below,
                          progress=None if bar is None else bar.update,
                          journal=journal, **settings)
     except BaseException as error:

@@ -3,10 +3,13 @@
 preload command").
 
 :func:`preload` runs the preload search of :mod:`contactsep.studies.preload`
-(scan, bisection to 1 %, every 0.99 % step from 0.7 to 2 times the
-answer simulated) on one design, then the same search at half the step
-and twice the modes (the answer's own error estimate,
-``min_preload_change``), and, given tolerances, the robust answer
+(the ceiling first, scan, bisection to 1 %, every 0.99 % step from the
+answer to 2 times it simulated, and from 0.7 times it where the scan was
+not monotone or ``band_below`` asks) on one design, then its check at
+half the step and twice the modes, 2 % either side, searching again
+there only where it fails (the answer's own error estimate,
+``min_preload_change``: :mod:`contactsep.studies.preload_verify`), and,
+given tolerances, the robust answer
 (:mod:`contactsep.studies.preload_robust`).  Every batch of simulations
 runs on the search's worker pool (:class:`~contactsep.studies.preload.
 Simulations`).  The simulation's settings (dt, t_end, damping, min_open,
@@ -17,6 +20,7 @@ unchanged to every run.
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import warnings
 
@@ -54,6 +58,7 @@ from contactsep.studies.preload_robust import (
     parse_tolerances,
     robust_preload,
 )
+from contactsep.studies.preload_verify import search_design, verify_design
 from contactsep.studies.run_journal import RunJournal
 
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
@@ -114,7 +119,7 @@ def _change(answer: float, other: float) -> float | None:
 def preload(design, model: str = "hertz", *, tolerance=(),
             p_target: float = DEFAULT_P_TARGET, samples: int | None = None,
             seed: int = 0, verify: bool = True, converge=None,
-            perturbation: float | None = None,
+            perturbation: float | None = None, band_below: bool = False,
             workers: int | None = None, progress=None, journal=None,
             **settings) -> PreloadAnswer:
     """The smallest lower-contact preload (lb) with no discontinuity
@@ -137,8 +142,10 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         Draws of the tolerances (default 100: raise it to resolve a
         p_open of 1 %).
     verify : bool
-        Search again at half the step and twice the modes for
-        ``min_preload_change`` (default True).
+        Check the answer at half the step and twice the modes for
+        ``min_preload_change`` (default True): every 0.99 % step within
+        2 % either side of it; where that fails, the whole search there
+        (:mod:`contactsep.studies.preload_verify`).
     converge : None, bool or int
         The answer converged to 2 % (``converged_*`` fields): where
         ``min_preload_change`` exceeds 2 %, the answer at 2N is checked
@@ -162,6 +169,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         the spread is far above r the threshold is ill-conditioned, and
         no N or step converges it closer (docs/chatter.md, "How
         well-posed the answer is").  Two more searches at N.
+    band_below : bool
+        The fine band from 0.7 times the answer in every search at N
+        (default False: from 0.7 only where the scan saw a closed preload
+        below its last event; the band below never moves the answer, it
+        finds the closed windows below it; with ``tolerance`` the
+        nominal search runs it anyway, as the robust search tries the
+        nominal design's events).
     workers : int, optional
         Worker processes (default the usable cores; 1: this process).
     progress : callable, optional
@@ -209,24 +223,28 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     inputs = journal_inputs(design, model, settings, tolerance=tolerance,
                             p_target=p_target, samples=samples, seed=seed,
                             verify=verify, converge=converge,
-                            perturbation=perturbation)
+                            perturbation=perturbation,
+                            band_below=band_below)
     with _journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
-        found = _search(design, model, settings, sims, ceiling)
+        # with tolerances the band below too: the robust search tries
+        # the nominal design's events above its own answer
+        found = search_design(design, model, settings, sims, ceiling,
+                              band_below=band_below or spec is not None)
         answer = found.min_preload_lb
-        verify_found = None
+        verify_found = local = None
         if verify:
-            verify_found = _search(finer, model, verify_settings, sims,
-                                   largest_preload(finer), start=answer)
+            verify_found, local = verify_design(
+                finer, model, verify_settings, sims, answer, band_below)
         perturbed = None
         if perturbation is not None:
             perturbed = _perturbed(design, model, settings, sims, ceiling,
-                                   perturbation, answer)
+                                   perturbation, answer, band_below)
         converged = None
         if max_check is not None:
             converged, converge_notes = _converge(
                 design, model, settings, sims, found, verify_found, probe,
-                max_check)
+                max_check, band_below)
             notes += converge_notes
         runs = sims.runs
         robust = None
@@ -257,7 +275,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     notes += _notes(found, probe)
     verify_answer = None if verify_found is None else \
         verify_found.min_preload_lb
-    if verify_found is not None:
+    if local:
+        notes.append(f"at half the step and twice the modes: checked "
+                     f"{MARGIN:.0%} either side of the answer only (every "
+                     f"{FINE_RATIO - 1:.2%} step), where it holds: a "
+                     f"window of events further above it there is not "
+                     f"seen")
+    elif verify_found is not None:
         notes += [f"at half the step and twice the modes: {note}" for note
                   in limit_notes("the design", verify_found)]
     change = None if verify_found is None else _change(answer,
@@ -313,14 +337,18 @@ def preload(design, model: str = "hertz", *, tolerance=(),
 
 def journal_inputs(design, model: str, settings: dict, *, tolerance=(),
                    p_target=DEFAULT_P_TARGET, samples=None, seed=0,
-                   verify=True, converge=None, perturbation=None) -> dict:
+                   verify=True, converge=None, perturbation=None,
+                   band_below=False) -> dict:
     """What a search's journal must have been made with to be continued
     (its manifest): :func:`preload`'s arguments that choose the
     simulations it asks for."""
+    # band_below named only when asked: a journal of the default search
+    # keeps the manifest it had before the option
     return dict(design=design, model=model, settings=settings,
                 tolerance=list(tolerance), p_target=p_target,
                 samples=samples, seed=seed, verify=verify,
-                converge=converge, perturbation=perturbation)
+                converge=converge, perturbation=perturbation,
+                **({"band_below": True} if band_below else {}))
 
 
 @contextlib.contextmanager
@@ -352,7 +380,7 @@ def check_perturbation(value) -> float | None:
 
 
 def _perturbed(design, model, settings, sims, ceiling, perturbation,
-               answer):
+               answer, band_below=False):
     """The searches on y_s (1 + r) and y_s (1 - r) with the nominal's
     settings, in the same batches."""
     designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
@@ -360,7 +388,8 @@ def _perturbed(design, model, settings, sims, ceiling, perturbation,
     start = answer if math.isfinite(answer) else None
     return search(2, lambda tasks: sims.events(
         [(designs[row], model, settings, load) for row, load in tasks]),
-        ceilings=[ceiling] * 2, starts=[start] * 2)
+        ceilings=[ceiling] * 2, starts=[start] * 2, band_below=band_below,
+        ceiling_first=True)
 
 
 def perturbed_fields(perturbation, perturbed, answer) -> dict:
@@ -395,7 +424,7 @@ def _check_converge(converge, verify, n_modes):
 
 
 def _converge(design, model, settings, sims, found, verify_found, probe,
-              max_check) -> tuple[dict, list]:
+              max_check, band_below=False) -> tuple[dict, list]:
     """The converged_* fields of the answer (PreloadAnswer) and notes."""
     n, dt = int(design.n_modes), probe.dt
     answer, finer = found.min_preload_lb, verify_found.min_preload_lb
@@ -421,7 +450,9 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
         lambda m, rows: [design.replace(n_modes=m) for _ in rows],
         [finer], 2 * n, dt / 2, model,
         {k: v for k, v in settings.items() if k != "dt"}, sims, last,
-        search_again=min_preloads, t_end=probe.t_end_s)
+        search_again=functools.partial(min_preloads, band_below=band_below,
+                                       ceiling_first=True),
+        t_end=probe.t_end_s)
     if row.converged:
         notes.append(f"converged: the answer at N = {row.n_modes} held "
                      f"its check at N = {row.check_n_modes}, which tries "
@@ -437,29 +468,22 @@ def _converge(design, model, settings, sims, found, verify_found, probe,
                 converge_history=((n, answer),) + row.history), notes
 
 
-def _search(design, model, settings, sims, ceiling, start=None):
-    found, = search(1, lambda tasks: sims.events(
-        [(design, model, settings, load) for _, load in tasks]),
-        ceilings=[ceiling],
-        starts=[start if start is not None and math.isfinite(start)
-                else None])
-    return found
-
-
 def _notes(found, probe) -> list:
     notes = [
         f"an event: the circuit open (both gaps above "
         f"{probe.open_threshold_in:g} in) for at least "
         f"{probe.min_open_s:g} s in the window 0-{probe.t_end_s:g} s; "
         f"the answer depends on that min_open (docs/chatter.md)",
-        f"search: scan 2^(k/4) lb, bisection to {TOLERANCE:.0%}, every "
-        f"{FINE_RATIO - 1:.2%} step from {BAND_LOW:g} to {BAND_HIGH:g} "
-        f"times the answer simulated; windows of events narrower than "
-        f"1 % may lie between two steps unseen, and beyond "
-        f"{BAND_HIGH:g} times the answer windows narrower than the "
-        f"scan's 19 %",
-        f"windows below {BAND_LOW:g} times the answer are resolved to the "
-        f"scan's 19 % steps only"]
+        f"search: the ceiling, scan 2^(k/4) lb, bisection to "
+        f"{TOLERANCE:.0%}, every {FINE_RATIO - 1:.2%} step from "
+        f"{found.band_low:g} to {BAND_HIGH:g} times the answer simulated; "
+        f"windows of events narrower than 1 % may lie between two steps "
+        f"unseen, and beyond {BAND_HIGH:g} times the answer windows "
+        f"narrower than the scan's 19 %",
+        f"windows below {found.band_low:g} times the answer are resolved "
+        f"to the scan's 19 % steps only" + (
+            f" (the scan was monotone; band_below, --band-below: from "
+            f"{BAND_LOW:g})" if found.band_low > BAND_LOW else "")]
     notes += limit_notes("the design", found)
     if found.min_preload_lb == 0.0:
         notes.append("closed with no preload at all")

@@ -204,7 +204,8 @@ class Simulations:
 
 
 def min_preloads(designs, model: str = "hertz", settings=None,
-                 workers: int | None = None, simulations=None
+                 workers: int | None = None, simulations=None, *,
+                 band_below: bool = True, ceiling_first: bool = False
                  ) -> list[PreloadSearch]:
     """The smallest preload with no discontinuity event, design by design.
 
@@ -225,6 +226,11 @@ def min_preloads(designs, model: str = "hertz", settings=None,
         a Client whose Dask cluster runs them.
     simulations : Simulations, optional
         An open :class:`Simulations` to use instead of ``workers``.
+    band_below, ceiling_first : bool
+        :func:`search`'s.  The defaults are the chart's and the studies'
+        searches as their committed outputs were computed (the band from
+        0.7 times every answer, the ceiling where the scan reaches it);
+        ``contactsep preload`` runs False, True.
 
     Returns
     -------
@@ -250,13 +256,14 @@ def min_preloads(designs, model: str = "hertz", settings=None,
                             for row, preload in tasks])
 
     ceilings = [largest_preload(design) for design in designs]
+    how = dict(ceilings=ceilings, band_below=band_below,
+               ceiling_first=ceiling_first)
     if simulations is not None:
         return search(len(designs),
-                      lambda tasks: has_event(tasks, simulations),
-                      ceilings=ceilings)
+                      lambda tasks: has_event(tasks, simulations), **how)
     with Simulations(workers) as sims:
         return search(len(designs), lambda tasks: has_event(tasks, sims),
-                      ceilings=ceilings)
+                      **how)
 
 
 def limit_notes(where: str, result: PreloadSearch) -> list[str]:

@@ -28,10 +28,16 @@ class PreloadAnswer:
     #: The smallest tested preload (lb) above which every tested preload
     #: has no event (NaN: an event up to the simulation's limit).
     min_preload_lb: float
-    #: (answer at half the step and twice the modes - answer) / answer
-    #: (None: not verified, or no finite nonzero answer to compare).
+    #: (verify_min_preload_lb - answer) / answer (None: not verified, or
+    #: no finite nonzero answer to compare): within 2 % where the check
+    #: at half the step and twice the modes held, the whole search's
+    #: change where it failed (contactsep.studies.preload_verify).
     min_preload_change: float | None
-    #: The answer at half the step and twice the modes (None: not run).
+    #: The answer at half the step and twice the modes (None: not run):
+    #: where the check there held (an event at one of the fine grid's
+    #: preloads within 2 % either side of the answer, none at one above
+    #: the highest such), the smallest of them above that event (the
+    #: answer there restricted to the window); else the whole search's.
     verify_min_preload_lb: float | None
     #: (first, last) tested preloads of each run of events (lb).
     event_windows: tuple

@@ -119,22 +119,46 @@ class RowAnswer:
     search: object = None
 
 
+def window_answer(answer: float, tested) -> float | None:
+    """Where ``answer`` holds to MARGIN on the preloads ``tested``
+    ((preload lb, has an event) at the finer N and step): of those
+    within MARGIN either side of it, one has an event and one above
+    the highest such has none (the threshold there lies between them,
+    within MARGIN of the answer).  Then the answer restricted to that
+    window: the smallest of its tested preloads above its highest event
+    (within MARGIN of ``answer`` by construction); None where it does
+    not hold.  The one test of a check, the chart's and the preload
+    command's."""
+    lo = answer * (1.0 - MARGIN) * (1.0 - 1e-12)
+    hi = answer * (1.0 + MARGIN) * (1.0 + 1e-12)
+    inside = [(p, bool(e)) for p, e in tested if lo <= p <= hi]
+    events = [p for p, e in inside if e]
+    if not events:
+        return None
+    above = [p for p, _ in inside if p > max(events)]
+    return min(above) if above else None
+
+
 def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
     """Whether each answer holds to MARGIN on its design (at the N and
-    step the designs and settings carry): no event MARGIN above, an
-    event MARGIN below or between."""
+    step the designs and settings carry; :func:`window_answer`) on the
+    preloads MARGIN above and below it, and, where the one below is
+    closed, every MARGIN / 8 between."""
     tasks = []
     for design, answer in zip(designs, answers):
         tasks += [(design, model, settings, answer * (1.0 - MARGIN)),
                   (design, model, settings, answer * (1.0 + MARGIN))]
     found = sims.events(tasks)
+    tested = [[(t[3], e) for t, e in zip(tasks[2 * i:2 * i + 2],
+                                         found[2 * i:2 * i + 2])]
+              for i in range(len(designs))]
     closed = [i for i in range(len(designs)) if not found[2 * i]]
-    scan = sims.events([(designs[i], model, settings, answers[i] * f)
-                        for i in closed for f in BETWEEN])
-    below = [found[2 * i] for i in range(len(designs))]
-    for j, i in enumerate(closed):
-        below[i] = any(scan[j * len(BETWEEN):(j + 1) * len(BETWEEN)])
-    return [below[i] and not found[2 * i + 1] for i in range(len(designs))]
+    between = [(designs[i], model, settings, answers[i] * f)
+               for i in closed for f in BETWEEN]
+    for j, (task, event) in enumerate(zip(between, sims.events(between))):
+        tested[closed[j // len(BETWEEN)]].append((task[3], event))
+    return [window_answer(a, t) is not None
+            for a, t in zip(answers, tested)]
 
 
 def converge_rows(make_designs, answers, n_modes, dt, model, settings,

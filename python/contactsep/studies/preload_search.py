@@ -6,22 +6,34 @@ event, from a function that says which preloads have one (the chart,
 For each design (the chart: the thesis rig for d = 0.125 ... 0.75 in and
 y_s = 0.25, 0.5, 0.75 in) the search
 
+0. with ``ceiling_first``, **tries the ceiling** first: the highest grid
+   value at or below the row's ceiling (the largest preload the
+   simulation takes), the one the scan would test last; an event there
+   is the answer "none up to it" (NaN) at once, a closed one is kept
+   for the scan;
 1. **scans** the grid of preloads 2^(k/4) lb (19 % apart) upward from
    1/16 lb (or from a row's ``start``), an octave (four values) at a
    time, until the four values above the highest preload with an event
    are all closed (no event), or those of them up to the row's ceiling
-   (the largest preload the simulation takes: it bends the lower
-   contact by its length); if the first octave has no event it scans
-   down instead, to 2^-20 lb, then tries 0;
+   (it bends the lower contact by its length); if the first octave has
+   no event it scans down instead, to 2^-20 lb, then tries 0;
 2. **bisects** (geometric midpoints) between that highest event and the
    next grid value until they are within 1 %;
 3. **checks finely** every preload of the fine grid FINE_RATIO^j lb
    (steps of 0.99 %: a window of events 1 % wide holds one of them)
-   from 0.7 to 2 times the answer (BAND_LOW, BAND_HIGH): if one above the answer has an
-   event, the highest such is the new lower end, the next tested
+   from the bracket's event (within 1 % below the answer) to 2 times
+   the answer (BAND_HIGH), and from 0.7 times it (BAND_LOW) where the
+   scan saw a closed grid value below its highest event (not monotone)
+   or ``band_below`` asks: if one above the answer
+   has an event, the highest such is the new lower end, the next tested
    preload above it the upper end, and 2-3 repeat (preloads above the
    ceiling are not tested; the fine grid is fixed, so a repeat tests
    only the preloads the last band did not).
+
+The band below the bracket's event cannot move the answer (the answer
+depends only on the highest event and the tested preloads above it);
+it finds the closed windows below it, which a monotone scan gives no
+sign of.
 
 "Closed" is not monotone in preload (docs/chatter.md, "The preload
 chart"): below the highest preload with an event a smaller one may be
@@ -33,7 +45,9 @@ ceiling).  Each step keeps that true (a closed midpoint becomes the
 upper end, an open one the lower end), and the answer is itself
 closed.  A window of events narrower than 1 % may fall between two
 fine steps, and one beyond 2 times the answer between two of the
-scan's steps, unseen.
+scan's steps, unseen.  The ceiling tried first is a tested preload
+like any other: an event there leaves no answer even where the scan
+alone would have stopped below it, an octave short of it.
 
 Every scan step, bisection step and band is one batch: ``has_event``
 is called with all the rows' preloads at once.
@@ -83,6 +97,10 @@ class PreloadSearch:
     #: The largest preload the search could test (lb; inf: the grid's
     #: top): the simulation's limit, :func:`largest_preload`.
     ceiling_lb: float = math.inf
+    #: Where the fine band began, in times the answer: BAND_LOW, or 1
+    #: where it began at the bracket's event, within 1 % below the
+    #: answer (``band_below``).
+    band_low: float = BAND_LOW
 
     @property
     def closed_below(self) -> tuple:
@@ -143,7 +161,8 @@ def start_index(preload: float) -> int:
 
 
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
-           ceilings=None, starts=None, band=True, band_batch=None
+           ceilings=None, starts=None, band=True, band_batch=None,
+           band_below=False, ceiling_first=False
            ) -> list[PreloadSearch]:
     """Run the scan, the bisection and the fine check around the answer
     for ``n_rows`` designs at once (module docstring).
@@ -166,7 +185,13 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     a whole tolerance study): the highest event in the band is the same
     as the whole band's, so the answer is too (every step depends only
     on the highest event and the tested preloads above it), with fewer
-    preloads tried below it.
+    preloads tried below it.  ``band_below`` (the fine check, ``band``
+    True): True, the band from BAND_LOW times the answer; False, from
+    the bracket's event (within 1 % below the answer), and from
+    BAND_LOW only where the scan saw a closed grid value below its
+    highest event (the same answer: module docstring).
+    ``ceiling_first``: each row with a finite ceiling first tries the
+    highest grid value at or below it (module docstring, step 0).
     """
     if band_batch is not None and not (isinstance(band_batch, int)
                                        and band_batch >= 1):
@@ -183,6 +208,8 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     tested = [{} for _ in range(n_rows)]
 
     def run(tasks, on_grid=False):
+        if not tasks:
+            return
         for (row, preload), event in zip(tasks, has_event(tasks)):
             tested[row][preload] = bool(event)
             if on_grid and preload == 0.0:
@@ -191,9 +218,15 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 k = round(PER_OCTAVE * math.log2(preload))
                 scans[row][k] = bool(event)
 
+    if ceiling_first:
+        # the scan's last preload, tried first: an event there is the
+        # row's answer (none), whatever lies below it
+        run([(row, grid(tops[row])) for row in range(n_rows)
+             if math.isfinite(limits[row])], on_grid=True)
     run([(row, grid(k)) for row in range(n_rows)
+         if not scans[row].get(tops[row])
          for k in range(firsts[row], firsts[row] + PER_OCTAVE)
-         if k <= tops[row]],
+         if k <= tops[row] and k not in scans[row]],
         on_grid=True)
     while True:
         tasks = [(row, p) for row in range(n_rows)
@@ -203,6 +236,10 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
         run(tasks, on_grid=True)
     brackets = [list(_bracket(scans[row], zeros[row]))
                 for row in range(n_rows)]
+    # where the scan saw a closed grid value below its highest event,
+    # closed windows may lie below the answer: the band looks there too
+    below = [band_below or _not_monotone(scans[row])
+             for row in range(n_rows)]
     checked = [None] * n_rows
     while True:
         _bisect(brackets, tested, has_event, tolerance)
@@ -216,8 +253,11 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 if lo > 0.0 and math.isfinite(hi) and checked[row] != hi]
         if not rows:
             break
+        # (from the bracket's event, not from the answer: a fine step
+        # between them, closed, is the answer the whole band gives)
         checks = band if callable(band) else (
-            lambda row, answer: fine_band(answer))
+            lambda row, answer: fine_band(answer) if below[row] else
+            fine_grid(brackets[row][0], BAND_HIGH * answer))
         bands = {row: [p for p in checks(row, brackets[row][1])
                        if p not in tested[row] and p <= limits[row]]
                  for row in rows}
@@ -244,8 +284,17 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
             brackets[row] = [top, min(above) if above else math.nan]
     return [PreloadSearch(min_preload_lb=hi,
                           tested=tuple(sorted(tested[row].items())),
-                          ceiling_lb=limits[row])
+                          ceiling_lb=limits[row],
+                          band_low=BAND_LOW if below[row] else 1.0)
             for row, (_, hi) in enumerate(brackets)]
+
+
+def _not_monotone(scan: dict) -> bool:
+    """Whether a row's scan (grid index -> has an event) has a closed
+    grid value below its highest event."""
+    events = [k for k, event in scan.items() if event]
+    return bool(events) and any(not event and k < max(events)
+                                for k, event in scan.items())
 
 
 def _run_from_the_top(bands: dict, tested: list, run, batch: int) -> None:
@@ -275,13 +324,20 @@ def _octave_above(tested: dict, top_k: int) -> list:
             if grid(k) not in tested]
 
 
-def fine_band(answer: float) -> list:
-    """The preloads of the fine grid, FINE_RATIO^j lb, from BAND_LOW to
-    BAND_HIGH times ``answer`` (the fine check, module docstring)."""
+def fine_band(answer: float, low: float = BAND_LOW) -> list:
+    """The preloads of the fine grid, FINE_RATIO^j lb, from ``low``
+    (default BAND_LOW) to BAND_HIGH times ``answer`` (the fine check,
+    module docstring)."""
+    return fine_grid(low * answer, BAND_HIGH * answer)
+
+
+def fine_grid(lo: float, hi: float) -> list:
+    """The preloads of the fine grid, FINE_RATIO^j lb, from ``lo`` to
+    ``hi`` lb (either end included to round-off)."""
     step = math.log(FINE_RATIO)
-    low = math.ceil(math.log(BAND_LOW * answer) / step - 1e-9)
-    high = math.floor(math.log(BAND_HIGH * answer) / step + 1e-9)
-    return [FINE_RATIO ** j for j in range(low, high + 1)]
+    first = math.ceil(math.log(lo) / step - 1e-9)
+    last = math.floor(math.log(hi) / step + 1e-9)
+    return [FINE_RATIO ** j for j in range(first, last + 1)]
 
 
 def _bisect(brackets, tested, has_event, tolerance) -> None:
