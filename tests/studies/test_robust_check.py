@@ -129,8 +129,8 @@ def test_the_command_prints_and_writes_the_check(planted_preload,
                  "1", "--p-target", str(P_TARGET), "--csv", str(path),
                  "--progress", "never"]) == 0
     out = capsys.readouterr().out
-    assert ("  robust, at N = 16         held (p_open <= p_target from the "
-            "answer to 2 % above it, above p_target within 2 % below)"
+    assert ("  robust, at N = 16         held (p_target met from the "
+            "answer to 2 % above it, failed within 2 % below)"
             in out.splitlines())
     text = path.read_text()
     assert "# robust check at N = 16: held (" in text

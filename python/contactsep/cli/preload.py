@@ -252,16 +252,26 @@ def summary_text(answer) -> str:
              f"  event windows (lb)       {spans_text(answer.event_windows)}",
              f"  closed below it (lb)     {spans_text(answer.closed_windows)}"]
     r = answer.robust
-    if r is not None:
+    if r is not None and not r.shown:
+        lines.append(f"  robust min preload       not searched: "
+                     f"{r.samples} samples cannot show p_open <= "
+                     f"{r.p_target:g} on its 95 % upper bound (needs "
+                     f">= {r.samples_needed})")
+    elif r is not None:
         ci = r.p_open_ci95
         lines.append(f"  robust min preload       "
                      f"{_g(r.min_preload_lb, ' lb')}: p_open {_g(r.p_open)}"
                      f" (95 % Wilson "
                      f"{'-' if ci is None else f'{ci[0]:.3g}-{ci[1]:.3g}'};"
-                     f" {r.n_open} of {r.n} open, {r.n_failed} failed) <= "
-                     f"{r.p_target:g}")
+                     f" {r.n_open} of {r.n} open, {r.n_failed} failed), "
+                     f"upper end <= {r.p_target:g}")
+        lines.append(f"  robust runs              {r.simulations} "
+                     f"({r.simulations_saved} spared: a preload's samples "
+                     f"stop once its decision is settled)")
         if r.check_n_modes is not None:
             lines.append(f"  robust, at N = {r.check_n_modes:<10} "
                          f"{robust_check_text(r)}")
     lines += [f"note: {note}" for note in answer.notes]
+    # last: the one line to read (its rerun's time measured on this run)
+    lines.append(answer.verdict.line())
     return "\n".join(lines) + "\n"
