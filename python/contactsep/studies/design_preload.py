@@ -213,11 +213,15 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     with _journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
         found = _search(design, model, settings, sims, ceiling)
+        # measured for the verdict's estimate of a rerun's time
+        timing = {"search": (sims.runs, sims.seconds)}
         answer = found.min_preload_lb
         verify_found = None
         if verify:
             verify_found = _search(finer, model, verify_settings, sims,
                                    largest_preload(finer), start=answer)
+        timing["verify"] = (sims.runs - timing["search"][0],
+                            sims.seconds - timing["search"][1])
         perturbed = None
         if perturbation is not None:
             perturbed = _perturbed(design, model, settings, sims, ceiling,
@@ -229,6 +233,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                 max_check)
             notes += converge_notes
         runs = sims.runs
+        timing["nominal"] = (sims.runs, sims.seconds)
         robust = None
         if spec is not None:
             robust = robust_preload(
@@ -307,7 +312,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         tested=found.tested,
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
-        simulations=runs, robust=robust, notes=tuple(notes),
+        simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
         **(converged or {}), **spread)
 
 
