@@ -205,8 +205,8 @@ def test_a_robust_answer_that_moves_at_2n_is_not_converged(
     verdict = answer.verdict
     assert verdict.text == (
         f"not converged: the robust answer {r.min_preload_lb:.4g} lb at "
-        f"N = 8 does not hold at N = 16 (p_open above the target within "
-        f"2 % above it, or not within 2 % below); rerun with --n-modes 16")
+        f"N = 8 does not hold at N = 16 (p_target failed within 2 % above "
+        f"it, or met within 2 % below); rerun with --n-modes 16")
     assert verdict.rerun_s > 0
 
 

@@ -43,7 +43,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "events and the closed windows below the answer. "
                     "With --tolerance, also the robust answer: the "
                     "smallest preload whose p_open over the tolerances "
-                    "is at most --p-target, with its Wilson interval. "
+                    "is at most --p-target on the upper end of its 95 % "
+                    "Wilson interval (0.01 needs 381 samples). The last "
+                    "line is the verdict: the answer to use, or what "
+                    "moved and the rerun that would settle it. "
                     f"N defaults to {DEFAULT_MODES} modes per member "
                     "(--n-modes). docs/chatter.md, \"The preload "
                     "command\".",
@@ -78,13 +81,15 @@ def register(commands: argparse._SubParsersAction) -> None:
                         help="a design field's distribution (repeatable; "
                              "the syntax of sweep --sample; quote it)")
     robust.add_argument("--p-target", default=None, metavar="P",
-                        help=f"the largest acceptable p_open (default "
-                             f"{DEFAULT_P_TARGET:g})")
+                        help=f"the largest acceptable p_open, met by "
+                             f"the upper end of its 95 %% Wilson interval "
+                             f"(default {DEFAULT_P_TARGET:g}: needs 381 "
+                             f"samples or more)")
     robust.add_argument("--samples", type=integer(1, MAX_SAMPLES),
                         default=None, metavar="K",
                         help=f"draws of the tolerances (default "
                              f"{DEFAULT_SAMPLES}; each preload tried costs "
-                             f"K runs: raise it to resolve a p_open of 1 %%)")
+                             f"up to K runs: 381 show a p_open of 1 %%)")
     robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
                         help="seed of the draws (default 0; the same "
                              "designs as sweep --sample with that seed)")

@@ -186,8 +186,8 @@ def _robust_verdict(answer, r) -> Verdict:
     n = answer.n_modes
     return Verdict(
         f"not converged: the robust answer {_lb(r.min_preload_lb)} at "
-        f"N = {n} does not hold at N = {r.check_n_modes} (p_open above "
-        f"the target within 2 % above it, or not within 2 % below); "
+        f"N = {n} does not hold at N = {r.check_n_modes} (p_target "
+        f"failed within 2 % above it, or met within 2 % below); "
         f"rerun with --n-modes {r.check_n_modes}",
         _scaled(answer, _nominal_seconds(answer) + r.seconds,
                 _doublings(n, r.check_n_modes)))
