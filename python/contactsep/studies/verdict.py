@@ -60,7 +60,8 @@ def duration_text(seconds: float) -> str:
         return f"{max(seconds, 1.0):.2g} s".replace("e+0", "e")
     if seconds < 3600.0:
         return f"{seconds / 60.0:.2g} min"
-    return f"{seconds / 3600.0:.2g} h"
+    return f"{seconds / 3600.0:.2g} h" if seconds < 360000.0 else \
+        f"{seconds / 3600.0:,.0f} h"
 
 
 def _percent(change: float) -> str:
@@ -131,12 +132,15 @@ def _nominal_verdict(answer) -> Verdict:
             return Verdict(f"answer: {_lb(answer.min_preload_lb)} "
                            f"(converged: N = {n} within "
                            f"{_percent(change)})")
-        rerun = 2 * n
+        if isinstance(n, int):
+            at, rerun = f"N = {2 * n}", f"--n-modes {2 * n}"
+        else:       # an N a member: the options of each member's N
+            at, rerun = "twice each member's N", "twice each member's N"
         return Verdict(
             f"not converged: the answer moved {change:+.1%} from N = {n} "
-            f"({_lb(answer.min_preload_lb)}) to N = {2 * n} "
-            f"({_lb(answer.verify_min_preload_lb)}); rerun with --n-modes "
-            f"{rerun}", _scaled(answer, _nominal_seconds(answer), 1))
+            f"({_lb(answer.min_preload_lb)}) to {at} "
+            f"({_lb(answer.verify_min_preload_lb)}); rerun with {rerun}",
+            _scaled(answer, _nominal_seconds(answer), 1))
     history = answer.converge_history
     moved = ""
     if len(history) >= 2:
