@@ -115,7 +115,7 @@ class RobustPreload:
     #: the seconds they took (wall, on the command's workers).
     simulations: int = 0
     simulations_saved: int = 0
-    seconds: float = 0.0
+    seconds: float = dataclasses.field(default=0.0, compare=False)
 
     @property
     def shown(self) -> bool:
