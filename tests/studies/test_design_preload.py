@@ -261,6 +261,9 @@ def test_bad_requests_are_input_errors(kwargs, message):
 @pytest.mark.parametrize("argv, message", [
     (["--p-target", "1.5"], "--p-target: found 1.5"),
     (["--p-target", "abc"], "--p-target: found 'abc'"),
+    # an upper bound of p_open is never 0: a target of 0 is never met
+    (["--p-target", "0"], "--p-target: found 0.0, expected a probability "
+                          "above 0 and below 1"),
     (["--tolerance", "d=normal(0.25)"], "--tolerance d=normal(0.25)"),
     (["--tolerance", "size=normal(1,2)"], "--tolerance size"),
     (["--samples", "5"], "--samples: the draws of --tolerance"),
