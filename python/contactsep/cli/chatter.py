@@ -7,6 +7,7 @@ import contextlib
 import importlib.util
 import math
 import sys
+import time
 import warnings
 
 from contactsep import output
@@ -162,6 +163,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--png needs matplotlib (pip install "
                          "'contactsep[plot]')")
     from contactsep.chatter.numerics import DEFAULT_MODES
+    from contactsep.studies.verdict import chatter_verdict
 
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
@@ -176,6 +178,7 @@ def run(args: argparse.Namespace) -> int:
                       "to calibrate its damping to e)", ContactsepWarning)
     output.check_targets({"--csv": args.csv, "--png": args.png},
                          {"--design": args.design} if args.design else {})
+    started = time.perf_counter()
     try:
         with elapsed(args.progress) as tick, output.stop_checks(tick):
             result = simulate(
@@ -195,11 +198,16 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
         raise
     refuse_blown_up(result)
+    verdict = chatter_verdict(result, time.perf_counter() - started)
     if args.json:
-        output.write_json(sys.stdout, with_sources(result.to_json_dict(),
-                                                   args))
+        data = with_sources(result.to_json_dict(), args)
+        if verdict is not None:     # the text without the measured time
+            data["verdict"] = verdict.text
+        output.write_json(sys.stdout, data)
     else:
-        output.write_text(sys.stdout, summary_text(result, args.events))
+        output.write_text(sys.stdout, summary_text(result, args.events)
+                          + ("" if verdict is None
+                             else verdict.line() + "\n"))
     if args.csv:
         write_csv(result, args.csv)
     if args.png:

@@ -47,7 +47,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "events and the closed windows below the answer. "
                     "With --tolerance, also the robust answer: the "
                     "smallest preload whose p_open over the tolerances "
-                    "is at most --p-target, with its Wilson interval. "
+                    "is at most --p-target on the upper end of its 95 % "
+                    "Wilson interval (0.01 needs 381 samples). The last "
+                    "line is the verdict: the answer to use, or what "
+                    "moved and the rerun that would settle it. "
                     f"N defaults to {DEFAULT_MODES} modes per member "
                     "(--n-modes). docs/chatter.md, \"The preload "
                     "command\".",
@@ -148,13 +151,15 @@ def add_robust_options(parser: argparse.ArgumentParser) -> None:
                         help="a design field's distribution (repeatable; "
                              "the syntax of sweep --sample; quote it)")
     robust.add_argument("--p-target", default=None, metavar="P",
-                        help=f"the largest acceptable p_open (default "
-                             f"{DEFAULT_P_TARGET:g})")
+                        help=f"the largest acceptable p_open, met by "
+                             f"the upper end of its 95 %% Wilson interval "
+                             f"(default {DEFAULT_P_TARGET:g}: needs 381 "
+                             f"samples or more)")
     robust.add_argument("--samples", type=integer(1, MAX_SAMPLES),
                         default=None, metavar="K",
                         help=f"draws of the tolerances (default "
                              f"{DEFAULT_SAMPLES}; each preload tried costs "
-                             f"K runs: raise it to resolve a p_open of 1 %%)")
+                             f"up to K runs: 381 show a p_open of 1 %%)")
     robust.add_argument("--seed", type=integer(0, 2**64 - 1), default=0,
                         help="seed of the draws (default 0; the same "
                              "designs as sweep --sample with that seed)")
@@ -299,16 +304,26 @@ def summary_text(answer) -> str:
              f"  event windows (lb)       {spans_text(answer.event_windows)}",
              f"  closed below it (lb)     {spans_text(answer.closed_windows)}"]
     r = answer.robust
-    if r is not None:
+    if r is not None and not r.shown:
+        lines.append(f"  robust min preload       not searched: "
+                     f"{r.samples} samples cannot show p_open <= "
+                     f"{r.p_target:g} on its 95 % upper bound (needs "
+                     f">= {r.samples_needed})")
+    elif r is not None:
         ci = r.p_open_ci95
         lines.append(f"  robust min preload       "
                      f"{_g(r.min_preload_lb, ' lb')}: p_open {_g(r.p_open)}"
                      f" (95 % Wilson "
                      f"{'-' if ci is None else f'{ci[0]:.3g}-{ci[1]:.3g}'};"
-                     f" {r.n_open} of {r.n} open, {r.n_failed} failed) <= "
-                     f"{r.p_target:g}")
+                     f" {r.n_open} of {r.n} open, {r.n_failed} failed), "
+                     f"upper end <= {r.p_target:g}")
+        lines.append(f"  robust runs              {r.simulations} "
+                     f"({r.simulations_saved} spared: a preload's samples "
+                     f"stop once its decision is settled)")
         if r.check_n_modes is not None:
             lines.append(f"  robust, at N = {r.check_n_modes:<10} "
                          f"{robust_check_text(r)}")
     lines += [f"note: {note}" for note in answer.notes]
+    # last: the one line to read (its rerun's time measured on this run)
+    lines.append(answer.verdict.line())
     return "\n".join(lines) + "\n"

@@ -231,11 +231,15 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         # the nominal design's events above its own answer
         found = search_design(design, model, settings, sims, ceiling,
                               band_below=band_below or spec is not None)
+        # measured for the verdict's estimate of a rerun's time
+        timing = {"search": (sims.runs, sims.seconds)}
         answer = found.min_preload_lb
         verify_found = local = None
         if verify:
             verify_found, local = verify_design(
                 finer, model, verify_settings, sims, answer, band_below)
+        timing["verify"] = (sims.runs - timing["search"][0],
+                            sims.seconds - timing["search"][1])
         perturbed = None
         if perturbation is not None:
             perturbed = _perturbed(design, model, settings, sims, ceiling,
@@ -247,6 +251,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                 max_check, band_below)
             notes += converge_notes
         runs = sims.runs
+        timing["nominal"] = (sims.runs, sims.seconds)
         robust = None
         if spec is not None:
             robust = robust_preload(
@@ -331,7 +336,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         tested=found.tested,
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
-        simulations=runs, robust=robust, notes=tuple(notes),
+        simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
         **(converged or {}), **spread)
 
 

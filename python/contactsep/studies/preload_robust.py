@@ -15,14 +15,21 @@ each through :func:`contactsep.studies.chatter_sweep.simulate_design`:
 a sample the simulation refuses or cannot finish is counted as failed
 and left out of ``p_open``, as in a chatter sweep.
 
-A preload "fails" when p_open = n_open / n (n: the samples that ran) is
-above ``p_target``; the answer is the preload search of
+A preload meets the target when the upper end of the 95 % Wilson
+interval of p_open = n_open / n (n: the samples that ran) is at most
+``p_target`` (:mod:`contactsep.studies.robust_rule`: the point estimate
+would call 0 of 20 open "at most 1 %"); below
+:func:`~contactsep.studies.robust_rule.samples_needed` samples (381 for
+0.01) none can, and no robust search is run.  A preload's samples run in
+fixed index blocks, and once the samples still to run cannot change its
+decision the rest are not run: the same decision as all of them, so the
+same answer.  The answer is the preload search of
 :mod:`contactsep.studies.preload` on that test (scan 2^(k/4) lb from the
-nominal answer, bisection to 1 %, closed -- p_open <= p_target -- at the
-scan's steps to an octave above the last failing preload), its fine band
+nominal answer, bisection to 1 %, meeting the target at the scan's steps
+to an octave above the last failing preload), its fine band
 being every preload of the fine grid (0.99 % steps) from the answer to
 ROBUST_BAND_HIGH times it, and the preloads up to twice the answer at
-which the nominal design had an event.  Each preload tried costs
+which the nominal design had an event.  Each preload tried costs up to
 ``samples`` simulations, but the samples' windows need not be the
 nominal design's: on becu_light at N = 64 (y_s within 2 %, 30 samples)
 4 of 30 samples open at 0.045 lb, 2.4 % above the answer a band of the
@@ -34,20 +41,28 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from contactsep.errors import InputError
+from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies import fields as design_fields
 from contactsep.studies.chatter_sweep import simulate_design
 from contactsep.studies.preload_converge import MARGIN
 from contactsep.studies.preload_search import fine_band, search
+from contactsep.studies.robust_rule import (
+    FIRST_BLOCK,
+    block_stops,
+    p_open_high,
+    samples_needed,
+    settled,
+)
 from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep import chunk_inputs, make_spec
 
-#: Samples of the tolerances unless asked: enough to see a p_open of a
-#: few percent, not to prove one of 1 % (--samples raises it).
+#: Samples of the tolerances unless asked: enough to show p_open <= 0.05
+#: (73 are), not 0.01 (381 are; --samples raises it).
 DEFAULT_SAMPLES = 100
 #: The largest --samples: each preload tried costs that many runs.
 MAX_SAMPLES = 1_000_000
@@ -92,6 +107,21 @@ class RobustPreload:
     check_n_modes: int | None = None
     converged: bool | None = None
     checked: tuple = ()
+    #: The fewest samples with which a preload can meet p_target (None:
+    #: p_target 0); with fewer no search is run (min_preload_lb NaN).
+    samples_needed: int | None = None
+    #: Simulations of the samples run (search and check), those the
+    #: early stop spared (samples x preloads tried, less those run), and
+    #: the seconds they took (wall, on the command's workers).
+    simulations: int = 0
+    simulations_saved: int = 0
+    seconds: float = dataclasses.field(default=0.0, compare=False)
+
+    @property
+    def shown(self) -> bool:
+        """Whether this sample count can show p_target at all."""
+        return self.samples_needed is not None and \
+            self.samples >= self.samples_needed
 
     @property
     def p_open(self) -> float | None:
@@ -102,6 +132,11 @@ class RobustPreload:
     def p_open_ci95(self) -> tuple | None:
         """The 95 % Wilson interval of p_open at the answer."""
         return wilson_interval(self.n_open, self.n) if self.n else None
+
+    @property
+    def p_open_ci95_high(self) -> float | None:
+        """Its upper end: the number the rule holds to p_target."""
+        return p_open_high(self.n_open, self.n) if self.n else None
 
     def to_json_dict(self) -> dict:
         """JSON-ready: the tolerances by output name, the answer, p_open
@@ -119,6 +154,10 @@ class RobustPreload:
             "n": self.n, "n_open": self.n_open, "n_failed": self.n_failed,
             "p_open": self.p_open,
             "p_open_ci95": list(self.p_open_ci95) if self.n else None,
+            "p_open_ci95_high": self.p_open_ci95_high,
+            "samples_needed": self.samples_needed,
+            "simulations": self.simulations,
+            "simulations_saved": self.simulations_saved,
             "tested": [{"preload_lb": p, "n": n, "n_open": k,
                         "n_failed": f} for p, n, k, f in self.tested],
             "check_n_modes": self.check_n_modes,
@@ -150,14 +189,15 @@ def parse_tolerances(texts, samples, seed) -> tuple:
 
 
 def check_p_target(p_target) -> float:
-    """p_target in [0, 1)."""
+    """p_target in (0, 1): the upper end of an interval is never 0."""
     try:
         value = float(p_target)
     except (TypeError, ValueError):
         value = math.nan
-    if isinstance(p_target, bool) or not 0.0 <= value < 1.0:
+    if isinstance(p_target, bool) or not 0.0 < value < 1.0:
         raise InputError(f"--p-target: found {p_target!r}, expected a "
-                         f"probability from 0 to below 1")
+                         f"probability above 0 and below 1 (it is met by "
+                         f"p_open's 95 % upper bound, never 0)")
     return value
 
 
@@ -208,10 +248,44 @@ def sample_counts(samples, model: str, preloads, simulations) -> list:
     return counts
 
 
+def sample_decisions(samples, model: str, preloads, simulations,
+                     p_target: float, first_block: int = FIRST_BLOCK
+                     ) -> list:
+    """(fails, (n, n_open, n_failed)) of each of ``preloads`` (lb): its
+    ``samples`` run in the index blocks of robust_rule.block_stops, all
+    the preloads' next blocks in one batch, until the samples still to
+    run cannot change whether it meets ``p_target`` (robust_rule.settled:
+    the decision all of them give); the counts are of the samples run."""
+    counts = [[0, 0, 0] for _ in preloads]
+    decided = [None] * len(preloads)
+    start = 0
+    for stop in block_stops(len(samples), first_block):
+        live = [j for j, d in enumerate(decided) if d is None]
+        if not live:
+            break
+        for j, (n, k, f) in zip(live, sample_counts(
+                samples[start:stop], model, [preloads[j] for j in live],
+                simulations)):
+            c = counts[j]
+            c[0], c[1], c[2] = c[0] + n, c[1] + k, c[2] + f
+            decided[j] = settled(c[1], c[0], len(samples) - stop, p_target)
+        start = stop
+    return [(d, tuple(c)) for d, c in zip(decided, counts)]
+
+
+def _not_shown(spec, p_target) -> None:
+    needed = samples_needed(p_target)
+    warnings.warn(f"the robust answer is not shown at this sample count: "
+                  f"needs >= {needed} samples (--samples) for p_open's "
+                  f"95 % upper bound to reach p_target {p_target:g}; with "
+                  f"{spec.samples} even none open gives "
+                  f"{p_open_high(0, spec.samples):.3g}", ContactsepWarning)
+
+
 def robust_preload(design, model: str, settings: dict, spec, p_target,
                    simulations, start=None, ceiling=math.inf,
-                   nominal_events=(), band_batch=ROBUST_BAND_BATCH
-                   ) -> RobustPreload:
+                   nominal_events=(), band_batch=ROBUST_BAND_BATCH,
+                   first_block=FIRST_BLOCK) -> RobustPreload:
     """The robust answer for ``design`` (a Design) simulated by ``model``
     with ``settings`` (simulate()'s keywords), the tolerances drawn by
     ``spec`` (:func:`parse_tolerances`), the runs on ``simulations``
@@ -225,19 +299,30 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     ROBUST_BAND_HIGH times it (a sample's window need not be one of the
     nominal design's); the band from its top down, ``band_batch``
     preloads a batch, to its first failing preload (None: the whole band
-    in one batch; the same answer, more preloads tried)."""
+    in one batch; the same answer, more preloads tried).  Each preload's
+    samples stop once settled (:func:`sample_decisions`, ``first_block``
+    the first block).  Fewer samples than the target needs: no search
+    (NaN), and a warning."""
     p_target = check_p_target(p_target)
+    needed = samples_needed(p_target)
+    base = dict(tolerances=spec.sample, samples=spec.samples,
+                seed=spec.seed, p_target=p_target, samples_needed=needed)
+    if spec.samples < needed:
+        _not_shown(spec, p_target)
+        return RobustPreload(min_preload_lb=math.nan, n=0, n_open=0,
+                             n_failed=0, tested=(), **base)
     samples = tolerance_samples(design, settings, spec)
     counts = {}
+    runs, seconds = simulations.runs, simulations.seconds
 
     def fails(tasks):
         preloads = [preload for _, preload in tasks]
         out = []
-        for preload, (n, n_open, n_failed) in zip(preloads, sample_counts(
-                samples, model, preloads, simulations)):
-            counts[preload] = (n, n_open, n_failed)
-            # no sample ran: no evidence that this preload keeps closed
-            out.append(not n or n_open > p_target * n)
+        for preload, (failed, count) in zip(preloads, sample_decisions(
+                samples, model, preloads, simulations, p_target,
+                first_block)):
+            counts[preload] = count
+            out.append(failed)
         return out
 
     events = sorted(set(nominal_events))
@@ -252,11 +337,12 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
                     band=check, band_batch=band_batch)
     answer = found.min_preload_lb
     n, n_open, n_failed = counts.get(answer, (0, 0, 0))
+    ran = simulations.runs - runs
     return RobustPreload(
-        tolerances=spec.sample, samples=spec.samples, seed=spec.seed,
-        p_target=p_target, min_preload_lb=answer, n=n, n_open=n_open,
-        n_failed=n_failed,
-        tested=tuple((p, *counts[p]) for p in sorted(counts)))
+        min_preload_lb=answer, n=n, n_open=n_open, n_failed=n_failed,
+        tested=tuple((p, *counts[p]) for p in sorted(counts)),
+        simulations=ran, simulations_saved=len(counts) * spec.samples - ran,
+        seconds=simulations.seconds - seconds, **base)
 
 
 def check_robust(robust: RobustPreload, design, model: str,
@@ -265,12 +351,13 @@ def check_robust(robust: RobustPreload, design, model: str,
     ``design`` (twice the modes of the search's) with ``settings`` (half
     its step), at the answer and every fine-grid preload within MARGIN
     (2 %) above it, and every one within MARGIN below it.  It held
-    (``converged``) when p_open <= p_target at every preload from the
-    answer up (each with a sample that ran) and above p_target at one
-    below (one that ran): the robust answer at 2N
-    then lies within 2 % of it, unless a window of the samples' events
-    lies further above it at 2N (the check is local, as the nominal
-    answer's: preload_converge).  No answer (NaN, or 0): not checked."""
+    (``converged``) when p_open meets p_target at every preload from the
+    answer up and fails it at one below where a sample ran: the robust
+    answer at 2N then lies within 2 % of it, unless a window of the
+    samples' events lies further above it at 2N (the check is local, as
+    the nominal answer's: preload_converge).  Each preload's samples stop
+    once settled, as the search's.  No answer (NaN, or 0): not
+    checked."""
     answer = robust.min_preload_lb
     n_modes = design.n_modes
     if not (math.isfinite(answer) and answer > 0.0):
@@ -279,16 +366,21 @@ def check_robust(robust: RobustPreload, design, model: str,
             if answer * (1.0 - MARGIN) <= p <= answer * (1.0 + MARGIN)
             and p != answer]
     preloads = sorted([answer, *near])
-    counts = sample_counts(tolerance_samples(design, settings, spec),
-                           model, preloads, simulations)
-
-    def opens(n, n_open):
-        return n_open > robust.p_target * n
-    checked = tuple((p, *c) for p, c in zip(preloads, counts))
-    # above: every preload ran and kept p_open within the target; below:
-    # one that ran opened (a preload where no sample ran is no evidence)
-    held = all(n and not opens(n, k) for p, n, k, _ in checked
+    runs, seconds = simulations.runs, simulations.seconds
+    decisions = sample_decisions(
+        tolerance_samples(design, settings, spec), model, preloads,
+        simulations, robust.p_target)
+    checked = tuple((p, *c) for p, (_, c) in zip(preloads, decisions))
+    # above: every preload met the target (which needs samples that
+    # ran); below: one that ran failed it (no sample ran: no evidence)
+    held = all(not failed for p, (failed, _) in zip(preloads, decisions)
                if p >= answer) and \
-        any(n and opens(n, k) for p, n, k, _ in checked if p < answer)
-    return dataclasses.replace(robust, check_n_modes=n_modes,
-                               converged=held, checked=checked)
+        any(failed and c[0] for p, (failed, c) in zip(preloads, decisions)
+            if p < answer)
+    ran = simulations.runs - runs
+    return dataclasses.replace(
+        robust, check_n_modes=n_modes, converged=held, checked=checked,
+        simulations=robust.simulations + ran,
+        simulations_saved=robust.simulations_saved
+        + len(preloads) * spec.samples - ran,
+        seconds=robust.seconds + simulations.seconds - seconds)
