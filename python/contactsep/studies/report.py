@@ -143,13 +143,11 @@ def _p_open_figure(robust):
 
 
 def _verdict(answer) -> tuple[str, bool]:
-    """The answer's verdict line and whether it is settled."""
-    text = getattr(answer, "verdict", None)
-    if text is None:
-        text = answer.converged_text() if answer.converged is not None \
-            else f"answer: {_number(answer.min_preload_lb)} lb at N = " \
-                 f"{answer.n_modes} (not checked)"
-    return text, bool(answer.converged)
+    """The answer's verdict line (contactsep.studies.verdict, without
+    the measured rerun time: the page's bytes do not depend on the
+    machine's speed) and whether it is settled."""
+    text = answer.verdict.text
+    return text, text.startswith("answer:") and "not checked" not in text
 
 
 def _preload_section(answer) -> list:
