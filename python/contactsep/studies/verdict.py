@@ -92,6 +92,21 @@ def _scaled(answer, seconds: float, doublings: int) -> float | None:
     return seconds * cost_ratio(answer) ** max(doublings, 0)
 
 
+def _rerun_seconds(answer, doublings: int) -> float | None:
+    """A nominal rerun at 2^doublings N: this run's search at N again at
+    the finer N and step (each doubling one cost_ratio), then its check
+    at twice that N, a few preloads (_CHECK_PRELOADS) 2 % either side of
+    the answer, as a check that holds costs (not the whole search a
+    failing one falls back to)."""
+    timing = getattr(answer, "timing", None) or {}
+    runs, seconds = timing.get("search", (0, 0.0))
+    if not (runs and seconds > 0.0):
+        return None
+    ratio, k = cost_ratio(answer), max(doublings, 0)
+    return seconds * ratio**k + _CHECK_PRELOADS * seconds / runs \
+        * ratio**(k + 1)
+
+
 def _doublings(n_from, n_to) -> int:
     return round(math.log2(n_to / n_from)) if n_from and n_to else 1
 
@@ -140,7 +155,7 @@ def _nominal_verdict(answer) -> Verdict:
             f"not converged: the answer moved {change:+.1%} from N = {n} "
             f"({_lb(answer.min_preload_lb)}) to {at} "
             f"({_lb(answer.verify_min_preload_lb)}); rerun with {rerun}",
-            _scaled(answer, _nominal_seconds(answer), 1))
+            _rerun_seconds(answer, 1))
     history = answer.converge_history
     moved = ""
     if len(history) >= 2:
@@ -156,8 +171,7 @@ def _nominal_verdict(answer) -> Verdict:
         return Verdict(
             f"not converged: {moved}, and its check at N = {checked} "
             f"failed; rerun with --n-modes {checked}",
-            _scaled(answer, _nominal_seconds(answer),
-                    _doublings(n, checked)))
+            _rerun_seconds(answer, _doublings(n, checked)))
     return Verdict(f"not converged: {moved}; no check at N = "
                    f"{2 * (checked or n)} fits the simulation's work "
                    f"budget")
