@@ -38,8 +38,10 @@ DASK = shutil.which("dask", path=os.path.dirname(sys.executable))
 #: scan ends at that ceiling with no fine band.
 DESIGN = FAMILY["becu_light"].replace(n_modes=4)
 SETTINGS = {"dt": 1e-8, "t_end": 0.005, "static_correction": False}
+#: p_target 0.6: met on the 95 % Wilson upper end of 0 of 3 (0.56), so
+#: three samples can show it and the robust search runs.
 ROBUST = {"tolerance": ["ys=uniform(0.029,0.031)"], "samples": 3,
-          "converge": False}
+          "p_target": 0.6, "converge": False}
 
 
 def _start(*args):
