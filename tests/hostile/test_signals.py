@@ -223,3 +223,19 @@ def test_a_costly_batch_in_child_processes_equals_one_call(monkeypatch):
     for key in KEYS:
         np.testing.assert_array_equal(getattr(pieces, key),
                                       getattr(whole, key), err_msg=key)
+
+
+@pytest.mark.parametrize("how", [SIGTERM, CTRL_C], ids=["sigterm", "ctrl-c"])
+def test_a_stopped_preload_without_a_journal_says_nothing_was_kept(
+        tmp_path, how):
+    """SIGTERM (or Ctrl-C) stopped a preload search without a word; with
+    no --resume its finished runs are lost, and one line says so and
+    how to keep them next time."""
+    signum, status, group = how
+    code, took, err = _stop(["preload", "--n-modes", "16", "--workers",
+                             "1", "--progress", "never"], signum, 3.0,
+                            tmp_path, group)
+    assert code == status and took < PROMPT, (code, took, err)
+    assert err == ("contactsep: stopped; nothing was kept: with --csv FILE "
+                   "--resume every finished simulation is kept beside FILE "
+                   "and the same command continues from them\n")

@@ -54,19 +54,28 @@ def stopped(journal, csv, error: BaseException) -> None:
     """The command stopped by ``error`` before its CSV: a journal with no
     run goes (refused, or stopped before a run); one with runs is closed
     and, on an interrupt, the command says where they are kept."""
+    interrupted = isinstance(error, (KeyboardInterrupt, output.Terminated))
     if journal is None:
+        if interrupted:     # else quiet: SIGTERM prints nothing else
+            _say("stopped; nothing was kept: with --csv FILE --resume "
+                 "every finished simulation is kept beside FILE and the "
+                 "same command continues from them")
         return
     if not len(journal):
         journal.remove()
         return
     journal.close()
-    if isinstance(error, (KeyboardInterrupt, output.Terminated)):
-        with contextlib.suppress(OSError, ValueError):
-            sys.stderr.write(f"contactsep: {os.fspath(csv)}: not written; "
-                             f"{len(journal):,} finished simulations kept "
-                             f"in {os.path.basename(journal.path)}: rerun "
-                             f"the command to continue\n")
-            sys.stderr.flush()
+    if interrupted:
+        _say(f"{os.fspath(csv)}: not written; {len(journal):,} finished "
+             f"simulations kept in {os.path.basename(journal.path)}: rerun "
+             f"the command to continue")
+
+
+def _say(text: str) -> None:
+    """One line on stderr, as the command's own words."""
+    with contextlib.suppress(OSError, ValueError):
+        sys.stderr.write(f"contactsep: {text}\n")
+        sys.stderr.flush()
 
 
 def finished(csv, journal) -> None:
