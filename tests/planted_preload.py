@@ -33,14 +33,21 @@ def fake_event(task) -> bool:
     return load < threshold(design, settings)
 
 
-def fake_simulate(design, model, preload=0.0, **settings):
+def _probe(where, design, preload, settings):
+    """The probe simulate() a search makes, under the threshold
+    ``where(design, settings)``: an opening of 20 us below it, 5 us
+    above."""
     settings.pop("samples", None)
     settings.pop("single_impulse", None)
     return types.SimpleNamespace(
         dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
         min_open_s=1e-5, t_end_s=0.06,
-        longest_open_s=2e-5 if preload < threshold(design, settings)
+        longest_open_s=2e-5 if preload < where(design, settings)
         else 5e-6)
+
+
+def fake_simulate(design, model, preload=0.0, **settings):
+    return _probe(threshold, design, preload, settings)
 
 
 def fake_sample(fields, model, settings):
@@ -51,14 +58,19 @@ def fake_sample(fields, model, settings):
     return (0.0,) * 5 + (int(event), 0)
 
 
-@pytest.fixture
-def planted_preload(monkeypatch):
+def plant(monkeypatch):
     """The nominal runs, the probe and the samples planted; CALLS
     emptied."""
     monkeypatch.setattr(preload, "_simulate_event", fake_event)
     monkeypatch.setattr(design_preload, "simulate", fake_simulate)
     monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
     CALLS.clear()
+
+
+@pytest.fixture
+def planted_preload(monkeypatch):
+    """:func:`plant`, for one test."""
+    plant(monkeypatch)
 
 
 def plant_threshold(monkeypatch, where):
@@ -71,13 +83,7 @@ def plant_threshold(monkeypatch, where):
         return load < where(design, settings)
 
     def simulate(design, model, preload=0.0, **settings):
-        settings.pop("samples", None)
-        settings.pop("single_impulse", None)
-        return types.SimpleNamespace(
-            dt=settings.get("dt", 5e-8), open_threshold_in=1e-6,
-            min_open_s=1e-5, t_end_s=0.06,
-            longest_open_s=2e-5 if preload < where(design, settings)
-            else 5e-6)
+        return _probe(where, design, preload, settings)
     monkeypatch.setattr(preload, "_simulate_event", event)
     monkeypatch.setattr(design_preload, "simulate", simulate)
     CALLS.clear()

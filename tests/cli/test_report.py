@@ -59,14 +59,9 @@ class _Page(html.parser.HTMLParser):
 def page(tmp_path_factory):
     """The report of RELAY, planted preloads, without and with a
     tolerance (the module's tests read the same two pages)."""
-    monkeypatch = pytest.MonkeyPatch()
-    from planted_preload import CALLS, fake_event, fake_sample, fake_simulate
-
-    from contactsep.studies import design_preload, preload, preload_robust
-    monkeypatch.setattr(preload, "_simulate_event", fake_event)
-    monkeypatch.setattr(design_preload, "simulate", fake_simulate)
-    monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)
-    CALLS.clear()
+    from planted_preload import plant
+    monkeypatch = pytest.MonkeyPatch()      # module-wide: the fixture's
+    plant(monkeypatch)
     folder = tmp_path_factory.mktemp("report")
     paths = folder / "plain.html", folder / "robust.html"
     try:
