@@ -9,6 +9,7 @@ everything on, which the answers must equal."""
 from __future__ import annotations
 
 import math
+import warnings
 
 import pytest
 from design_family import FAMILY
@@ -18,6 +19,7 @@ from planted_preload import CALLS, plant_threshold
 
 import contactsep
 from contactsep.chatter.simulate import largest_preload
+from contactsep.errors import ContactsepWarning
 from contactsep.studies.preload_search import grid, search, top_index
 
 
@@ -42,6 +44,13 @@ def test_an_event_at_the_ceiling_is_no_answer_in_one_run(monkeypatch):
     answer = contactsep.preload(design, workers=1, converge=False)
     assert math.isnan(answer.verify_min_preload_lb)
     assert answer.simulations == 2 and len(_runs(16)) == 1
+    # with the default check: no answer at N nor 2N is said once, by the
+    # verdict, with no warning that it is "not converged"
+    CALLS.clear()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ContactsepWarning)
+        answer = contactsep.preload(design, workers=1)
+    assert answer.verdict.text.startswith("no answer")
 
 
 def test_a_closed_ceiling_is_run_once(monkeypatch):

@@ -292,7 +292,12 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     change = None if verify_found is None else _change(answer,
                                                        verify_answer)
     hint = "" if perturbation is not None else _HINT
-    if converged is not None and not converged["converged"]:
+    # no answer at N nor at 2N (an event up to the ceiling at both): the
+    # verdict says so; "not converged" would read as a number to refine
+    none_either = not math.isfinite(answer) and not (
+        verify_answer is not None and math.isfinite(verify_answer))
+    if converged is not None and not converged["converged"] and \
+            not none_either:
         checked = converged["converged_check_n_modes"]
         if checked > converged["converged_n_modes"]:
             why = "its check there failed" + (
