@@ -201,3 +201,31 @@ def test_preload_in_si_is_its_inch_pound_answer_converted(planted_preload,
         [t["preload_lb"] * N for t in us["tested"]], rel=1e-14)
     assert si["inputs"]["design"]["L1_m"] == pytest.approx(19 * M,
                                                            rel=1e-14)
+
+
+@pytest.mark.parametrize("option, typed, key, si_value", [
+    ("--L1", "25mm", "L1_m", 0.025),
+    ("--b1", "5mm", "b1_m", 0.005),
+    ("--h1", "0.3mm", "h1_m", 0.0003),
+    ("--h1", "0.12mm", "h1_m", 0.00012),
+    ("--d", "1.6mm", "d_m", 0.0016),
+    ("--ys", "0.45mm", "ys_m", 0.00045),
+    ("--E2", "200GPa", "E2_Pa", 200e9),
+    ("--E1", "117GPa", "E1_Pa", 117e9),
+])
+def test_a_value_typed_in_si_is_written_as_typed(option, typed, key,
+                                                 si_value, tmp_path,
+                                                 capsys):
+    """A design drawn in mm is written back in mm's own decimals (not
+    0.00499999999999999 for 5 mm), and the file still reads back as the
+    design the options gave, bit for bit."""
+    import contactsep
+    data = run_json(["model", "--json", "--units", "si", option, typed],
+                    capsys)
+    assert data["design"][key] == si_value
+    path = tmp_path / "typed.json"
+    path.write_text(json.dumps(data))
+    us = run_json(["model", "--json", option, typed], capsys)
+    plain = tmp_path / "plain.json"
+    plain.write_text(json.dumps(us))
+    assert contactsep.load_design(path) == contactsep.load_design(plain)

@@ -87,7 +87,7 @@ def in_units(data, args: argparse.Namespace):
             return [convert(v, factor) for v in value]
         if isinstance(value, float) or (isinstance(value, int) and
                                         not isinstance(value, bool)):
-            return value * factor if factor != 1.0 else value
+            return si_number(value, factor) if factor != 1.0 else value
         return value
 
     def walk(value, bare=None):
@@ -108,6 +108,28 @@ def in_units(data, args: argparse.Namespace):
                 out[twin[0]] = convert(item, twin[1])
         return out
     return walk(data)
+
+
+def si_number(value: float, factor: float) -> float:
+    """``value`` (in the package's units) times ``factor``, written with
+    the fewest significant digits that a design file's
+    reader (divide by ``factor``, round to 15 digits, as contactsep.units
+    rounds) turns back into ``value`` exactly: 5 mm typed is written
+    0.005, not 0.00499999999999999.  A value with more digits than the
+    reader keeps is written as the plain product, as before."""
+    product = value * factor
+
+    def reads_back(digits: int) -> float | None:
+        written = float(f"{product:.{digits}g}")
+        return written if float(f"{written / factor:.15g}") == value \
+            else None
+
+    if reads_back(15) is None:
+        # a computed value (a result, not a typed one): the plain
+        # product unless 16 or 17 digits read back
+        return reads_back(16) or reads_back(17) or product
+    return next(written for written in map(reads_back, range(1, 16))
+                if written is not None)
 
 
 def _bare_names() -> dict:
