@@ -5,10 +5,10 @@ system of the command line's bare numbers and of the ``--json`` output
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit
 suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
-the one table), and so does ``model``'s text.  Only ``model``,
-``chatter`` and ``preload`` take it, the last two with ``--json``: their
-text, CSV and PNG outputs stay in inch-pound units, so ``si`` is
-refused there in one line rather than half done.
+the one table), and so does the text of ``model`` and ``chatter``.
+Only ``model``, ``chatter`` and ``preload`` take it, ``preload`` with
+``--json``: its text, and the CSV and PNG outputs, stay in inch-pound
+units, so ``si`` is refused there in one line rather than half done.
 With the default ``us`` nothing changes.
 """
 
@@ -24,7 +24,23 @@ UNIT_SYSTEMS = ("us", "si")
 SI_COMMANDS = ("model", "chatter", "preload")
 #: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
-            "lb/in^3": "lb_in3", "s/in": "s_per_in"}
+            "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",
+            "in/s": "in_s"}
+#: The commands whose text --units si converts too (model's, chatter's).
+SI_TEXT = ("model", "chatter")
+
+
+def si_shown(value, unit: str, si: bool):
+    """A number shown in the text with its printed unit ('in', 'lb s')
+    -> (value, unit) in the unit system asked for: unchanged for us, or
+    for a unit with no SI twin ('' or 's')."""
+    from contactsep.model.names import SI_SUFFIXES
+    suffix = _PRINTED.get(unit)
+    if not si or suffix is None or not isinstance(value, (int, float)) \
+            or isinstance(value, bool):
+        return value, unit
+    _, printed, factor = SI_SUFFIXES[suffix]
+    return value * factor, printed
 
 
 def si_asked(args: argparse.Namespace) -> bool:
@@ -38,7 +54,7 @@ def si_asked(args: argparse.Namespace) -> bool:
                          f"commands that take it are "
                          f"{', '.join(SI_COMMANDS)} (or give each value "
                          f"its unit: --L1 25mm)")
-    if command != "model" and not getattr(args, "json", False):
+    if command not in SI_TEXT and not getattr(args, "json", False):
         raise InputError(f"--units si: only the --json output of "
                          f"{command} is in SI (add --json); its text "
                          f"stays in in, lb, s")
