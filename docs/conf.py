@@ -102,6 +102,7 @@ extensions = [
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "cli_reference",
+    "data_values",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
