@@ -109,7 +109,7 @@ def parse(spec: str) -> Datum:
         filters.append((key.strip(), value.strip()))
     if not column:
         raise DatumError(f"{file}: no column in datum {text!r}")
-    return Datum(file, column, tuple(filters), fmt if sep else None)
+    return Datum(file, column, tuple(filters), fmt.strip() if sep else None)
 
 
 def _number(text: str):
