@@ -7,6 +7,7 @@ the site is built.  Runs without Sphinx."""
 from __future__ import annotations
 
 import csv
+import io
 import re
 import subprocess
 import sys
@@ -190,16 +191,21 @@ def test_the_role_renders_with_docutils():
     """The role itself, without Sphinx: the value as text; a broken
     one an error system message at its line."""
     docutils = pytest.importorskip("docutils.core")
+    from docutils import nodes
     from docutils.parsers.rst import roles
 
     roles.register_local_role("datum", data_values.datum_role)
     lines = (DOCS / "studies" / "preload.csv").read_text().splitlines()
     held = sum(r["converged"] == "1" for r in
                csv.DictReader(x for x in lines if x[:1] != "#"))
-    out = docutils.publish_string(
+    tree = docutils.publish_doctree(
         "Held: :datum:`studies/preload.csv:rows@converged=1`.\n\n"
         "Next, :datum:`studies/preload.csv:nothing`.\n",
-        writer_name="pseudoxml",
-        settings_overrides={"report_level": 5, "halt_level": 5}).decode()
-    assert f"Held: {held}." in out
-    assert 'level="3" line="3"' in out and "no column 'nothing'" in out
+        settings_overrides={"report_level": 3, "halt_level": 5,
+                            "warning_stream": io.StringIO()})
+    first = next(iter(tree.findall(nodes.paragraph)))
+    assert first.astext() == f"Held: {held}."
+    [message] = tree.findall(nodes.system_message)
+    assert (message["level"], message["line"]) == (3, 3)
+    assert "datum: studies/preload.csv: nothing: no column 'nothing'" \
+        in message.astext()
