@@ -265,6 +265,22 @@ def resolve(spec: str, base: str | Path) -> str:
     return _format(best, datum)
 
 
+def source_line(source: str, text: str, lineno: int) -> int:
+    """The line of ``source`` (a file) where the role's ``text`` is,
+    the first at or after ``lineno``; ``lineno`` if it is not found.
+
+    MyST gives an inline role the line its paragraph starts on; an error
+    points at the role's own line instead."""
+    try:
+        lines = Path(source).read_text(encoding="utf-8").splitlines(True)
+    except (OSError, UnicodeDecodeError, ValueError):
+        return lineno
+    start = sum(len(line) for line in lines[:max(lineno - 1, 0)])
+    whole = "".join(lines)
+    at = whole.find(f"`{text}`", start)
+    return lineno if at < 0 else whole.count("\n", 0, at) + 1
+
+
 def datum_role(name, rawtext, text, lineno, inliner, options=None,
                content=None):
     """The ``datum`` role: the value as text, or an error at ``lineno``."""
@@ -279,7 +295,8 @@ def datum_role(name, rawtext, text, lineno, inliner, options=None,
             env.note_dependency(str(base / datum.file))
         value = resolve(text, base)
     except DatumError as error:
-        message = inliner.reporter.error(f"datum: {error}", line=lineno)
+        line = source_line(document.get("source", ""), text, lineno)
+        message = inliner.reporter.error(f"datum: {error}", line=line)
         problem = inliner.problematic(rawtext, rawtext, message)
         return [problem], [message]
     return [nodes.Text(value)], []

@@ -209,3 +209,16 @@ def test_the_role_renders_with_docutils():
     assert (message["level"], message["line"]) == (3, 3)
     assert "datum: studies/preload.csv: nothing: no column 'nothing'" \
         in message.astext()
+
+
+def test_an_error_points_at_the_roles_own_line(tmp_path):
+    """MyST gives a role its paragraph's first line; the error's line is
+    the role's own, the first use at or after it."""
+    page = tmp_path / "page.md"
+    use = "t.csv:rows@x=1"
+    page.write_text(f"Intro {{datum}}`{use}`.\n\nA paragraph\nof three\n"
+                    f"lines, {{datum}}`{use}` here.\n")
+    assert data_values.source_line(str(page), use, 1) == 1
+    assert data_values.source_line(str(page), use, 3) == 5
+    assert data_values.source_line(str(page), "t.csv:other", 3) == 3
+    assert data_values.source_line("<string>", use, 7) == 7
