@@ -74,25 +74,36 @@ def check(claims, values) -> None:
 
 # -- docs/studies.md, the figures ---------------------------------------------
 
+def role(name: str, key: str, fmt: str, **where) -> str:
+    """The datum role that shows ``key`` of docs/studies/NAME.csv in
+    the row ``where`` selects (white space as on a joined page)."""
+    filters = ",".join(f"{k}={v:g}" if not isinstance(v, str) else
+                       f"{k}={v}" for k, v in where.items())
+    return f"{{datum}}`studies/{name}.csv:{key}@{filters}:{fmt}`"
+
+
+def says(name: str, text: str) -> None:
+    assert text in page(name), f"{name}: no longer says {text!r}"
+
+
 def test_figure_5_numbers_are_fig5_csv():
-    at_half = quoted("studies.md", rf"y_s = 0.5 in: {NUMBER} in at d = "
-                     rf"0.10, {NUMBER} at 0.25, {NUMBER} at 0.50, {NUMBER} "
-                     rf"at 1.00 in")
-    check(at_half, [column("fig5", "y3_max_in", ys_in=0.5, d_in=d)[0]
-                    for d in (0.1, 0.25, 0.5, 1.0)])
-    by_ys = quoted("studies.md", rf"\({NUMBER}, {NUMBER}, {NUMBER} in at "
-                   rf"d = 0.10 for y_s = 0.25, 0.5, 0.75 in\)")
-    check(by_ys, [column("fig5", "y3_max_in", ys_in=ys, d_in=0.1)[0]
-                  for ys in (0.25, 0.5, 0.75)])
+    """Each number is the role that selects the row its sentence names
+    (the role's value is the CSV's: tests/project/test_data_values)."""
+    y3 = {(ys, d): role("fig5", "y3_max_in", ".3f", ys_in=ys, d_in=d)
+          for ys in (0.25, 0.5, 0.75) for d in (0.1, 0.25, 0.5, 1.0)}
+    says("studies.md", f"y_s = 0.5 in: {y3[0.5, 0.1]} in at d = 0.10, "
+         f"{y3[0.5, 0.25]} at 0.25, {y3[0.5, 0.5]} at 0.50, "
+         f"{y3[0.5, 1.0]} at 1.00 in")
+    says("studies.md", f"({y3[0.25, 0.1]}, {y3[0.5, 0.1]}, "
+         f"{y3[0.75, 0.1]} in at d = 0.10 for y_s = 0.25, 0.5, 0.75 in)")
 
 
 def test_figure_6_numbers_are_fig6_csv():
-    claims = quoted("studies.md", rf"Curve I: {NUMBER} in at r = 1.00, "
-                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70; curve II: "
-                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70\.")
-    check(claims, [column("fig6", "y3_max_in", curve=c, r=r)[0] for c, r in
-                   (("I", 1.0), ("I", 0.78), ("I", 0.70), ("II", 0.78),
-                    ("II", 0.70))])
+    y3 = {(c, r): role("fig6", "y3_max_in", ".3f", curve=c, r=r)
+          for c in ("I", "II") for r in (1.0, 0.78, 0.7)}
+    says("studies.md", f"Curve I: {y3['I', 1.0]} in at r = 1.00, "
+         f"{y3['I', 0.78]} at 0.78, {y3['I', 0.7]} at 0.70; curve II: "
+         f"{y3['II', 0.78]} at 0.78, {y3['II', 0.7]} at 0.70.")
 
 
 def test_figure_7_coefficients_and_the_node():
@@ -113,30 +124,30 @@ def test_figure_7_coefficients_and_the_node():
 
 
 def test_figure_8_ends_are_fig8_csv():
-    claims = quoted("studies.md", rf"\({NUMBER} in at R = 0.05, {NUMBER} "
-                    rf"in at R = 5\)")
-    check(claims, [column("fig8", "y3_max_in", R=0.05)[0],
-                   column("fig8", "y3_max_in", R=5.0)[0]])
+    says("studies.md", f"({role('fig8', 'y3_max_in', '.3f', R=0.05)} in "
+         f"at R = 0.05, {role('fig8', 'y3_max_in', '.3f', R=5.0)} in at "
+         "R = 5)")
 
 
 def test_figure_23_numbers_are_fig23_csv():
-    claims = quoted("studies.md", rf"max y3 is {NUMBER}, {NUMBER}, "
-                    rf"{NUMBER}, {NUMBER}, {NUMBER} in for d = 0.125, 0.25, "
-                    rf"0.35, 0.50, 0.75 in, against {NUMBER} \.\.\. "
-                    rf"{NUMBER} in without L_c")
-    corrected = column("fig23", "y3_max_in")
-    plain = column("fig23", "y3_max_uncorrected_in")
+    """The corrected curve at each d, and the uncorrected one at the
+    first and last d (the chart's first and last rows)."""
     assert column("fig23", "d_in").tolist() == [0.125, 0.25, 0.35, 0.5,
                                                 0.75]
-    check(claims, [*corrected, plain[0], plain[-1]])
-    (lc,) = quoted("studies.md", rf"The 0.75 in row uses the printed "
-                   rf"L_c = {NUMBER} in")
-    check([lc], [column("fig23", "Lc_in", d_in=0.75)[0]])
+    corrected = ", ".join(role("fig23", "y3_max_in", ".3f", d_in=d)
+                          for d in (0.125, 0.25, 0.35, 0.5, 0.75))
+    plain = [role("fig23", "y3_max_uncorrected_in", ".3f", d_in=d)
+             for d in (0.125, 0.75)]
+    says("studies.md", f"max y3 is {corrected} in for d = 0.125, 0.25, "
+         f"0.35, 0.50, 0.75 in, against {plain[0]} ... {plain[1]} in "
+         "without L_c")
+    says("studies.md", "The 0.75 in row uses the printed L_c = "
+         + role("fig23", "Lc_in", ".2f", d_in=0.75) + " in")
 
 
 def test_the_new_convergence_value_is_convergence_csv():
-    (new,) = quoted("studies.md", rf"N = 50: max y3 0.105479 → {NUMBER} in")
-    check([new], [column("convergence", "y3_max_in", N=50)[0]])
+    says("studies.md", "N = 50: max y3 0.105479 → "
+         + role("convergence", "y3_max_in", ".6f", N=50) + " in")
 
 
 def test_conclusion_8_numbers_are_conclusion8_csv():
