@@ -7,6 +7,7 @@ only: the studies are three-beam searches of minutes each."""
 from __future__ import annotations
 
 import csv
+import math
 import re
 from pathlib import Path
 
@@ -117,7 +118,16 @@ def g3(value) -> str:
     return "none" if value != value else f"{float(value):.3g}"
 
 
+def datum(name: str, d: float, ys: float) -> str:
+    """The datum role that shows chart ``name``'s answer at (d, y_s)."""
+    return (f"{{datum}}`studies/{name}.csv:min_preload_lb@d_in={d:g},"
+            f"ys_in={ys:g}:.3g`")
+
+
 def test_the_physical_chart_quotes_both_charts():
+    """Each cell: the physical chart's answer and the clamped one's in
+    parentheses ("none" where the clamped chart has none), the roles
+    that select the cell's row of each; every row of both charts."""
     physical = {(float(r["d_in"]), float(r["ys_in"])): float(
         r["min_preload_lb"]) for r in rows("preload_physical")}
     rigid = {(float(r["d_in"]), float(r["ys_in"])): float(
@@ -125,10 +135,15 @@ def test_the_physical_chart_quotes_both_charts():
     table = quoted_table(physical_section(), "| y_s (in) | d = 0.125 |")
     ds = (0.125, 0.25, 0.35, 0.5, 0.75)
     assert len(table) == 4
+    assert {(d, float(c[0])) for c in table[1:] for d in ds} == \
+        set(physical) == set(rigid)
+    assert not any(math.isnan(v) for v in physical.values())
     for cells in table[1:]:
         ys = float(cells[0])
-        assert cells[1:] == [f"{g3(physical[d, ys])} ({g3(rigid[d, ys])})"
-                             for d in ds], ys
+        assert cells[1:] == [
+            f"{datum('preload_physical', d, ys)} ("
+            + ("none" if math.isnan(rigid[d, ys]) else
+               datum("preload", d, ys)) + ")" for d in ds], ys
 
 
 def test_the_physical_conclusion_5_table_quotes_its_study():
