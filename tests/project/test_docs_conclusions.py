@@ -140,10 +140,6 @@ def quoted_table(text: str, header: str) -> list[list[str]]:
     return out
 
 
-def g3(value) -> str:
-    return "none" if value != value else f"{float(value):.3g}"
-
-
 def datum(name: str, d: float, ys: float) -> str:
     """The datum role that shows chart ``name``'s answer at (d, y_s)."""
     return (f"{{datum}}`studies/{name}.csv:min_preload_lb@d_in={d:g},"
@@ -173,13 +169,15 @@ def test_the_physical_chart_quotes_both_charts():
 
 
 def test_the_physical_conclusion_5_table_quotes_its_study():
+    """Row for row, the d as text, the gap, events and preload the roles
+    that select the row, the open time (ms) as text."""
     table = quoted_table(physical_section(),
                          "| d (in) | max lower gap (in) |")
+    name = "conclusion5_physical"
     assert table[1:] == [
-        [f"{float(r['d_in']):g}", f"{float(r['max_lower_gap_in']):.3g}",
-         f"{1e3 * float(r['circuit_open_s']):.1f}", r["n_events"],
-         f"{float(r['min_preload_lb']):.4g}"]
-        for r in rows("conclusion5_physical")]
+        [f"{float(r['d_in']):g}"] + [
+            c for i, c in enumerate(cells(name, "d_in", r)) if i != 0]
+        for r in rows(name)]
 
 
 @pytest.mark.parametrize("name, header, column", [
@@ -189,11 +187,20 @@ def test_the_physical_conclusion_5_table_quotes_its_study():
     ("conclusion3_physical", "| conclusion 3: e |", "e")])
 def test_the_physical_conclusion_rows_quote_their_study(name, header,
                                                         column):
+    """The study's values in the header row as text; the gap and the
+    preload (each study has one for every value) the roles that select
+    their column's row."""
     table = quoted_table(physical_section(), header)
     found = rows(name)
     values = [float(v) for v in table[0][1:]]
     assert values == [float(r[column]) for r in found]
+    assert not any(math.isnan(float(r["min_preload_lb"])) for r in found)
+
+    def role(key, fmt, r):
+        return (f"{{datum}}`studies/{name}.csv:{key}@{column}="
+                f"{float(r[column]):g}:{fmt}`")
+
     assert table[1] == ["max lower gap (in)"] + [
-        f"{float(r['max_lower_gap_in']):.3g}" for r in found]
+        role("max_lower_gap_in", ".3g", r) for r in found]
     assert table[2] == ["min preload (lb)"] + [
-        g3(r["min_preload_lb"]) for r in found]
+        role("min_preload_lb", ".3g", r) for r in found]
