@@ -213,8 +213,8 @@ def resolve(spec: str, base: str | Path) -> str:
     ------
     DatumError
         A missing file, column or filter column; no matching row, or
-        more than one for a plain column; a NaN or non-numeric value
-        where a number is needed; a bad format.  One printable line
+        more than one for a plain column; an empty cell or a NaN; a
+        value that is not a number where one is needed; a bad format.  One printable line
         naming the file, column and filters.
     """
     datum = parse(spec)
@@ -242,6 +242,8 @@ def resolve(spec: str, base: str | Path) -> str:
                              "one is needed (add a filter or use "
                              "max(), min(), sum(), rows)")
         cell = chosen[0][name]
+        if not cell:
+            raise DatumError(f"{datum.where()}: the cell is empty")
         if isinstance(_number(cell), float) and math.isnan(_number(cell)):
             raise DatumError(f"{datum.where()}: the value is {cell}")
         return _format(cell, datum)

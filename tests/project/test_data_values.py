@@ -43,7 +43,7 @@ def base(tmp_path):
     (tmp_path / "t.csv").write_text(TABLE)
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "big.csv").write_text(
-        "n,label\n1234567,a\n2.5,b\n")
+        "n,label\n1234567,a\n2.5,b\n7,\n")
     return tmp_path
 
 
@@ -72,7 +72,7 @@ def base(tmp_path):
     ("sub/big.csv:n@label=a:,d", "1,234,567"),
     ("sub/big.csv:n@label=a:.3g", "1.23e+06"),
     ("sub/big.csv:n@label=b:.0%", "250%"),
-    ("sub/big.csv:sum(n):,.1f", "1,234,569.5"),
+    ("sub/big.csv:sum(n):,.1f", "1,234,576.5"),
     ("t.csv:n_modes@d_in=0.25,ys_in=0.75:03d", "064"),
     ("t.csv:answer_lb@model=newton:d", None),   # 9.5 is no integer
 ])
@@ -97,6 +97,7 @@ def test_resolves(base, spec, shown):
     ("t.csv:model@n_modes=16:.2f", "'newton' is not a number"),
     ("t.csv:max(model)", "'hertz' is not a number"),
     ("t.csv:answer_lb@d_in=0.5,ys_in=0.75:.4g", "the value is nan"),
+    ("sub/big.csv:label@n=7", "the cell is empty"),
     ("t.csv:max(answer_lb)@ys_in=0.75,d_in=0.5",
      "every matching value is NaN"),
     ("t.csv:answer_lb@d_in", "filter 'd_in' is not KEY=VALUE"),
