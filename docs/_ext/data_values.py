@@ -40,9 +40,10 @@ from pathlib import Path
 
 #: The aggregates COLUMN may be, besides a plain column name.
 AGGREGATES = ("max", "min", "sum")
-_AGGREGATE = re.compile(r"^(max|min|sum)\((.*)\)$")
-#: Format types that take an integer (a float with no fraction is one).
-_INTEGER_TYPES = set("bcdoxXn")
+_AGGREGATE = re.compile(rf"^({'|'.join(AGGREGATES)})\((.*)\)$")
+#: Format types that take an integer only (a float with no fraction is
+#: shown as one).
+_INTEGER_TYPES = set("bcdoxX")
 
 
 class DatumError(ValueError):

@@ -72,6 +72,8 @@ def base(tmp_path):
     ("sub/big.csv:n@label=a:,d", "1,234,567"),
     ("sub/big.csv:n@label=a:.3g", "1.23e+06"),
     ("sub/big.csv:n@label=b:.0%", "250%"),
+    ("sub/big.csv:n@label=b:n", "2.5"),           # n takes a float too
+    ("t.csv:max(n_modes)@converged=0:d", "32"),
     ("sub/big.csv:sum(n):,.1f", "1,234,576.5"),
     ("t.csv:n_modes@d_in=0.25,ys_in=0.75:03d", "064"),
     ("t.csv:answer_lb@model=newton:d", None),   # 9.5 is no integer
