@@ -35,9 +35,18 @@ def searches(band) -> dict:
             if any(r["robust_band"] == band for r in runs)}
 
 
+def study_role(name, n_modes, band, column, fmt=None) -> str:
+    """The datum role that shows ``column`` of one search's row."""
+    fmt = f":{fmt}" if fmt else ""
+    return (f"{{datum}}`studies/{STUDY.name}:{column}@design={name},"
+            f"n_modes={n_modes},robust_band={band}{fmt}`")
+
+
 def answers_table() -> list[list[str]]:
     """The table: per design, the old band's searches by N, then the
-    fixed band's; the change at 2N against the same band's search at N."""
+    fixed band's; the study's values the roles that select the search's
+    row, the change at 2N against the same band's search at N and the
+    minutes (derived) as text."""
     expected = []
     for name in by_design(STUDY):
         for band, said in ((OLD, "events"), (FIXED, "fine grid")):
@@ -48,10 +57,15 @@ def answers_table() -> list[list[str]]:
                     int(half["n_modes"]) * 2 != int(r["n_modes"]) else pct(
                         repr(float(r["robust_min_preload_lb"]) /
                              float(half["robust_min_preload_lb"]) - 1.0))
+                assert "none" not in (g4(r["min_preload_lb"]),
+                                      g4(r["robust_min_preload_lb"]))
+                at = (name, r["n_modes"], band)
                 expected.append([
-                    name, said, r["samples"], r["n_modes"],
-                    g4(r["min_preload_lb"]), g4(r["robust_min_preload_lb"]),
-                    f"{r['n_open']} of {r['n']}", moved,
+                    name, said, study_role(*at, "samples"), r["n_modes"],
+                    study_role(*at, "min_preload_lb", ".4g"),
+                    study_role(*at, "robust_min_preload_lb", ".4g"),
+                    study_role(*at, "n_open") + " of "
+                    + study_role(*at, "n"), moved,
                     f"{float(r['wall_s']) / 60:.0f}"])
     return expected
 
@@ -104,8 +118,15 @@ def test_the_answers_table_is_the_study():
 
 
 def test_the_steel_relays_curve_is_the_study():
+    """Each preload every N's search tried, with the roles that show its
+    count of open samples at N = 32 and 64."""
     quoted = table(section(TITLE), CURVE)
-    expected = [[g4(p), str(k["32"]), str(k["64"])] for p, k in
+
+    def role(p, n):
+        return (f"{{datum}}`studies/{TESTED.name}:n_open@design=steel_relay,"
+                f"robust_band={OLD},n_modes={n},preload_lb={p}`")
+
+    expected = [[g4(p), role(p, 32), role(p, 64)] for p, k in
                 sorted(curves("steel_relay").items(),
                        key=lambda item: float(item[0]))]
     assert quoted == expected
