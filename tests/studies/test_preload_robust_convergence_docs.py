@@ -7,6 +7,7 @@ same tolerance draws.  Reads files only."""
 
 from __future__ import annotations
 
+import itertools
 import math
 from pathlib import Path
 
@@ -242,7 +243,7 @@ def test_the_fixed_bands_n64_window_is_not_there_at_n128():
     preloads = sorted(float(p) for p, _, _ in rows_)
     # consecutive fine-grid preloads (0.99 % apart), the answer the top
     assert all(b / a == pytest.approx(1.0099, rel=1e-6)
-               for a, b in zip(preloads, preloads[1:]))
+               for a, b in itertools.pairwise(preloads))
     assert preloads[-1] == pytest.approx(answer, rel=1e-6)
     assert [int(k) for _, k, _ in rows_] == [0, 3, 0]
     assert all(n128 == "0" for _, _, n128 in rows_)
@@ -503,7 +504,7 @@ def test_the_n128_column_reading():
     assert [sum(int(_at(counts[n], p)) for p in ran[1:])
             for n in ("128", "64", "32")] == [55, 51, 84]
     assert all(b / a == pytest.approx(1.0099 ** 2, rel=1e-9)
-               for a, b in zip(ran, ran[1:]))
+               for a, b in itertools.pairwise(ran))
     first = ran[0]
     assert [_at(counts[n], first) for n in ("32", "64", "128")] == \
         ["35", "17", "28"]
