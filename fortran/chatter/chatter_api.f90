@@ -186,11 +186,12 @@ contains
 
   !> Newton's law, adaptive (see chatter_adaptive): arguments and
   !> results as run_hertz_adaptive, with the restitution e instead of
-  !> the Hertz constants; stop_open as run_hertz_adaptive_book's.
+  !> the Hertz constants, and the final state q_end, v_end;
+  !> stop_open as run_hertz_adaptive_book's.
   subroutine run_newton_adaptive(n, k, m, p, h, g0, q0, v0, e, dt, &
       steps, stride, samples, threshold, n_moving, energy_bound, &
       max_cross, t_out, g_out, e_out, first, crossings, n_cross, &
-      gap_max, counts, status, stop_open)
+      gap_max, counts, q_end, v_end, status, stop_open)
     !f2py threadsafe
     !f2py real(wp), optional, intent(in) :: stop_open = -1.0
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
@@ -201,14 +202,15 @@ contains
     real(wp), intent(out) :: e_out(samples), first(2)
     real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
     integer, intent(out) :: n_cross, counts(3), status
+    real(wp), intent(out) :: q_end(n), v_end(n)
     real(wp), intent(in) :: stop_open
-    real(wp) :: q(n), v(n), no_series(k, k)
+    real(wp) :: no_series(k, k)
 
-    q = q0
-    v = v0
+    q_end = q0
+    v_end = v0
     ! Newton's rigid law takes no series compliance
     no_series = 0.0_wp
-    call adaptive(law_newton, n, k, m, p, h, g0, no_series, q, v, &
+    call adaptive(law_newton, n, k, m, p, h, g0, no_series, q_end, v_end, &
         0.0_wp, 0.0_wp, &
         e, dt, steps, stride, samples, threshold, n_moving, &
         energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
