@@ -81,6 +81,8 @@ def test_on_the_family_a_stopped_run_answers_as_the_full_one(
     assert math.isnan(full.stopped_s)
     _same_up_to_the_stop(stopped, full)
     assert stopped.work["fixed_steps"] < full.work["fixed_steps"]
+    if name == "steel_relay":       # docs/chatter.md: 737,000 -> 25,000
+        assert 20 * stopped.work["fixed_steps"] < full.work["fixed_steps"]
 
     full = _run(name, without, t_end)
     stopped = _run(name, without, t_end, stop_at_event=True)
@@ -183,3 +185,48 @@ def test_a_stop_the_circuit_rule_does_not_confirm_is_run_again_whole(
     assert seen                       # the stopped run was re-checked
     assert stopped.status == status.OK and math.isnan(stopped.stopped_s)
     assert stopped.work == full.work
+
+
+def _spy(monkeypatch, module):
+    """Record the stop_at_event and the status of every simulate() that
+    ``module`` makes."""
+    seen = []
+
+    def spy(*args, **keywords):
+        result = simulate(*args, **keywords)
+        seen.append((keywords.get("stop_at_event"), result.status))
+        return result
+    monkeypatch.setattr(module, "simulate", spy)
+    return seen
+
+
+def test_the_preload_search_runs_stop_at_their_first_event(monkeypatch):
+    from contactsep.studies import preload
+    seen = _spy(monkeypatch, preload)
+    design = FAMILY["steel_relay"].replace(n_modes=8)
+    for load, t_end in ((0.1, None), (0.3907, 0.005)):
+        settings = {} if t_end is None else {"t_end": t_end}
+        full = _run("steel_relay", load, t_end)
+        assert preload._simulate_event((design, "hertz", settings, load)) \
+            is full.chatters
+    assert seen == [(True, status.STOPPED_AT_EVENT), (True, status.OK)]
+    # a stepper the stop does not cover runs the whole window, refused
+    # nowhere
+    fixed = {"stepper": "fixed", "t_end": 2e-3}
+    assert preload._simulate_event((design, "hertz", fixed, 0.0)) is \
+        _run("steel_relay", 0.0, 2e-3, stepper="fixed").chatters
+    assert seen[-1] == (False, status.OK)
+
+
+def test_the_robust_search_samples_stop_at_their_first_event(monkeypatch):
+    from contactsep.studies import chatter_sweep, preload_robust
+    seen = _spy(monkeypatch, chatter_sweep)
+    design = FAMILY["steel_relay"].replace(n_modes=8)
+    fields = {name: getattr(design, name)
+              for name in type(design).__dataclass_fields__}
+    events, code = preload_robust._sample_run((fields, "hertz",
+                                               {"preload": 0.1}))
+    assert seen == [(True, status.STOPPED_AT_EVENT)]
+    # "at least one": all the search reads of it, and its status is ok
+    assert events >= 1 and code == 0
+    assert _run("steel_relay", 0.1, None).n_events >= events
