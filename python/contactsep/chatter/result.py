@@ -151,8 +151,8 @@ class ChatterResult:
     #: the run up to there only: ``chatters`` and ``first_circuit_open_s``
     #: are the whole window's, ``n_events`` (1 or more: "at least"),
     #: ``events`` (the last cut there), the open intervals and times,
-    #: ``max_lower_gap_in``, ``first_lift_in`` and ``energy_ratio`` (at
-    #: the stop) are partial, the samples after it NaN.
+    #: ``max_lower_gap_in``, ``first_lift_in``, ``energy_ratio`` and the
+    #: energy book (at the stop) are partial, the samples after it NaN.
     stopped_s: float = math.nan
 
     def __repr__(self) -> str:
