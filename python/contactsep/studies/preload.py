@@ -85,7 +85,10 @@ def _simulate_event(task) -> bool:
         warnings.simplefilter("ignore", CoarseStepWarning)
         warnings.simplefilter("ignore", UnconvergedWarning)
         result = simulate(design, model=model, preload=preload, samples=1,
-                          single_impulse=False, **settings)
+                          single_impulse=False,
+                          stop_at_event=settings.get("stepper") != "fixed"
+                          and settings.get("backend") != "numpy",
+                          **settings)
     return result.n_events > 0
 
 

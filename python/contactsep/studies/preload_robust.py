@@ -208,7 +208,9 @@ def _plain(value):
 def _sample_run(task) -> tuple:
     """(n_events, status) of one sample at one preload (in a worker)."""
     fields, model, settings = task
-    row = simulate_design(fields, model, settings)
+    row = simulate_design(fields, model, {
+        **settings, "stop_at_event": settings.get("stepper") != "fixed"
+        and settings.get("backend") != "numpy"})
     return row[_EVENTS], row[_STATUS]
 
 
