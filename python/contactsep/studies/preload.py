@@ -208,12 +208,19 @@ class Simulations:
 
     def search_events(self, designs, model: str, settings: dict,
                       tasks) -> list:
-        """Whether each ``(row, preload)`` of a search's batch
-        (:func:`search`'s ``has_event``) has a discontinuity event:
-        ``designs[row]`` simulated by ``model`` with ``settings`` at
-        ``preload`` lb."""
-        return self.events([PreloadRun(designs[row], model, settings,
-                                       preload) for row, preload in tasks])
+        """Whether each run of a search's batch (:func:`search_runs`)
+        has a discontinuity event."""
+        return self.events(search_runs(designs, model, settings, tasks))
+
+
+def search_runs(designs, model: str, settings: dict, tasks) -> list:
+    """The runs of a batch of :func:`search` (its ``has_event``'s
+    ``tasks``): each ``(row, preload)`` as a
+    :class:`~contactsep.studies.preload_runs.PreloadRun` of
+    ``designs[row]`` simulated by ``model`` with ``settings`` at
+    ``preload`` lb."""
+    return [PreloadRun(designs[row], model, settings, preload)
+            for row, preload in tasks]
 
 
 def min_preloads(designs, model: str = "hertz", settings=None,
@@ -265,7 +272,7 @@ def min_preloads(designs, model: str = "hertz", settings=None,
     check_workers(workers)
 
     def has_event(tasks, sims):
-        return sims.search_events(designs, model, settings, tasks)
+        return sims.events(search_runs(designs, model, settings, tasks))
 
     ceilings = [largest_preload(design) for design in designs]
     how = dict(ceilings=ceilings, band_below=band_below,
