@@ -5,11 +5,11 @@ A batch of them runs on worker processes or a Dask cluster
 (:class:`contactsep.studies.preload.Simulations`), handed out the
 costliest first, so that it ends with short runs on every worker rather
 than one long run while the others wait.  Their cost is their preload: a
-run with none is the cheapest, and a preload that keeps the lower
-contact pressed makes every step after the impact a fixed step of the
-splitting, many times a free run's time (41 times at 20 lb on the thesis
-rig, docs/performance.md); the larger the preload, the more of the
-window it keeps pressed.
+run with none is the cheapest, and while the preload keeps the lower
+contact pressed every step is a fixed step of the splitting, so the
+larger the preload, the more of the window runs at fixed steps (the
+thesis rig at N = 16: 1.3 times a free run's time at 0.1 lb, 41 times
+at 20 lb, pressed most of the window; docs/performance.md).
 
 A run is named in a resume journal
 (:func:`contactsep.studies.run_journal.task_key`) by
