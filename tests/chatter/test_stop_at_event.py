@@ -202,30 +202,32 @@ def _spy(monkeypatch, module):
 
 def test_the_preload_search_runs_stop_at_their_first_event(monkeypatch):
     from contactsep.studies import preload
+    from contactsep.studies.preload_runs import PreloadRun
     seen = _spy(monkeypatch, preload)
     design = FAMILY["steel_relay"].replace(n_modes=8)
     for load, t_end in ((0.1, None), (0.3907, 0.005)):
         settings = {} if t_end is None else {"t_end": t_end}
         full = _run("steel_relay", load, t_end)
-        assert preload._simulate_event((design, "hertz", settings, load)) \
+        assert preload._simulate_event(PreloadRun(design, "hertz", settings, load)) \
             is full.chatters
     assert seen == [(True, status.STOPPED_AT_EVENT), (True, status.OK)]
     # a stepper the stop does not cover runs the whole window, refused
     # nowhere
     fixed = {"stepper": "fixed", "t_end": 2e-3}
-    assert preload._simulate_event((design, "hertz", fixed, 0.0)) is \
+    assert preload._simulate_event(PreloadRun(design, "hertz", fixed, 0.0)) is \
         _run("steel_relay", 0.0, 2e-3, stepper="fixed").chatters
     assert seen[-1] == (False, status.OK)
 
 
 def test_the_robust_search_samples_stop_at_their_first_event(monkeypatch):
     from contactsep.studies import chatter_sweep, preload_robust
+    from contactsep.studies.preload_runs import SampleRun
     seen = _spy(monkeypatch, chatter_sweep)
     design = FAMILY["steel_relay"].replace(n_modes=8)
     fields = {name: getattr(design, name)
               for name in type(design).__dataclass_fields__}
-    events, code = preload_robust._sample_run((fields, "hertz",
-                                               {"preload": 0.1}))
+    events, code = preload_robust._sample_run(SampleRun(fields, "hertz", {},
+                                                     0.1))
     assert seen == [(True, status.STOPPED_AT_EVENT)]
     # "at least one": all the search reads of it, and its status is ok
     assert events >= 1 and code == 0
