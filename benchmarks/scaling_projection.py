@@ -24,15 +24,17 @@ The two workloads of the issue:
    times), with and without a 20 lb preload (1.81 s a design);
 2. **A 1,000-sample robust preload search**: a sequence of batches, each
    every sample at one to four preloads (the ceiling, the scan's batches
-   of up to four, then one-preload bisection steps; 12 batches, as
-   steel_relay's search), each run's time drawn from a log-normal with
+   of four, then eight one-preload bisection steps, as steel_relay's
+   search; or speculative steps of 3 or 7 preloads, which take 4 or 3
+   batches for the same eight bits), each run's time drawn from a log-normal with
    the measured spread of preloaded runs (median 1.5 s at N = 64, a
    factor 3 either way at one standard deviation), the batch handed out
    costliest first and waited for whole (the search needs every sample
    before it chooses the next preload).
 
-The chunk size (sweep) and the batch shape (search) that keep each
-workload at 90 % or above are printed beside.
+The search rows give the efficiency over every run made and, beside
+it, the wall time relative to one preload a bisection step (what the
+designer waits for).
 """
 
 from __future__ import annotations
@@ -47,13 +49,14 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
-from contactsep.studies.chunks import Chunks  # noqa: E402
+from contactsep.studies.chunks import Chunks
 
 WORKERS = (16, 64, 256)
 #: Measured a design (s): Hertz N = 16, free and at 20 lb.
 DESIGN_S = {"free": 0.0442, "preloaded 20 lb": 1.806}
-#: Robust search: batches (preloads each) of steel_relay's search shape.
-SEARCH_BATCHES = (1, 4, 4, 4, 1, 1, 1, 1, 1, 1, 1, 1)
+#: Robust search: the bisection's steps after the ceiling and the scan
+#: (steel_relay's search: 1 + 3 x 4 + 8 x 1 preloads).
+BISECTION_BITS = 8
 RUN_MEDIAN_S = 1.5
 RUN_SIGMA = math.log(3.0)
 
@@ -69,10 +72,10 @@ def simulate(durations, workers: int, parent_s: float,
     clock, end = 0.0, 0.0
     limit = None if window is None else window * workers
     for duration in durations:
-        clock += parent_s           # the parent's own work on the task
-        if limit is not None:
+        if limit is not None:       # a full window: wait for a result
             while in_flight and len(in_flight) >= limit:
                 clock = max(clock, heapq.heappop(in_flight))
+        clock += parent_s           # the parent's own work on the task
         start = max(clock, heapq.heappop(free))
         finish = start + duration
         heapq.heappush(free, finish)
@@ -100,19 +103,37 @@ def sweep_row(kind: str, workers: int, parent_s: float) -> tuple:
     return len(durations), work / (workers * wall)
 
 
-def search_durations(samples: int, seed: int) -> list[list[float]]:
+def search_shape(candidates: int = 1) -> list[int]:
+    """Preloads of each batch: the ceiling, the scan's three batches of
+    four, then BISECTION_BITS of bisection, ``candidates`` preloads a
+    step (a speculative step tries that many at once: it gains
+    log2(candidates + 1) bits, so it takes fewer, wider batches)."""
+    bits = math.log2(candidates + 1)
+    steps = math.ceil(BISECTION_BITS / bits - 1e-9)
+    return [1, 4, 4, 4] + [candidates] * steps
+
+
+def search_durations(samples: int, seed: int,
+                     candidates: int = 1) -> list[list[float]]:
     rng = random.Random(seed)
     return [sorted((rng.lognormvariate(math.log(RUN_MEDIAN_S), RUN_SIGMA)
                     for _ in range(samples * preloads)), reverse=True)
-            for preloads in SEARCH_BATCHES]
+            for preloads in search_shape(candidates)]
 
 
 def search_row(workers: int, parent_s: float, samples: int = 1000,
-               seed: int = 1) -> float:
-    batches = search_durations(samples, seed)
-    wall = sum(simulate(b, workers, parent_s) for b in batches)
+               seed: int = 1, candidates: int = 1) -> tuple:
+    """(runs, efficiency, wall relative to one candidate a step) of the
+    search; the efficiency counts every run made, the wall time is what
+    the designer waits."""
+    def wall_of(k):
+        return sum(simulate(b, workers, parent_s)
+                   for b in search_durations(samples, seed, k))
+    batches = search_durations(samples, seed, candidates)
+    wall = wall_of(candidates)
     work = sum(sum(b) for b in batches)
-    return work / (workers * wall)
+    runs = sum(len(b) for b in batches)
+    return runs, work / (workers * wall), wall / wall_of(1)
 
 
 def main(argv=None) -> int:
@@ -138,17 +159,22 @@ def main(argv=None) -> int:
             lines.append(f"| 1e5-design Hertz N = 16 sweep, {kind} | "
                          f"{parent_ms:g} | {count:,} chunks | "
                          + " | ".join(cells) + " |")
-        cells = [f"{100 * search_row(w, parent_s):.1f} %" for w in WORKERS]
-        runs = 1000 * sum(SEARCH_BATCHES)
-        lines.append(f"| 1,000-sample robust search, N = 64 | {parent_ms:g}"
-                     f" | {runs:,} runs | " + " | ".join(cells) + " |")
-    text = "\n".join(lines) + "\n"
-    print(text, end="")
+        for candidates in (1, 3, 7):
+            rows = [search_row(w, parent_s, candidates=candidates)
+                    for w in WORKERS]
+            cells = [f"{100 * e:.1f} % (wall x{r:.2f})" for _, e, r in rows]
+            lines.append(f"| 1,000-sample robust search, N = 64, "
+                         f"{candidates} preload(s) a bisection step | "
+                         f"{parent_ms:g} | {rows[0][0]:,} runs | "
+                         + " | ".join(cells) + " |")
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from results import Report
+    say = Report()
+    say("\n".join(lines))
     if args.save:
-        command = " ".join(["python benchmarks/scaling_projection.py",
-                            *(argv if argv is not None else sys.argv[1:])])
-        (ROOT / "benchmarks" / "results" / "scaling_projection.md"
-         ).write_text(f"<!-- {command} -->\n{text}")
+        say.save("scaling_projection", "python benchmarks/"
+                 "scaling_projection.py " + " ".join(
+                     sys.argv[1:] if argv is None else argv))
     return 0
 
 
