@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -292,3 +293,67 @@ def test_a_worker_lost_mid_search_loses_nothing(tmp_path):
     assert len(done) > 20 and left == 1
     assert remote.to_json_dict() == local.to_json_dict()
     assert remote.csv_text() == local.csv_text()
+
+
+#: ``contactsep preload`` small enough for a fault test: the thesis rig
+#: at N = 4 over a 0.03 s window, no check at 4N (about 200 simulations
+#: of a few tens of ms each).
+PRELOAD_ARGV = [sys.executable, "-m", "contactsep", "preload", "--n-modes",
+                "4", "--t-end", "0.03", "--no-converge", "--progress",
+                "never", "--csv"]
+
+
+def _journal_lines(csv: Path) -> int:
+    try:
+        return (csv.parent / f".{csv.name}.resume" / "runs.jsonl"
+                ).read_bytes().count(b"\n")
+    except FileNotFoundError:
+        return 0
+
+
+def test_the_preload_command_on_a_lost_scheduler_is_one_line_and_resumes(
+        deployment, tmp_path):
+    """The command's own path: ``preload --csv F --resume
+    --scheduler-file`` with its scheduler SIGKILLed once 20 runs are in
+    the journal exits 2 with one line naming that scheduler and what it
+    kept; the same command with --resume on a new scheduler says it took
+    them, finishes, and writes the local pool's CSV byte for byte (its
+    text differs only in the time it says a rerun would take)."""
+    local = subprocess.run([*PRELOAD_ARGV, "local.csv", "--workers", "2"],
+                           cwd=tmp_path, capture_output=True, text=True,
+                           timeout=300)
+    assert local.returncode == 0, local.stderr
+    csv = tmp_path / "remote.csv"
+    lost = Deployment(tmp_path / "lost.json")
+    address = lost.address
+    try:
+        command = subprocess.Popen(
+            [*PRELOAD_ARGV, csv.name, "--resume", "--scheduler-file",
+             str(lost.path)], cwd=tmp_path, stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 120
+        while _journal_lines(csv) < 20 and command.poll() is None:
+            assert time.monotonic() < deadline, "no runs journaled"
+            time.sleep(0.01)
+        os.killpg(lost.scheduler.pid, signal.SIGKILL)
+        out, err = command.communicate(timeout=120)
+    finally:
+        lost.close()
+    kept = _journal_lines(csv)
+    assert command.returncode == 2, (out, err)
+    assert err == (f"contactsep: error: the Dask scheduler {address} was "
+                   f"lost (its connection closed); the {kept} simulations "
+                   f"finished before it are kept (rerun with --resume to "
+                   f"continue)\n"), err
+    assert not out and not csv.exists()
+    total = int(re.search(r"; (\d+) simulations", local.stdout)[1])
+    assert 20 <= kept < total
+    again = subprocess.run(
+        [*PRELOAD_ARGV, csv.name, "--resume", "--scheduler-file",
+         str(deployment.path)], cwd=tmp_path, capture_output=True,
+        text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert again.stderr.startswith(
+        f"contactsep: --resume: {kept:,} finished simulations in "
+        f".{csv.name}.resume, not run again\n"), again.stderr
+    assert csv.read_bytes() == (tmp_path / "local.csv").read_bytes()
