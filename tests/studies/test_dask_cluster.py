@@ -61,9 +61,11 @@ def _killpg(process) -> None:
 
 class Deployment:
     """A scheduler and ``workers`` single-threaded workers sharing the
-    scheduler file ``path``."""
+    scheduler file ``path``; the first worker started with
+    ``worker_args`` too."""
 
-    def __init__(self, path: Path, workers: int = 2) -> None:
+    def __init__(self, path: Path, workers: int = 2,
+                 worker_args=()) -> None:
         self.path = path
         self.scheduler = _start("scheduler", "--scheduler-file", str(path),
                                 "--host", "127.0.0.1", "--port", "0",
@@ -77,7 +79,8 @@ class Deployment:
         for _ in range(workers):
             self.workers.append(_start(
                 "worker", "--scheduler-file", str(path), "--nthreads", "1",
-                "--no-dashboard", "--host", "127.0.0.1"))
+                "--no-dashboard", "--host", "127.0.0.1",
+                *(worker_args if not self.workers else ())))
         with distributed.Client(scheduler_file=str(path),
                                 timeout=60) as client:
             client.wait_for_workers(workers, timeout=60)
@@ -321,7 +324,7 @@ def test_the_preload_command_on_a_lost_scheduler_is_one_line_and_resumes(
     text differs only in the time it says a rerun would take)."""
     local = subprocess.run([*PRELOAD_ARGV, "local.csv", "--workers", "2"],
                            cwd=tmp_path, capture_output=True, text=True,
-                           timeout=300)
+                           timeout=300, check=False)
     assert local.returncode == 0, local.stderr
     csv = tmp_path / "remote.csv"
     lost = Deployment(tmp_path / "lost.json")
@@ -357,3 +360,56 @@ def test_the_preload_command_on_a_lost_scheduler_is_one_line_and_resumes(
         f"contactsep: --resume: {kept:,} finished simulations in "
         f".{csv.name}.resume, not run again\n"), again.stderr
     assert csv.read_bytes() == (tmp_path / "local.csv").read_bytes()
+
+
+#: A worker preload that hides contactsep from the worker, as another
+#: environment (dask alone) would: its import fails there.
+HIDE_CONTACTSEP = """
+import sys
+
+class Hidden:
+    def find_spec(self, name, path=None, target=None):
+        if name.partition(".")[0] == "contactsep":
+            raise ModuleNotFoundError(f"No module named {name!r}",
+                                      name=name)
+        return None
+
+sys.meta_path.insert(0, Hidden())
+"""
+
+
+def test_a_worker_that_cannot_import_contactsep_is_refused(tmp_path):
+    """One of two workers cannot import contactsep: the search is refused
+    in one line naming that worker, before any run (no task on the
+    cluster, no journal left); the command says the same line, exit 2."""
+    hide = tmp_path / "hide_contactsep.py"
+    hide.write_text(HIDE_CONTACTSEP)
+    cluster = Deployment(tmp_path / "hidden.json",
+                         worker_args=("--preload", str(hide)))
+    try:
+        with distributed.Client(scheduler_file=str(cluster.path)) as client:
+            imports = client.run(exec, "import contactsep",
+                                 on_error="return")
+            hidden = [address for address, error in imports.items()
+                      if isinstance(error, ModuleNotFoundError)]
+            assert len(hidden) == 1 and len(imports) == 2, imports
+            with distributed.get_task_stream(client) as stream, \
+                    pytest.raises(InputError) as error:
+                _robust(client)
+        command = subprocess.run(
+            [sys.executable, "-m", "contactsep", "preload", "--n-modes",
+             "4", "--progress", "never", "--csv", "out.csv", "--resume",
+             "--scheduler-file", str(cluster.path)], cwd=tmp_path,
+            capture_output=True, text=True, timeout=120, check=False)
+    finally:
+        cluster.close()
+    line = (f"the Dask worker {hidden[0]} cannot run contactsep "
+            f"(ModuleNotFoundError(\"No module named 'contactsep'\")); 1 "
+            f"of 2 workers fail: start them from this environment")
+    assert str(error.value) == line
+    assert not stream.data
+    assert command.returncode == 2, command.stderr
+    assert command.stderr == f"contactsep: error: {line}\n"
+    assert not command.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "hidden.json", "hide_contactsep.py"]

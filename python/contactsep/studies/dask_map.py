@@ -50,15 +50,27 @@ def _code() -> tuple[str, str]:
 
 def check_code(client) -> None:
     """Refuse (InputError) a cluster whose workers run other simulation
-    code than this process: their results would be kept in a journal
-    made for this code.  Workers that join later are not asked."""
+    code than this process, or cannot import contactsep at all: their
+    results would be kept in a journal made for this code.  Workers that
+    join later are not asked."""
     mine = _code()
     try:
-        theirs = client.run(_code)
+        theirs = client.run(_code, on_error="return")
     except Exception as error:   # noqa: BLE001 - the cluster's own failure
         raise InputError(f"the Dask cluster could not say what code its "
                          f"workers run: {one_line(error)}"
                          ) from None
+    # a worker that cannot import contactsep (another environment) fails
+    # to unpickle _code: Dask returns that as an Exception whose text
+    # names the ModuleNotFoundError
+    failed = {address: answer for address, answer in theirs.items()
+              if isinstance(answer, BaseException)}
+    if failed:
+        address, error = min(failed.items(), key=lambda item: item[0])
+        raise InputError(f"the Dask worker {address} cannot run "
+                         f"contactsep ({one_line(error)}); {len(failed)} "
+                         f"of {len(theirs)} workers fail: start them from "
+                         f"this environment")
     other = {address: code for address, code in theirs.items()
              if tuple(code) != mine}
     if other:
