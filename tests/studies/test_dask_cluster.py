@@ -413,3 +413,33 @@ def test_a_worker_that_cannot_import_contactsep_is_refused(tmp_path):
     assert not command.stdout
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "hidden.json", "hide_contactsep.py"]
+
+
+#: The tasks _recorded ran, in the order they ran (an in-process worker).
+_RAN = []
+
+
+def _recorded(task):
+    _RAN.append(task)
+    return task.upper()
+
+
+def test_a_batch_runs_costliest_first_and_returns_in_the_tasks_order():
+    """One single-threaded worker, in this process, runs the batch in
+    the ``order`` given (the costliest first), whatever the tasks' own
+    order; the results come back in the tasks' order, each handed to
+    ``finished`` once."""
+    from contactsep.studies.dask_map import run_tasks
+    tasks = [f"task {i}" for i in range(12)]
+    order = [5, 11, 0, 7, 3, 9, 1, 10, 2, 8, 4, 6]
+    seen, counted = {}, []
+    _RAN.clear()
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1,
+                                  processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        out = run_tasks(client, _recorded, tasks, order=order,
+                        finished=seen.__setitem__, progress=counted.append)
+    assert _RAN == [tasks[i] for i in order]
+    assert out == [task.upper() for task in tasks]
+    assert seen == dict(enumerate(out)) and counted == [1] * len(tasks)
