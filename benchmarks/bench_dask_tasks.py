@@ -15,7 +15,9 @@ the client alone (``contactsep preload --scheduler-file``).  Two ways,
 in turn on each cluster: ``run_tasks`` (one client.map, results fetched
 as they arrive) and ``one at a time``, the way it replaced (one
 client.submit per task, and after each wait a scan of every unfinished
-future), kept here as the yardstick.  Each the best of R runs.  A no-op
+future), kept here as the yardstick; and ``dask floor``, Dask's own
+least cost (one map, one wait, one gather: no result before the last).
+Each the best of R runs.  A no-op
 task measures the parent alone: a simulation's own time is spent on the
 workers.  ``--save``: the table into
 benchmarks/results/bench_dask_tasks.md.
@@ -60,6 +62,16 @@ def one_at_a_time(client, function, tasks: list) -> list:
     return out
 
 
+def dask_floor(client, function, tasks: list) -> list:
+    """Dask's own least cost of a batch: one map, one wait for all, one
+    gather (no result before the last: no journal could keep them)."""
+    import distributed
+    futures = client.map(dask_map.on_worker, [function] * len(tasks), tasks,
+                         pure=False)
+    distributed.wait(futures)
+    return client.gather(futures)
+
+
 def measure(run, client, tasks: list) -> tuple[float, float]:
     """(parent CPU s, wall s) of one batch."""
     cpu, wall = time.process_time(), time.perf_counter()
@@ -98,7 +110,8 @@ def main() -> None:
     from results import Report
     say = Report()
     sizes = [int(size) for size in args.tasks.split(",")]
-    ways = {"run_tasks": dask_map.run_tasks, "one at a time": one_at_a_time}
+    ways = {"run_tasks": dask_map.run_tasks, "one at a time": one_at_a_time,
+            "dask floor": dask_floor}
     say(f"No-op tasks, {args.workers} single-threaded workers, best of "
         f"{args.repeat}:")
     say()

@@ -141,8 +141,9 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
                                 dask_run.SCHEDULER_LOST_S:
                             raise lost() from None
                     continue
-                ready = [f for f in arrived.next_batch(block=False)
-                         if f.key in left]
+                # each future once, and only those not yet fetched
+                ready = list({f.key: f for f in arrived.next_batch(
+                    block=False) if f.key in left}.values())
                 for key, result in _fetch(client, ready, arrived, lost,
                                           where):
                     del left[key]
