@@ -11,27 +11,20 @@ nothing lost."""
 
 from __future__ import annotations
 
-import json
 import os
-import re
-import shutil
 import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
+from dask_deployment import Deployment
+from design_family import FAMILY
 
 import contactsep
 from contactsep.errors import InputError
-from design_family import FAMILY
 
 distributed = pytest.importorskip("distributed")
-
-#: The dask command of this environment (its workers import this
-#: checkout's contactsep).
-DASK = shutil.which("dask", path=os.path.dirname(sys.executable))
 
 #: A real design whose robust search is short (about 100 simulations of
 #: a few ms of physics): the light beryllium-copper relay at N = 4, no
@@ -43,64 +36,6 @@ SETTINGS = {"dt": 1e-8, "t_end": 0.005, "static_correction": False}
 #: three samples can show it and the robust search runs.
 ROBUST = {"tolerance": ["ys=uniform(0.029,0.031)"], "samples": 3,
           "p_target": 0.6, "converge": False}
-
-
-def _start(*args):
-    return subprocess.Popen([DASK, *args], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL,
-                            start_new_session=True)
-
-
-def _killpg(process) -> None:
-    try:
-        os.killpg(process.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-    process.wait(timeout=30)
-
-
-class Deployment:
-    """A scheduler and ``workers`` single-threaded workers sharing the
-    scheduler file ``path``; the first worker started with
-    ``worker_args`` too."""
-
-    def __init__(self, path: Path, workers: int = 2,
-                 worker_args=()) -> None:
-        self.path = path
-        self.scheduler = _start("scheduler", "--scheduler-file", str(path),
-                                "--host", "127.0.0.1", "--port", "0",
-                                "--no-dashboard")
-        self.workers = []
-        deadline = time.monotonic() + 60
-        while not path.exists():
-            assert time.monotonic() < deadline, "no scheduler file"
-            assert self.scheduler.poll() is None, "the scheduler died"
-            time.sleep(0.2)
-        for _ in range(workers):
-            self.workers.append(_start(
-                "worker", "--scheduler-file", str(path), "--nthreads", "1",
-                "--no-dashboard", "--host", "127.0.0.1",
-                *(worker_args if not self.workers else ())))
-        with distributed.Client(scheduler_file=str(path),
-                                timeout=60) as client:
-            client.wait_for_workers(workers, timeout=60)
-
-    @property
-    def address(self) -> str:
-        return json.loads(self.path.read_text())["address"]
-
-    def close(self) -> None:
-        for process in (*self.workers, self.scheduler):
-            _killpg(process)
-
-
-@pytest.fixture(scope="module")
-def deployment(tmp_path_factory):
-    if DASK is None:
-        pytest.skip("no dask command beside this Python")
-    cluster = Deployment(tmp_path_factory.mktemp("dask") / "scheduler.json")
-    yield cluster
-    cluster.close()
 
 
 def _robust(workers, journal=None):
@@ -296,123 +231,6 @@ def test_a_worker_lost_mid_search_loses_nothing(tmp_path):
     assert len(done) > 20 and left == 1
     assert remote.to_json_dict() == local.to_json_dict()
     assert remote.csv_text() == local.csv_text()
-
-
-#: ``contactsep preload`` small enough for a fault test: the thesis rig
-#: at N = 4 over a 0.03 s window, no check at 4N (about 200 simulations
-#: of a few tens of ms each).
-PRELOAD_ARGV = [sys.executable, "-m", "contactsep", "preload", "--n-modes",
-                "4", "--t-end", "0.03", "--no-converge", "--progress",
-                "never", "--csv"]
-
-
-def _journal_lines(csv: Path) -> int:
-    try:
-        return (csv.parent / f".{csv.name}.resume" / "runs.jsonl"
-                ).read_bytes().count(b"\n")
-    except FileNotFoundError:
-        return 0
-
-
-def test_the_preload_command_on_a_lost_scheduler_is_one_line_and_resumes(
-        deployment, tmp_path):
-    """The command's own path: ``preload --csv F --resume
-    --scheduler-file`` with its scheduler SIGKILLed once 20 runs are in
-    the journal exits 2 with one line naming that scheduler and what it
-    kept; the same command with --resume on a new scheduler says it took
-    them, finishes, and writes the local pool's CSV byte for byte (its
-    text differs only in the time it says a rerun would take)."""
-    local = subprocess.run([*PRELOAD_ARGV, "local.csv", "--workers", "2"],
-                           cwd=tmp_path, capture_output=True, text=True,
-                           timeout=300, check=False)
-    assert local.returncode == 0, local.stderr
-    csv = tmp_path / "remote.csv"
-    lost = Deployment(tmp_path / "lost.json")
-    address = lost.address
-    try:
-        command = subprocess.Popen(
-            [*PRELOAD_ARGV, csv.name, "--resume", "--scheduler-file",
-             str(lost.path)], cwd=tmp_path, stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 120
-        while _journal_lines(csv) < 20 and command.poll() is None:
-            assert time.monotonic() < deadline, "no runs journaled"
-            time.sleep(0.01)
-        os.killpg(lost.scheduler.pid, signal.SIGKILL)
-        out, err = command.communicate(timeout=120)
-    finally:
-        lost.close()
-    kept = _journal_lines(csv)
-    assert command.returncode == 2, (out, err)
-    assert err == (f"contactsep: error: the Dask scheduler {address} was "
-                   f"lost (its connection closed); the {kept} simulations "
-                   f"finished before it are kept (rerun with --resume to "
-                   f"continue)\n"), err
-    assert not out and not csv.exists()
-    total = int(re.search(r"; (\d+) simulations", local.stdout)[1])
-    assert 20 <= kept < total
-    again = subprocess.run(
-        [*PRELOAD_ARGV, csv.name, "--resume", "--scheduler-file",
-         str(deployment.path)], cwd=tmp_path, capture_output=True,
-        text=True, timeout=300, check=False)
-    assert again.returncode == 0, again.stderr
-    assert again.stderr.startswith(
-        f"contactsep: --resume: {kept:,} finished simulations in "
-        f".{csv.name}.resume, not run again\n"), again.stderr
-    assert csv.read_bytes() == (tmp_path / "local.csv").read_bytes()
-
-
-#: A worker preload that hides contactsep from the worker, as another
-#: environment (dask alone) would: its import fails there.
-HIDE_CONTACTSEP = """
-import sys
-
-class Hidden:
-    def find_spec(self, name, path=None, target=None):
-        if name.partition(".")[0] == "contactsep":
-            raise ModuleNotFoundError(f"No module named {name!r}",
-                                      name=name)
-        return None
-
-sys.meta_path.insert(0, Hidden())
-"""
-
-
-def test_a_worker_that_cannot_import_contactsep_is_refused(tmp_path):
-    """One of two workers cannot import contactsep: the search is refused
-    in one line naming that worker, before any run (no task on the
-    cluster, no journal left); the command says the same line, exit 2."""
-    hide = tmp_path / "hide_contactsep.py"
-    hide.write_text(HIDE_CONTACTSEP)
-    cluster = Deployment(tmp_path / "hidden.json",
-                         worker_args=("--preload", str(hide)))
-    try:
-        with distributed.Client(scheduler_file=str(cluster.path)) as client:
-            imports = client.run(exec, "import contactsep",
-                                 on_error="return")
-            hidden = [address for address, error in imports.items()
-                      if isinstance(error, ModuleNotFoundError)]
-            assert len(hidden) == 1 and len(imports) == 2, imports
-            with distributed.get_task_stream(client) as stream, \
-                    pytest.raises(InputError) as error:
-                _robust(client)
-        command = subprocess.run(
-            [sys.executable, "-m", "contactsep", "preload", "--n-modes",
-             "4", "--progress", "never", "--csv", "out.csv", "--resume",
-             "--scheduler-file", str(cluster.path)], cwd=tmp_path,
-            capture_output=True, text=True, timeout=120, check=False)
-    finally:
-        cluster.close()
-    line = (f"the Dask worker {hidden[0]} cannot run contactsep "
-            f"(ModuleNotFoundError(\"No module named 'contactsep'\")); 1 "
-            f"of 2 workers fail: start them from this environment")
-    assert str(error.value) == line
-    assert not stream.data
-    assert command.returncode == 2, command.stderr
-    assert command.stderr == f"contactsep: error: {line}\n"
-    assert not command.stdout
-    assert sorted(p.name for p in tmp_path.iterdir()) == [
-        "hidden.json", "hide_contactsep.py"]
 
 
 #: The tasks _recorded ran, in the order they ran (an in-process worker).
