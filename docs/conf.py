@@ -49,7 +49,7 @@ def _one_editable_finder() -> None:
 
 _one_editable_finder()
 
-import contactsep  # noqa: E402  (after the path set-up)
+import contactsep  # after the path set-up above
 
 #: Layers other work adds to the package: documented here once they are
 #: importable (docs/api/later.rst is written at every build, git-ignored).
@@ -102,6 +102,7 @@ extensions = [
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "cli_reference",
+    "data_values",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}

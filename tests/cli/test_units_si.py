@@ -91,8 +91,6 @@ def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
                                  "commands that take it are model, "
                                  "chatter, preload"),
     (["study", "fig5", "--units", "si"], "--units si: study writes"),
-    (["chatter", "--units", "si"], "--units si: only the --json output "
-                                   "of chatter"),
     (["preload", "--units", "si"], "--units si: only the --json output "
                                    "of preload"),
     (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
@@ -201,3 +199,88 @@ def test_preload_in_si_is_its_inch_pound_answer_converted(planted_preload,
         [t["preload_lb"] * N for t in us["tested"]], rel=1e-14)
     assert si["inputs"]["design"]["L1_m"] == pytest.approx(19 * M,
                                                            rel=1e-14)
+
+
+@pytest.mark.parametrize("option, typed, key, si_value", [
+    ("--L1", "25mm", "L1_m", 0.025),
+    ("--b1", "5mm", "b1_m", 0.005),
+    ("--h1", "0.3mm", "h1_m", 0.0003),
+    ("--h1", "0.12mm", "h1_m", 0.00012),
+    ("--d", "1.6mm", "d_m", 0.0016),
+    ("--ys", "0.45mm", "ys_m", 0.00045),
+    ("--E2", "200GPa", "E2_Pa", 200e9),
+    ("--E1", "117GPa", "E1_Pa", 117e9),
+])
+def test_a_value_typed_in_si_is_written_as_typed(option, typed, key,
+                                                 si_value, tmp_path,
+                                                 capsys):
+    """A design drawn in mm is written back in mm's own decimals (not
+    0.00499999999999999 for 5 mm), and the file still reads back as the
+    design the options gave, bit for bit."""
+    import contactsep
+    data = run_json(["model", "--json", "--units", "si", option, typed],
+                    capsys)
+    assert data["design"][key] == si_value
+    path = tmp_path / "typed.json"
+    path.write_text(json.dumps(data))
+    us = run_json(["model", "--json", option, typed], capsys)
+    plain = tmp_path / "plain.json"
+    plain.write_text(json.dumps(us))
+    assert contactsep.load_design(path) == contactsep.load_design(plain)
+
+
+def _text_rows(text: str) -> dict:
+    """'  first impulse   0.0123 lb s' -> {'first impulse': ('0.0123',
+    'lb s')}: the summary's rows, read here as a person reads them."""
+    import re
+    rows = {}
+    for line in text.splitlines():
+        found = re.match(r"^  ([a-z].*?)\s{2,}(\S+)(?: (.*))?$", line)
+        if found:
+            rows[found[1]] = (found[2], (found[3] or "").strip())
+    return rows
+
+
+def _design_line(text: str) -> dict:
+    line = next(s for s in text.splitlines() if s.startswith("design: "))
+    parts = [p.split(" ") for p in line[len("design: "):].split(", ")]
+    return {p[0]: (p[1], " ".join(p[2:])) for p in parts}
+
+
+def test_chatter_text_in_si_is_its_inch_pound_text_converted(capsys):
+    """The same run in us and in si: every quantity of the text in m,
+    N, N s, Pa, kg/m^3, by the units' definitions (this file's factors),
+    the counts and times unchanged."""
+    common = ["chatter", "--n-modes", "4", "--t-end", "0.02"]
+    assert main(common + ["--preload", "0.2", "--d", "0.3"]) == 0
+    us = capsys.readouterr().out
+    assert main(common + ["--units", "si", "--preload", repr(0.2 * N),
+                          "--d", repr(0.3 * M)]) == 0
+    si = capsys.readouterr().out
+    factors = {"in": (M, "m"), "lb s": (N, "N s"), "s": (1.0, "s"),
+               "": (1.0, "")}
+    rows_us, rows_si = _text_rows(us), _text_rows(si)
+    assert rows_us.keys() == rows_si.keys()
+    checked = 0
+    for label, (number, unit) in rows_us.items():
+        if unit not in factors:
+            continue
+        factor, si_unit = factors[unit]
+        assert rows_si[label][1] == si_unit, label
+        try:
+            value = float(number)
+        except ValueError:      # '-', 'yes', a status
+            assert rows_si[label][0] == number, label
+            continue
+        assert float(rows_si[label][0]) == pytest.approx(
+            value * factor, rel=1e-5), label
+        checked += 1
+    assert checked >= 8
+    design_us, design_si = _design_line(us), _design_line(si)
+    for name, unit, factor, si_unit in [
+            ("L1", "in", M, "m"), ("d", "in", M, "m"),
+            ("E2", "psi", PA, "Pa"), ("gamma1", "lb/in^3", KG_M3, "kg/m^3")]:
+        assert design_us[name][1] == unit and design_si[name][1] == si_unit
+        assert float(design_si[name][0]) == pytest.approx(
+            float(design_us[name][0]) * factor, rel=1e-5), name
+    assert "preload 0.889644 N" in si and "preload 0.2 lb" in us

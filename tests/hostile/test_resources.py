@@ -61,19 +61,21 @@ def test_chunks_are_sized_by_cost_and_memory():
     """A sweep at --n-modes 100000 tried to allocate 74.5 GiB (chunks of
     100,000 designs, four per-mode arrays each); after Ctrl-C a sweep
     waited minutes for whole chunks."""
-    big = sweep.Chunks(10**6, sweep.CHUNK_SIZE, 100_000)
-    assert big.limit * 8 * (4 * 100_000 + 64) <= sweep.CHUNK_MEMORY
+    from contactsep.output.pieces import FIRST_PIECE_COST, PIECE_S
+    from contactsep.studies.chunks import CHUNK_MEMORY, Chunks
+    big = Chunks(10**6, sweep.CHUNK_SIZE, 100_000)
+    assert big.limit * 8 * (4 * 100_000 + 64) <= CHUNK_MEMORY
     assert big.next == 1
-    small = sweep.Chunks(10**6, sweep.CHUNK_SIZE, 4)
-    assert small.next == sweep.FIRST_CHUNK_COST // 4
-    # measured: 1 ms a design -> chunks of TARGET_CHUNK_S, grown at most
+    small = Chunks(10**6, sweep.CHUNK_SIZE, 4)
+    assert small.next == FIRST_PIECE_COST // 4
+    # measured: 1 ms a design -> chunks of PIECE_S, grown at most
     # 8 times a chunk, never past chunk_size
     small.record(1000, 1.0)
-    assert small.next == int(sweep.TARGET_CHUNK_S / 1e-3)
+    assert small.next == int(PIECE_S / 1e-3)
     # a faster chunk moves the estimate half way towards it
     small.record(500, 1e-6)
-    assert small.next == int(sweep.TARGET_CHUNK_S / ((1e-3 + 2e-9) / 2))
-    bounds = list(sweep.Chunks(10, 3, 4))
+    assert small.next == int(PIECE_S / ((1e-3 + 2e-9) / 2))
+    bounds = list(Chunks(10, 3, 4))
     assert bounds == [(0, 3), (3, 6), (6, 9), (9, 10)]
 
 

@@ -24,6 +24,7 @@ from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
 
 evaluate_module = importlib.import_module("contactsep.model.evaluate")
+pieces_module = importlib.import_module("contactsep.output.pieces")
 
 #: Seconds a command may take to stop after the signal: a few, on a
 #: machine that other test runs share.
@@ -200,7 +201,7 @@ def test_a_batch_in_pieces_equals_one_call(monkeypatch):
     monkeypatch.setattr(compiled, "evaluate_packed", counted)
     pieces = evaluate(design)
     assert len(calls) > 1 and sum(calls) == 57
-    monkeypatch.setattr(evaluate_module, "FIRST_PIECE_COST", 10**9)
+    monkeypatch.setattr(pieces_module, "FIRST_PIECE_COST", 10**9)
     whole = evaluate(design)
     assert calls[-1] == 57
     for key in KEYS:
@@ -218,7 +219,7 @@ def test_a_costly_batch_in_child_processes_equals_one_call(monkeypatch):
     pieces = evaluate(design)
     monkeypatch.setattr(evaluate_module, "COSTLY_MODES", 10**9)
     monkeypatch.setattr(evaluate_module, "COSTLY_TAU_S", np.inf)
-    monkeypatch.setattr(evaluate_module, "FIRST_PIECE_COST", 10**9)
+    monkeypatch.setattr(pieces_module, "FIRST_PIECE_COST", 10**9)
     whole = evaluate(design)
     for key in KEYS:
         np.testing.assert_array_equal(getattr(pieces, key),

@@ -1,12 +1,15 @@
 """docs/chatter.md's tables of the thesis's conclusions against circuit
 opening ("The thesis's conclusions and circuit opening") quote the
 committed studies (docs/studies/conclusion3|5|6|7.csv, `contactsep study
-conclusionN --csv`), row for row, at the page's rounding.  Reads files
-only: the studies are three-beam searches of minutes each."""
+conclusionN --csv`), row for row: the datum roles that draw each row's
+values from its study, the open time (in ms, scaled) at the page's
+rounding.  Reads files only: the studies are three-beam searches of
+minutes each."""
 
 from __future__ import annotations
 
 import csv
+import math
 import re
 from pathlib import Path
 
@@ -16,14 +19,13 @@ ROOT = Path(__file__).resolve().parents[2]
 PAGE = ROOT / "docs" / "chatter.md"
 STUDIES = ROOT / "docs" / "studies"
 
-#: Each study's leading columns: its table's header start and cells.
+#: Each study's table: its header start, the column its rows are
+#: selected by, and whether R is shown after it.
 LEADING = {
-    "conclusion5": ("| d (in) |", lambda r: [f"{float(r['d_in']):g}"]),
-    "conclusion6": ("| γ2 (lb/in³) | R |",
-                    lambda r: [f"{float(r['gamma2_lb_in3']):g}",
-                               f"{float(r['R']):.2f}"]),
-    "conclusion7": ("| x3/L3 |", lambda r: [f"{float(r['r']):.1f}"]),
-    "conclusion3": ("| e |", lambda r: [f"{float(r['e']):g}"]),
+    "conclusion5": ("| d (in) |", "d_in", False),
+    "conclusion6": ("| γ2 (lb/in³) | R |", "gamma2_lb_in3", True),
+    "conclusion7": ("| x3/L3 |", "r", False),
+    "conclusion3": ("| e |", "e", False),
 }
 
 
@@ -33,13 +35,29 @@ def rows(name: str) -> list[dict]:
     return list(csv.DictReader(lines))
 
 
-def cells(row: dict) -> list[str]:
+def rounded(row: dict) -> list[str]:
     """The page's rounding: y3 to 4 decimals, the gap to 3 digits, the
     open time in ms to 0.1, the preload to 4 digits."""
     return [f"{float(row['y3_max_in']):.4f}",
             f"{float(row['max_lower_gap_in']):.3g}",
             f"{1e3 * float(row['circuit_open_s']):.1f}", row["n_events"],
             f"{float(row['min_preload_lb']):.4g}"]
+
+
+def cells(name: str, key: str, row: dict) -> list[str]:
+    """A row's cells after its leading ones: the roles that show y3 to
+    4 decimals, the gap to 3 digits, the events and the preload to 4
+    digits, selected by the row's ``key``; the open time in ms to 0.1
+    (a scaled value the role does not show) as text."""
+    where = f"{key}={float(row[key]):g}"
+
+    def role(column, fmt=None):
+        fmt = f":{fmt}" if fmt else ""
+        return f"{{datum}}`studies/{name}.csv:{column}@{where}{fmt}`"
+
+    return [role("y3_max_in", ".4f"), role("max_lower_gap_in", ".3g"),
+            f"{1e3 * float(row['circuit_open_s']):.1f}", role("n_events"),
+            role("min_preload_lb", ".4g")]
 
 
 def section() -> str:
@@ -51,7 +69,9 @@ def section() -> str:
 
 @pytest.mark.parametrize("name", sorted(LEADING))
 def test_the_conclusion_table_quotes_its_study(name):
-    header, leading = LEADING[name]
+    """Row for row, the study's key as text and the rest of its values
+    the roles that select that row (the open time as text)."""
+    header, key, with_r = LEADING[name]
     text = section()
     lines = text[text.index(header + " eq. 23 max y3 (in)"):].splitlines()
     quoted = []
@@ -59,7 +79,14 @@ def test_the_conclusion_table_quotes_its_study(name):
         if not line.startswith("|"):
             break
         quoted.append([c.strip() for c in line.strip("|").split("|")])
-    expected = [leading(r) + cells(r) for r in rows(name)]
+    def r_role(r):
+        return (f"{{datum}}`studies/{name}.csv:R@{key}="
+                f"{float(r[key]):g}:.2f`")
+
+    expected = [[f"{float(r[key]):.1f}" if key == "r" else
+                 f"{float(r[key]):g}"]
+                + ([r_role(r)] if with_r else [])
+                + cells(name, key, r) for r in rows(name)]
     assert quoted == expected
 
 
@@ -80,7 +107,7 @@ def test_every_study_has_the_thesis_rig_s_row_of_the_chart():
     found = []
     for name, (column, value) in THESIS_ROW.items():
         (row,) = [r for r in rows(name) if float(r[column]) == value]
-        found.append(cells(row)[1:])
+        found.append(rounded(row)[1:])
     assert all(f == found[0] for f in found)
     assert found[0][-1] == f"{float(chart[0]['min_preload_lb']):.4g}"
 
@@ -113,11 +140,16 @@ def quoted_table(text: str, header: str) -> list[list[str]]:
     return out
 
 
-def g3(value) -> str:
-    return "none" if value != value else f"{float(value):.3g}"
+def datum(name: str, d: float, ys: float) -> str:
+    """The datum role that shows chart ``name``'s answer at (d, y_s)."""
+    return (f"{{datum}}`studies/{name}.csv:min_preload_lb@d_in={d:g},"
+            f"ys_in={ys:g}:.3g`")
 
 
 def test_the_physical_chart_quotes_both_charts():
+    """Each cell: the physical chart's answer and the clamped one's in
+    parentheses ("none" where the clamped chart has none), the roles
+    that select the cell's row of each; every row of both charts."""
     physical = {(float(r["d_in"]), float(r["ys_in"])): float(
         r["min_preload_lb"]) for r in rows("preload_physical")}
     rigid = {(float(r["d_in"]), float(r["ys_in"])): float(
@@ -125,20 +157,27 @@ def test_the_physical_chart_quotes_both_charts():
     table = quoted_table(physical_section(), "| y_s (in) | d = 0.125 |")
     ds = (0.125, 0.25, 0.35, 0.5, 0.75)
     assert len(table) == 4
+    assert {(d, float(c[0])) for c in table[1:] for d in ds} == \
+        set(physical) == set(rigid)
+    assert not any(math.isnan(v) for v in physical.values())
     for cells in table[1:]:
         ys = float(cells[0])
-        assert cells[1:] == [f"{g3(physical[d, ys])} ({g3(rigid[d, ys])})"
-                             for d in ds], ys
+        assert cells[1:] == [
+            f"{datum('preload_physical', d, ys)} ("
+            + ("none" if math.isnan(rigid[d, ys]) else
+               datum("preload", d, ys)) + ")" for d in ds], ys
 
 
 def test_the_physical_conclusion_5_table_quotes_its_study():
+    """Row for row, the d as text, the gap, events and preload the roles
+    that select the row, the open time (ms) as text."""
     table = quoted_table(physical_section(),
                          "| d (in) | max lower gap (in) |")
+    name = "conclusion5_physical"
     assert table[1:] == [
-        [f"{float(r['d_in']):g}", f"{float(r['max_lower_gap_in']):.3g}",
-         f"{1e3 * float(r['circuit_open_s']):.1f}", r["n_events"],
-         f"{float(r['min_preload_lb']):.4g}"]
-        for r in rows("conclusion5_physical")]
+        [f"{float(r['d_in']):g}"] + [
+            c for i, c in enumerate(cells(name, "d_in", r)) if i != 0]
+        for r in rows(name)]
 
 
 @pytest.mark.parametrize("name, header, column", [
@@ -148,11 +187,20 @@ def test_the_physical_conclusion_5_table_quotes_its_study():
     ("conclusion3_physical", "| conclusion 3: e |", "e")])
 def test_the_physical_conclusion_rows_quote_their_study(name, header,
                                                         column):
+    """The study's values in the header row as text; the gap and the
+    preload (each study has one for every value) the roles that select
+    their column's row."""
     table = quoted_table(physical_section(), header)
     found = rows(name)
     values = [float(v) for v in table[0][1:]]
     assert values == [float(r[column]) for r in found]
+    assert not any(math.isnan(float(r["min_preload_lb"])) for r in found)
+
+    def role(key, fmt, r):
+        return (f"{{datum}}`studies/{name}.csv:{key}@{column}="
+                f"{float(r[column]):g}:{fmt}`")
+
     assert table[1] == ["max lower gap (in)"] + [
-        f"{float(r['max_lower_gap_in']):.3g}" for r in found]
+        role("max_lower_gap_in", ".3g", r) for r in found]
     assert table[2] == ["min preload (lb)"] + [
-        g3(r["min_preload_lb"]) for r in found]
+        role("min_preload_lb", ".3g", r) for r in found]

@@ -186,6 +186,7 @@ def test_the_evaluate_pieces_are_the_codes():
     piece, modes, tau = quoted("model.md", r"`evaluate` runs a large batch "
                                r"in pieces of about ([\d.]+) s of compiled "
                                r"work .*? \(N ≥ (\d+) or τ ≥ ([\d.]+) s\)")
-    assert float(piece) == evaluate.PIECE_S
+    from contactsep.output import pieces
+    assert float(piece) == pieces.PIECE_S
     assert int(modes) == evaluate.COSTLY_MODES
     assert float(tau) == evaluate.COSTLY_TAU_S

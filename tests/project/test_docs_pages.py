@@ -74,25 +74,38 @@ def check(claims, values) -> None:
 
 # -- docs/studies.md, the figures ---------------------------------------------
 
+def role(name: str, key: str, fmt: str | None, **where) -> str:
+    """The datum role that shows ``key`` of docs/studies/NAME.csv in
+    the row ``where`` selects (white space as on a joined page)."""
+    filters = ",".join(f"{k}={v:g}" if not isinstance(v, str) else
+                       f"{k}={v}" for k, v in where.items())
+    filters = f"@{filters}" if filters else ""
+    fmt = f":{fmt}" if fmt else ""
+    return f"{{datum}}`studies/{name}.csv:{key}{filters}{fmt}`"
+
+
+def says(name: str, text: str) -> None:
+    assert text in page(name), f"{name}: no longer says {text!r}"
+
+
 def test_figure_5_numbers_are_fig5_csv():
-    at_half = quoted("studies.md", rf"y_s = 0.5 in: {NUMBER} in at d = "
-                     rf"0.10, {NUMBER} at 0.25, {NUMBER} at 0.50, {NUMBER} "
-                     rf"at 1.00 in")
-    check(at_half, [column("fig5", "y3_max_in", ys_in=0.5, d_in=d)[0]
-                    for d in (0.1, 0.25, 0.5, 1.0)])
-    by_ys = quoted("studies.md", rf"\({NUMBER}, {NUMBER}, {NUMBER} in at "
-                   rf"d = 0.10 for y_s = 0.25, 0.5, 0.75 in\)")
-    check(by_ys, [column("fig5", "y3_max_in", ys_in=ys, d_in=0.1)[0]
-                  for ys in (0.25, 0.5, 0.75)])
+    """Each number is the role that selects the row its sentence names
+    (the role's value is the CSV's: tests/project/test_data_values)."""
+    y3 = {(ys, d): role("fig5", "y3_max_in", ".3f", ys_in=ys, d_in=d)
+          for ys in (0.25, 0.5, 0.75) for d in (0.1, 0.25, 0.5, 1.0)}
+    says("studies.md", f"y_s = 0.5 in: {y3[0.5, 0.1]} in at d = 0.10, "
+         f"{y3[0.5, 0.25]} at 0.25, {y3[0.5, 0.5]} at 0.50, "
+         f"{y3[0.5, 1.0]} at 1.00 in")
+    says("studies.md", f"({y3[0.25, 0.1]}, {y3[0.5, 0.1]}, "
+         f"{y3[0.75, 0.1]} in at d = 0.10 for y_s = 0.25, 0.5, 0.75 in)")
 
 
 def test_figure_6_numbers_are_fig6_csv():
-    claims = quoted("studies.md", rf"Curve I: {NUMBER} in at r = 1.00, "
-                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70; curve II: "
-                    rf"{NUMBER} at 0.78, {NUMBER} at 0.70\.")
-    check(claims, [column("fig6", "y3_max_in", curve=c, r=r)[0] for c, r in
-                   (("I", 1.0), ("I", 0.78), ("I", 0.70), ("II", 0.78),
-                    ("II", 0.70))])
+    y3 = {(c, r): role("fig6", "y3_max_in", ".3f", curve=c, r=r)
+          for c in ("I", "II") for r in (1.0, 0.78, 0.7)}
+    says("studies.md", f"Curve I: {y3['I', 1.0]} in at r = 1.00, "
+         f"{y3['I', 0.78]} at 0.78, {y3['I', 0.7]} at 0.70; curve II: "
+         f"{y3['II', 0.78]} at 0.78, {y3['II', 0.7]} at 0.70.")
 
 
 def test_figure_7_coefficients_and_the_node():
@@ -113,40 +126,48 @@ def test_figure_7_coefficients_and_the_node():
 
 
 def test_figure_8_ends_are_fig8_csv():
-    claims = quoted("studies.md", rf"\({NUMBER} in at R = 0.05, {NUMBER} "
-                    rf"in at R = 5\)")
-    check(claims, [column("fig8", "y3_max_in", R=0.05)[0],
-                   column("fig8", "y3_max_in", R=5.0)[0]])
+    says("studies.md", f"({role('fig8', 'y3_max_in', '.3f', R=0.05)} in "
+         f"at R = 0.05, {role('fig8', 'y3_max_in', '.3f', R=5.0)} in at "
+         "R = 5)")
 
 
 def test_figure_23_numbers_are_fig23_csv():
-    claims = quoted("studies.md", rf"max y3 is {NUMBER}, {NUMBER}, "
-                    rf"{NUMBER}, {NUMBER}, {NUMBER} in for d = 0.125, 0.25, "
-                    rf"0.35, 0.50, 0.75 in, against {NUMBER} \.\.\. "
-                    rf"{NUMBER} in without L_c")
-    corrected = column("fig23", "y3_max_in")
-    plain = column("fig23", "y3_max_uncorrected_in")
+    """The corrected curve at each d, and the uncorrected one at the
+    first and last d (the chart's first and last rows)."""
     assert column("fig23", "d_in").tolist() == [0.125, 0.25, 0.35, 0.5,
                                                 0.75]
-    check(claims, [*corrected, plain[0], plain[-1]])
-    (lc,) = quoted("studies.md", rf"The 0.75 in row uses the printed "
-                   rf"L_c = {NUMBER} in")
-    check([lc], [column("fig23", "Lc_in", d_in=0.75)[0]])
+    corrected = ", ".join(role("fig23", "y3_max_in", ".3f", d_in=d)
+                          for d in (0.125, 0.25, 0.35, 0.5, 0.75))
+    plain = [role("fig23", "y3_max_uncorrected_in", ".3f", d_in=d)
+             for d in (0.125, 0.75)]
+    says("studies.md", f"max y3 is {corrected} in for d = 0.125, 0.25, "
+         f"0.35, 0.50, 0.75 in, against {plain[0]} ... {plain[1]} in "
+         "without L_c")
+    says("studies.md", "The 0.75 in row uses the printed L_c = "
+         + role("fig23", "Lc_in", ".2f", d_in=0.75) + " in")
 
 
 def test_the_new_convergence_value_is_convergence_csv():
-    (new,) = quoted("studies.md", rf"N = 50: max y3 0.105479 → {NUMBER} in")
-    check([new], [column("convergence", "y3_max_in", N=50)[0]])
+    says("studies.md", "N = 50: max y3 0.105479 → "
+         + role("convergence", "y3_max_in", ".6f", N=50) + " in")
 
 
 def test_conclusion_8_numbers_are_conclusion8_csv():
-    node, blevins, share, low, high, peak, at, tip, mid = quoted(
+    low, high, peak, tip, mid = (re.escape(role(
+        "conclusion8", key, fmt, **where))
+        for key, fmt, where in (
+            ("min(r)", ".2f", {"n_maxima": 1}),
+            ("max(r)", ".2f", {"n_maxima": 1}),
+            ("max(first_mode_share)", ".4f", {}),
+            ("first_mode_share", ".3f", {"r": 1.0}),
+            ("first_mode_share", ".3f", {"r": 0.5})))
+    node, blevins, share, at = quoted(
         "studies.md", rf"second mode's node is at x3/L3 = {NUMBER} "
         rf"\(Blevins: {NUMBER}\)\. There the share is {NUMBER} and y3 "
         rf"swings once a period.*? every contact point from x3/L3 = "
-        rf"{NUMBER} to {NUMBER} swings once, and the share peaks at "
-        rf"{NUMBER} at x3/L3 = {NUMBER} \(it is {NUMBER} at the tip, with "
-        rf"two swings, and {NUMBER} at mid-length, with six\)")
+        rf"{low} to {high} swings once, and the share peaks at "
+        rf"{peak} at x3/L3 = {NUMBER} \(it is {tip} at the tip, with "
+        rf"two swings, and {mid} at mid-length, with six\)")
     from contactsep.studies.mode_share import MODES, second_mode_node
     check([node], [second_mode_node()])
     assert abs(float(blevins) - second_mode_node()) < 5e-4
@@ -157,46 +178,55 @@ def test_conclusion_8_numbers_are_conclusion8_csv():
     share_r = column("conclusion8", "first_mode_share")
     swings = column("conclusion8", "n_maxima")
     once = r[swings == 1]
-    check([low, high], [once.min(), once.max()])
     # one band: every point between them swings once
     assert np.all(swings[(r >= once.min()) & (r <= once.max())] == 1)
-    check([peak, at], [share_r.max(), r[np.argmax(share_r)]])
-    check([tip, mid], [share_r[r == 1.0][0], share_r[r == 0.5][0]])
+    check([at], [r[np.argmax(share_r)]])
     assert swings[r == 1.0][0] == 2 and swings[r == 0.5][0] == 6
 
 
 # -- docs/studies.md, the tables ----------------------------------------------
 
 def test_tables_1_to_3_are_their_csvs():
-    t1 = quoted("studies.md", rf"\| I, contact frequencies \(cps\) \| "
-                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| {NUMBER}, "
-                rf"{NUMBER}, {NUMBER}, {NUMBER} \| \*\*disagree by "
-                rf"{NUMBER}–{NUMBER} %\*\*: the printed theory implies "
-                rf"E/γ = {NUMBER} in, Table II {NUMBER} in")
+    """Each table's model and printed values are the roles that select
+    their rows; the differences and E/γ (derived, not columns) are
+    checked against the CSVs."""
+    ds = (0.125, 0.25, 0.35, 0.5, 0.75)
+
+    def roles(name, key, fmts, where, bold_last=False):
+        cells = [role(name, key, fmt, **{where: v}) for v, fmt in fmts]
+        if bold_last:
+            cells[-1] = f"**{cells[-1]}**"
+        return re.escape(", ".join(cells))
+
+    t1 = quoted("studies.md", r"\| I, contact frequencies \(cps\) \| "
+                + roles("table1", "model_cps", zip((1, 2, 3, 4), (
+                    ".3f", ".2f", ".2f", ".2f")), "mode") + r" \| "
+                + roles("table1", "printed_theoretical_cps",
+                        [(m, ".1f") for m in (1, 2, 3, 4)], "mode")
+                + rf" \| \*\*disagree by {NUMBER}–{NUMBER} %\*\*: the "
+                rf"printed theory implies E/γ = {NUMBER} in, Table II "
+                rf"{NUMBER} in")
     model = column("table1", "model_cps")
-    check(t1[:4], model)
-    check(t1[4:8], column("table1", "printed_theoretical_cps"))
     relative = 100 * column("table1", "relative_difference")
-    check(t1[8:10], [relative.min(), relative.max()])
+    check(t1[:2], [relative.min(), relative.max()])
     # E/gamma the printed frequencies imply: frequencies go as its root
     material = 10.0e6 / 0.100
     implied = material * (column("table1", "printed_theoretical_cps")
                           / model) ** 2
-    check(t1[10:], [implied.mean(), material])
-    t2 = quoted("studies.md", rf"\| II, separator frequency \(cps\) \| "
-                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER} \| "
-                rf"([\d, ]+) \| agree to {NUMBER} %")
-    check(t2[:5], column("table2", "model_cps"))
-    assert [float(x) for x in t2[5].split(",")] == column(
-        "table2", "printed_theoretical_cps").tolist()
-    check(t2[6:], [100 * np.abs(column("table2",
-                                       "relative_difference")).max()])
-    t3 = quoted("studies.md", rf"\| III, L_c = √\(1.3e6 d/p\) \(in\) \| "
-                rf"{NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, \*\*{NUMBER}\*\* "
-                rf"\| {NUMBER}, {NUMBER}, {NUMBER}, {NUMBER}, "
-                rf"\*\*{NUMBER}\*\*")
-    check(t3[:5], column("table3", "Lc_formula_in"))
-    check(t3[5:], column("table3", "printed_Lc_in"))
+    check(t1[2:], [implied.mean(), material])
+    t2 = quoted("studies.md", r"\| II, separator frequency \(cps\) \| "
+                + roles("table2", "model_cps", [(d, ".0f") for d in ds],
+                        "d_in") + r" \| "
+                + roles("table2", "printed_theoretical_cps",
+                        [(d, None) for d in ds], "d_in")
+                + rf" \| agree to {NUMBER} %")
+    check(t2, [100 * np.abs(column("table2", "relative_difference")).max()])
+    assert re.search(
+        r"\| III, L_c = √\(1.3e6 d/p\) \(in\) \| "
+        + roles("table3", "Lc_formula_in", [(d, ".3f") for d in ds],
+                "d_in", bold_last=True) + r" \| "
+        + roles("table3", "printed_Lc_in", [(d, ".2f") for d in ds],
+                "d_in", bold_last=True), page("studies.md"))
 
 
 def test_the_formulas_constant_against_the_materials():
@@ -494,20 +524,24 @@ def test_the_separator_fit_table_is_separator_fit_csv():
 def test_the_separator_fit_prose_is_separator_fit_csv():
     fits = fit_rows()
     mass = fits[("timoshenko-kr2-mass2", "last-9000")]
-    within, last, rms, grams = quoted(
+    rms = re.escape(role("separator-fit", "rms_pct", ".1f",
+                         model="timoshenko-kr2-mass2", data="last-9000"))
+    within, last, grams = quoted(
         "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
-        rf"% against the issue's −4.8 %, rms {NUMBER} % against 2.3 %, "
+        rf"% against the issue's −4.8 %, rms {rms} % against 2.3 %, "
         rf"{NUMBER} g\)")
     res = residuals(mass)
-    check([within, last, rms], [max(abs(r) for r in res[:4]), -res[4],
-                                float(mass["rms_pct"])])
+    check([within, last], [max(abs(r) for r in res[:4]), -res[4]])
     check([grams], [float(re.search(r"\(([\d.]+) g\)",
                                     mass["parameters"]).group(1))])
-    low, high = quoted("studies.md", rf"the one-stiffness fit's rms is "
-                       rf"{NUMBER}–{NUMBER} % here")
+    low, high = (role("separator-fit", "rms_pct", ".1f",
+                      model="timoshenko-kr2", data=d)
+                 for d in ("last-9000", "printed"))
+    says("studies.md", f"the one-stiffness fit's rms is {low}–{high} % "
+         "here")
     one = [float(fits[("timoshenko-kr2", d)]["rms_pct"])
            for d in ("last-9000", "printed")]
-    check([low, high], one)
+    assert one[0] <= one[1]       # "low-high"
     thin, thick, over_low, over_high = quoted(
         "studies.md", rf"They lower the frequency by {NUMBER} % \(d = "
         rf"0.125\) to {NUMBER} % \(d = 0.75\).*?the clamped Timoshenko "
@@ -705,9 +739,8 @@ def test_the_simulation_counts_of_the_long_studies():
     assert int(chatter) == len(rows("chatter"))
     notes = contactsep.read(STUDIES / "preload.csv").attrs["comments"]
     assert f"{chart} simulations" in notes
-    (again,) = quoted("studies.md", r"Not a batch of eq. 23 but (\d+) "
-                      r"three-beam simulations")
-    assert int(again) == len(rows("chatter"))
+    says("studies.md", "Not a batch of eq. 23 but "
+         + role("chatter", "rows", None) + " three-beam simulations")
 
 
 def test_the_chatter_and_unit_limits_are_the_codes():

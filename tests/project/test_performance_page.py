@@ -189,26 +189,26 @@ def test_the_constants_the_page_states_are_the_codes():
     build flags and search chunk: what the page says in words is what
     the code uses (a changed constant fails here until the page says
     it)."""
-    import importlib
     import inspect
 
     from contactsep.model import design
+    from contactsep.output import pieces
     from contactsep.studies import chunks, runner, sweep
     target, first, growth, piece = quoted(
         r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
         r"of work each, the first ([\d,]+) designs at N = 4, growing at "
         r"most (\d+)-fold a chunk\) and the model evaluates a chunk in "
         r"pieces of about ([\d.]+) s")
-    assert float(target) == chunks.TARGET_CHUNK_S
-    assert int(first.replace(",", "")) == chunks.FIRST_CHUNK_COST // 4
-    assert f"min(self.limit, {growth} * self.next" in \
-        inspect.getsource(chunks.Chunks.record)
-    assert float(piece) == importlib.import_module(
-        "contactsep.model.evaluate").PIECE_S
+    # one rule for both: contactsep.output.pieces
+    assert float(target) == pieces.PIECE_S
+    assert int(first.replace(",", "")) == pieces.FIRST_PIECE_COST // 4
+    assert int(growth) == pieces.GROWTH
+    assert "GROWTH * self.next" in inspect.getsource(pieces.PieceSizes)
+    assert float(piece) == pieces.PIECE_S
     cap, after = quoted(r"At N = 4 the chunks reach the ([\d,]+) cap after "
                         r"(\w+);")
     assert int(cap.replace(",", "")) == sweep.CHUNK_SIZE
-    size, count = chunks.FIRST_CHUNK_COST // 4, 0
+    size, count = pieces.FIRST_PIECE_COST // 4, 0
     while size < sweep.CHUNK_SIZE:    # each chunk at most 8x the last
         size, count = min(int(growth) * size, sweep.CHUNK_SIZE), count + 1
     assert {"two": 2, "three": 3, "four": 4}[after] == count

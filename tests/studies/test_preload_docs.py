@@ -52,25 +52,39 @@ def same(quoted: str, value: float) -> bool:
     return quoted == f"{value:.4g}"
 
 
-def test_the_chart_table_quotes_the_committed_chart():
+def test_the_chart_table_shows_every_row_of_the_committed_chart():
+    """One table row a chart row; its answer (a dash where the chart
+    has none) and N are the roles that select that row."""
     answers, rows = chart()
     quoted = table(section("## The preload chart"),
                    "| d (in) | y_s (in) | min preload (lb) |")
     assert len(quoted) == len(rows) == 15
-    modes = {(float(r["d_in"]), float(r["ys_in"])): r["n_modes"]
-             for r in rows}
+    assert {(float(c[0]), float(c[1])) for c in quoted} == set(answers)
     for cells in quoted:
-        key = (float(cells[0]), float(cells[1]))
-        assert same(cells[2], answers[key]), (key, cells[2], answers[key])
-        assert cells[3] == modes[key], key
+        d, ys = float(cells[0]), float(cells[1])
+        assert cells[2] == ("—" if math.isnan(answers[(d, ys)]) else
+                            datum("min_preload_lb", d, ys)), cells
+        assert cells[3] == datum("n_modes", d, ys, None), cells
+
+
+def datum(column: str, d: float, ys: float, fmt: str | None = ".4g") \
+        -> str:
+    """The role that shows the chart's ``column`` at (d, y_s)."""
+    return (f"{{datum}}`studies/preload.csv:{column}@d_in={d:g},"
+            f"ys_in={ys:g}" + (f":{fmt}`" if fmt else "`"))
 
 
 def test_the_headline_row_is_the_committed_one():
-    answers, _ = chart()
-    text = section("## The preload chart")
-    found = re.search(r"At y_s = 0\.5 in and d = 0\.25 in, at\s+least "
-                      r"([0-9.]+) lb", text)
-    assert found and same(found.group(1), answers[(0.25, 0.5)])
+    """The headline's number is the role that selects the row the
+    sentence names (the role's resolution is held elsewhere), and that
+    row of the chart has an answer, converged."""
+    answers, rows = chart()
+    text = " ".join(section("## The preload chart").split())
+    assert ("**At y_s = 0.5 in and d = 0.25 in, at least "
+            + datum("min_preload_lb", 0.25, 0.5) + " lb**") in text
+    [row] = [r for r in rows
+             if (float(r["d_in"]), float(r["ys_in"])) == (0.25, 0.5)]
+    assert not math.isnan(answers[(0.25, 0.5)]) and row["converged"] == "1"
 
 
 def convergence_rows():
@@ -91,9 +105,10 @@ def searched_again():
 
 
 def test_the_convergence_table_quotes_every_answer_and_its_check():
-    """Every row with an answer: its answer, N, step and check from the
-    committed chart, the verdict its ``converged`` column, and the first
-    answer of a row searched again the chart's note."""
+    """Every row with an answer: its answer, N, step and check the
+    roles that select that row of the committed chart, the verdict its
+    ``converged`` column, and the first answer of a row searched again
+    the chart's note."""
     answers, rows = chart()
     by_key = {(float(r["d_in"]), float(r["ys_in"])): r for r in rows}
     quoted = convergence_rows()
@@ -101,28 +116,29 @@ def test_the_convergence_table_quotes_every_answer_and_its_check():
     assert {(float(c[0]), float(c[1])) for c in quoted} == with_answer
     again = searched_again()
     for cells in quoted:
-        key = (float(cells[0]), float(cells[1]))
+        key = d, ys = (float(cells[0]), float(cells[1]))
         row = by_key[key]
-        assert same(cells[2], answers[key]), key
-        assert cells[3:6] == [row["n_modes"], f"{float(row['dt_s']):g}",
-                              row["check_n_modes"]], key
+        assert cells[2:6] == [datum("min_preload_lb", d, ys),
+                              datum("n_modes", d, ys, None),
+                              datum("dt_s", d, ys, "g"),
+                              datum("check_n_modes", d, ys, None)], key
         assert cells[6] == ("yes" if row["converged"] == "1" else "NO"), key
         assert cells[7] == again.get(key, "—"), key
 
 
 def test_the_page_counts_the_converged_rows_as_the_chart_does():
+    """The page says "all" of the rows with an answer are converged,
+    their number the role that counts the converged rows: so every row
+    of the chart with an answer is converged, and only those."""
     _, rows = chart()
     with_answer = [r for r in rows if r["min_preload_lb"] != "nan"]
-    held = sum(r["converged"] == "1" for r in with_answer)
+    converged = [r for r in rows if r["converged"] == "1"]
+    assert converged == with_answer
+    count = "{datum}`studies/preload.csv:rows@converged=1`"
     text = " ".join(section("### Convergence of the answer").split())
     chart_text = " ".join(section("## The preload chart").split())
-    if held == len(with_answer):
-        assert f"**All {held} rows with an answer are converged to 2 %" \
-            in text
-        assert f"as are all {held} rows with an answer" in chart_text
-    else:
-        assert f"**{held} of the {len(with_answer)} rows with an answer " \
-            f"are converged to 2 %" in text
+    assert f"**All {count} rows with an answer are converged to 2 %" in text
+    assert f"as are all {count} rows with an answer" in chart_text
 
 
 def test_the_png_is_committed_beside_the_csv():

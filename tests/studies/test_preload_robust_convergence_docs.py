@@ -7,6 +7,7 @@ same tolerance draws.  Reads files only."""
 
 from __future__ import annotations
 
+import itertools
 import math
 from pathlib import Path
 
@@ -35,9 +36,18 @@ def searches(band) -> dict:
             if any(r["robust_band"] == band for r in runs)}
 
 
+def study_role(name, n_modes, band, column, fmt=None) -> str:
+    """The datum role that shows ``column`` of one search's row."""
+    fmt = f":{fmt}" if fmt else ""
+    return (f"{{datum}}`studies/{STUDY.name}:{column}@design={name},"
+            f"n_modes={n_modes},robust_band={band}{fmt}`")
+
+
 def answers_table() -> list[list[str]]:
     """The table: per design, the old band's searches by N, then the
-    fixed band's; the change at 2N against the same band's search at N."""
+    fixed band's; the study's values the roles that select the search's
+    row, the change at 2N against the same band's search at N and the
+    minutes (derived) as text."""
     expected = []
     for name in by_design(STUDY):
         for band, said in ((OLD, "events"), (FIXED, "fine grid")):
@@ -48,10 +58,15 @@ def answers_table() -> list[list[str]]:
                     int(half["n_modes"]) * 2 != int(r["n_modes"]) else pct(
                         repr(float(r["robust_min_preload_lb"]) /
                              float(half["robust_min_preload_lb"]) - 1.0))
+                assert "none" not in (g4(r["min_preload_lb"]),
+                                      g4(r["robust_min_preload_lb"]))
+                at = (name, r["n_modes"], band)
                 expected.append([
-                    name, said, r["samples"], r["n_modes"],
-                    g4(r["min_preload_lb"]), g4(r["robust_min_preload_lb"]),
-                    f"{r['n_open']} of {r['n']}", moved,
+                    name, said, study_role(*at, "samples"), r["n_modes"],
+                    study_role(*at, "min_preload_lb", ".4g"),
+                    study_role(*at, "robust_min_preload_lb", ".4g"),
+                    study_role(*at, "n_open") + " of "
+                    + study_role(*at, "n"), moved,
                     f"{float(r['wall_s']) / 60:.0f}"])
     return expected
 
@@ -104,8 +119,15 @@ def test_the_answers_table_is_the_study():
 
 
 def test_the_steel_relays_curve_is_the_study():
+    """Each preload every N's search tried, with the roles that show its
+    count of open samples at N = 32 and 64."""
     quoted = table(section(TITLE), CURVE)
-    expected = [[g4(p), str(k["32"]), str(k["64"])] for p, k in
+
+    def role(p, n):
+        return (f"{{datum}}`studies/{TESTED.name}:n_open@design=steel_relay,"
+                f"robust_band={OLD},n_modes={n},preload_lb={p}`")
+
+    expected = [[g4(p), role(p, 32), role(p, 64)] for p, k in
                 sorted(curves("steel_relay").items(),
                        key=lambda item: float(item[0]))]
     assert quoted == expected
@@ -221,7 +243,7 @@ def test_the_fixed_bands_n64_window_is_not_there_at_n128():
     preloads = sorted(float(p) for p, _, _ in rows_)
     # consecutive fine-grid preloads (0.99 % apart), the answer the top
     assert all(b / a == pytest.approx(1.0099, rel=1e-6)
-               for a, b in zip(preloads, preloads[1:]))
+               for a, b in itertools.pairwise(preloads))
     assert preloads[-1] == pytest.approx(answer, rel=1e-6)
     assert [int(k) for _, k, _ in rows_] == [0, 3, 0]
     assert all(n128 == "0" for _, _, n128 in rows_)
@@ -482,7 +504,7 @@ def test_the_n128_column_reading():
     assert [sum(int(_at(counts[n], p)) for p in ran[1:])
             for n in ("128", "64", "32")] == [55, 51, 84]
     assert all(b / a == pytest.approx(1.0099 ** 2, rel=1e-9)
-               for a, b in zip(ran, ran[1:]))
+               for a, b in itertools.pairwise(ran))
     first = ran[0]
     assert [_at(counts[n], first) for n in ("32", "64", "128")] == \
         ["35", "17", "28"]

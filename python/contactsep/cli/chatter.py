@@ -18,6 +18,7 @@ from contactsep.cli.design_options import (
     with_sources,
 )
 from contactsep.cli.guards import drop_echoes
+from contactsep.cli.unit_system import si_shown
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
 
@@ -205,7 +206,8 @@ def run(args: argparse.Namespace) -> int:
             data["verdict"] = verdict.text
         output.write_json(sys.stdout, data)
     else:
-        output.write_text(sys.stdout, summary_text(result, args.events)
+        output.write_text(sys.stdout, summary_text(
+            result, args.events, si=getattr(args, "units", "us") == "si")
                           + ("" if verdict is None
                              else verdict.line() + "\n"))
     if args.csv:
@@ -282,25 +284,31 @@ def _event_count(text: str):
     return integer(0, 10**9)(text)
 
 
-def summary_text(result, listed: int | None = 10) -> str:
+def summary_text(result, listed: int | None = 10, si: bool = False) -> str:
     """The inputs and the summary, with units, 6 significant digits, and
-    the circuit's first ``listed`` open intervals (None: all)."""
+    the circuit's first ``listed`` open intervals (None: all); ``si``:
+    every quantity in m, N, s, Pa (--units si)."""
+    def q(value, unit):
+        """A quantity as shown: its number and unit in the system asked."""
+        value, unit = si_shown(value, unit, si)
+        return f"{_g(value)} {unit}"
+
     lines = [f"model {result.model}, N = {result.n_modes}, "
              f"dt = {_g(result.dt)} s ({result.stepper}, "
              f"{result.dt_source}), window 0 to {_g(result.t_end_s)} s "
              f"({result.t_end_source})",
-             f"preload {_g(result.preload_lb)} lb, damping "
+             f"preload {q(result.preload_lb, 'lb')}, damping "
              f"{result.damping}"
-             + (f" (alpha {_g(result.alpha_s_per_in)} s/in)"
+             + (f" (alpha {q(result.alpha_s_per_in, 's/in')})"
                 if result.alpha_s_per_in is not None else "")
              + (f", contact thornton (yield pressure "
-                f"{_g(result.yield_pressure_psi)} psi)"
+                f"{q(result.yield_pressure_psi, 'psi')})"
                 if result.contact == "thornton" else "")
-             + f", open above {_g(result.open_threshold_in)}"
-             f" in, events last >= {_g(result.min_open_s)} s"
+             + f", open above {q(result.open_threshold_in, 'in')}"
+             f", events last >= {_g(result.min_open_s)} s"
              + (", static correction" if result.static_correction
                 else "")]
-    lines.append("design: " + ", ".join(_design_parts(result.design)))
+    lines.append("design: " + ", ".join(_design_parts(result.design, si)))
     rows = [("first impact", result.first_impact_s, "s"),
             ("first impulse", result.first_impulse_lb_s, "lb s"),
             ("max lower gap", result.max_lower_gap_in, "in"),
@@ -320,6 +328,7 @@ def summary_text(result, listed: int | None = 10) -> str:
              ("eq. 23 y3 max, psi/M3", single.get("y3_max_impulse_form_in"),
               "in")]
     for label, value, unit in rows:
+        value, unit = si_shown(value, unit, si)
         shown = _g(value) if isinstance(value, float) else str(value)
         lines.append(f"  {label:<28} {shown:>12} {unit}".rstrip())
     for key, value in result.changes.items():
@@ -351,9 +360,9 @@ def summary_text(result, listed: int | None = 10) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _design_parts(design) -> list[str]:
+def _design_parts(design, si: bool = False) -> list[str]:
     """'L1 19 in', 'd 0.25 in', ...: each given field under its output
-    name (studies.fields), with its unit."""
+    name (studies.fields), with its unit (``si``: in SI)."""
     import dataclasses
 
     from contactsep.studies import fields
@@ -363,8 +372,9 @@ def _design_parts(design) -> list[str]:
         if value is None:
             continue
         name = fields.OUTPUT_NAMES.get(f.name, f.name)
+        value, unit = si_shown(value, fields.unit(f.name), si)
         shown = f"{value:g}" if isinstance(value, float) else str(value)
-        parts.append(f"{name} {shown} {fields.unit(f.name)}".rstrip())
+        parts.append(f"{name} {shown} {unit}".rstrip())
     return parts
 
 

@@ -26,6 +26,7 @@ from contactsep.cli.guards import (
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError, printable
+from contactsep.output.pieces import PIECE_S
 from contactsep.studies.chatter_sweep import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
@@ -36,7 +37,6 @@ from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
     MAX_DESIGNS,
-    TARGET_CHUNK_S,
 )
 from contactsep.studies.sweep_checks import CHATTER_UNUSED
 from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
@@ -136,7 +136,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help=f"most designs per chunk (default {CHUNK_SIZE}, "
                             f"chatter models {CHATTER_CHUNK_SIZE}; "
                             f"chunks are sized to about "
-                            f"{TARGET_CHUNK_S:g} s of work below it)")
+                            f"{PIECE_S:g} s of work below it)")
     sweep.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
                        help=f"local processes (default: the usable cores; "

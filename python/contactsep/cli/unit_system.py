@@ -5,10 +5,10 @@ system of the command line's bare numbers and of the ``--json`` output
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit
 suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
-the one table), and so does ``model``'s text.  Only ``model``,
-``chatter`` and ``preload`` take it, the last two with ``--json``: their
-text, CSV and PNG outputs stay in inch-pound units, so ``si`` is
-refused there in one line rather than half done.
+the one table), and so does the text of ``model`` and ``chatter``.
+Only ``model``, ``chatter`` and ``preload`` take it, ``preload`` with
+``--json``: its text, and the CSV and PNG outputs, stay in inch-pound
+units, so ``si`` is refused there in one line rather than half done.
 With the default ``us`` nothing changes.
 """
 
@@ -24,7 +24,23 @@ UNIT_SYSTEMS = ("us", "si")
 SI_COMMANDS = ("model", "chatter", "preload")
 #: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
-            "lb/in^3": "lb_in3", "s/in": "s_per_in"}
+            "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",
+            "in/s": "in_s"}
+#: The commands whose text --units si converts too (model's, chatter's).
+SI_TEXT = ("model", "chatter")
+
+
+def si_shown(value, unit: str, si: bool):
+    """A number shown in the text with its printed unit ('in', 'lb s')
+    -> (value, unit) in the unit system asked for: unchanged for us, or
+    for a unit with no SI twin ('' or 's')."""
+    from contactsep.model.names import SI_SUFFIXES
+    suffix = _PRINTED.get(unit)
+    if not si or suffix is None or not isinstance(value, (int, float)) \
+            or isinstance(value, bool):
+        return value, unit
+    _, printed, factor = SI_SUFFIXES[suffix]
+    return value * factor, printed
 
 
 def si_asked(args: argparse.Namespace) -> bool:
@@ -38,7 +54,7 @@ def si_asked(args: argparse.Namespace) -> bool:
                          f"commands that take it are "
                          f"{', '.join(SI_COMMANDS)} (or give each value "
                          f"its unit: --L1 25mm)")
-    if command != "model" and not getattr(args, "json", False):
+    if command not in SI_TEXT and not getattr(args, "json", False):
         raise InputError(f"--units si: only the --json output of "
                          f"{command} is in SI (add --json); its text "
                          f"stays in in, lb, s")
@@ -87,7 +103,7 @@ def in_units(data, args: argparse.Namespace):
             return [convert(v, factor) for v in value]
         if isinstance(value, float) or (isinstance(value, int) and
                                         not isinstance(value, bool)):
-            return value * factor if factor != 1.0 else value
+            return si_number(value, factor) if factor != 1.0 else value
         return value
 
     def walk(value, bare=None):
@@ -108,6 +124,28 @@ def in_units(data, args: argparse.Namespace):
                 out[twin[0]] = convert(item, twin[1])
         return out
     return walk(data)
+
+
+def si_number(value: float, factor: float) -> float:
+    """``value`` (in the package's units) times ``factor``, written with
+    the fewest significant digits that a design file's
+    reader (divide by ``factor``, round to 15 digits, as contactsep.units
+    rounds) turns back into ``value`` exactly: 5 mm typed is written
+    0.005, not 0.00499999999999999.  A value with more digits than the
+    reader keeps is written as the plain product, as before."""
+    product = value * factor
+
+    def reads_back(digits: int) -> float | None:
+        written = float(f"{product:.{digits}g}")
+        return written if float(f"{written / factor:.15g}") == value \
+            else None
+
+    if reads_back(15) is None:
+        # a computed value (a result, not a typed one): the plain
+        # product unless 16 or 17 digits read back
+        return reads_back(16) or reads_back(17) or product
+    return next(written for written in map(reads_back, range(1, 16))
+                if written is not None)
 
 
 def _bare_names() -> dict:

@@ -23,6 +23,7 @@ from contactsep.model.design import (
     pack,
 )
 from contactsep.model.names import RESULT_KEYS
+from contactsep.output import pieces
 
 BACKENDS = ("compiled", "numpy")
 
@@ -180,8 +181,9 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
         psi.
     backend : {"compiled", "numpy"}
         ``"compiled"`` runs the Fortran kernel (one call for the whole
-        batch, or pieces of about ``PIECE_S`` seconds of a batch that
-        takes longer: a signal is seen between them); ``"numpy"`` the
+        batch, or pieces of about ``contactsep.output.pieces.PIECE_S``
+        seconds of a batch that takes longer: a signal is seen between
+        them); ``"numpy"`` the
         NumPy twin.
 
     Returns
@@ -237,12 +239,6 @@ def evaluate(design: Design, *, backend: str = "compiled") -> Evaluation:
     return Evaluation(**fields)
 
 
-#: Seconds of compiled work a piece of a batch is sized for: Python sees
-#: Ctrl-C and SIGTERM only between compiled calls (a study of 57 designs
-#: at N = 100,000 was one call, deaf for minutes).
-PIECE_S = 0.5
-#: Modes x designs of the first piece, before one is timed.
-FIRST_PIECE_COST = 4096
 #: From this many modes, or this window (s), one design may take a
 #: second or more (the extremum search's budget allows ~20 s; the thesis
 #: design takes 1.4 s at tau = 1e4 s, 0.7 s at N = 800: docs/model.md):
@@ -265,12 +261,15 @@ def _in_pieces(backend, packed: Packed) -> dict:
     n_max = int(packed.ints[:, 3:].max()) if m else 1
     tau = packed.real[:, REAL_COLUMNS.index("tau")]
     forked = m > 0 and costly(n_max, float(np.max(tau)))
-    size = 1 if forked else max(1, FIRST_PIECE_COST // max(n_max, 1))
-    if size >= m and not forked:
+    # pieces of about pieces.PIECE_S of compiled work: Python sees Ctrl-C
+    # and SIGTERM only between compiled calls (a study of 57 designs at
+    # N = 100,000 was one call, deaf for minutes)
+    sizes = pieces.PieceSizes(1 if forked else pieces.first_size(n_max))
+    if sizes.next >= m and not forked:
         return backend.evaluate_packed(packed)
     out, first = {}, 0
     while first < m:
-        last = min(m, first + size)
+        last = min(m, first + sizes.next)
         start = time.perf_counter()
         piece = packed.ints[first:last, 3:]
         modes = None if packed.modes is None else packed.modes.rows(
@@ -296,9 +295,7 @@ def _in_pieces(backend, packed: Packed) -> dict:
             else:
                 out[key][first:last] = value
         del part
-        seconds = time.perf_counter() - start
-        size = int(max(1, min(8 * size,
-                              size * PIECE_S / max(seconds, 1e-6))))
+        sizes.record(last - first, time.perf_counter() - start)
         first = last
     return out
 

@@ -4,21 +4,20 @@ every worker gets many of them."""
 
 from __future__ import annotations
 
-#: Seconds of work a chunk is sized for (Chunks).
-TARGET_CHUNK_S = 0.5
+from contactsep.output.pieces import PIECE_S, PieceSizes, first_size
+
 #: Chunks each worker gets of the work left, at least, while a chunk
-#: stays above MIN_CHUNK_S (Chunks).
+#: stays above MIN_CHUNK_S (Chunks); otherwise a chunk is sized for
+#: contactsep.output.pieces.PIECE_S, the one rule of timed pieces.
 CHUNKS_PER_WORKER = 20
 MIN_CHUNK_S = 0.2
-#: Modes x designs of the first chunk, before any is timed.
-FIRST_CHUNK_COST = 4096
 #: Bytes a chunk's per-mode arrays may take.
 CHUNK_MEMORY = 64 << 20
 
 
 class Chunks:
     """(first, last) of each chunk, sized by cost rather than count, so
-    that a chunk takes about TARGET_CHUNK_S whatever N is (a signal is
+    that a chunk takes about PIECE_S whatever N is (a signal is
     acted on between chunks, and a stopped pool finishes its running
     ones), each of ``workers`` gets at least CHUNKS_PER_WORKER of what
     is left (down to MIN_CHUNK_S a chunk: the last chunks keep every
@@ -41,26 +40,28 @@ class Chunks:
         per_design = 8 * (4 * modes + 64)
         self.limit = max(1, min(chunk_size, CHUNK_MEMORY // per_design))
         # a design that may take seconds (model.evaluate.costly): one
-        self.next = 1 if costly else \
-            max(1, min(self.limit, FIRST_CHUNK_COST // modes))
-        self._seconds_per_design = None
+        self._sizes = PieceSizes(1 if costly else first_size(modes),
+                                 self.limit)
         self._position = 0
 
+    @property
+    def next(self) -> int:
+        """Designs of the next new chunk."""
+        return self._sizes.next
+
+    @next.setter
+    def next(self, designs: int) -> None:
+        self._sizes.next = designs
+
     def record(self, designs: int, seconds: float) -> None:
-        """A chunk of ``designs`` took ``seconds``: size the next ones."""
-        rate = seconds / max(designs, 1)
-        if self._seconds_per_design is None or \
-                rate > self._seconds_per_design:
-            self._seconds_per_design = rate
-        else:   # forget a slow start slowly (imports, page faults)
-            self._seconds_per_design = 0.5 * (self._seconds_per_design
-                                              + rate)
-        rate = max(self._seconds_per_design, 1e-9)
-        left = (self.size - self._position) * rate
-        target = min(TARGET_CHUNK_S, max(
-            MIN_CHUNK_S, left / (CHUNKS_PER_WORKER * self.workers)))
-        self.next = int(max(1, min(self.limit, 8 * self.next,
-                                   target / rate)))
+        """A chunk of ``designs`` took ``seconds``: size the next ones,
+        for PIECE_S each while much work is left, and for the workers'
+        CHUNKS_PER_WORKER shares of what is left (down to MIN_CHUNK_S)
+        towards the end."""
+        self._sizes.observe(designs, seconds)
+        left = (self.size - self._position) * self._sizes.seconds_per_item
+        self._sizes.resize(min(PIECE_S, max(
+            MIN_CHUNK_S, left / (CHUNKS_PER_WORKER * self.workers))))
 
     def __iter__(self):
         """(first, last) of each chunk, in order."""

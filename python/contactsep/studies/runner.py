@@ -15,6 +15,7 @@ from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
 from contactsep.studies import chatter_sweep, dask_run
+from contactsep.studies.chunks import Chunks
 from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
     SCHEDULER_TIMEOUT_S,
     SchedulerLost,
@@ -42,7 +43,6 @@ from contactsep.studies.stops import (  # noqa: F401 - the runner's API
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
-    Chunks,
     Summary,
     SweepSpec,
     evaluate_chunk,
@@ -375,7 +375,7 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
 
     ``chunk_size``: the most designs a chunk has (default
     :func:`default_chunk_size`; chunks are sized by cost below it:
-    :class:`~contactsep.studies.sweep.Chunks`); ``threshold`` (in, eq23
+    :class:`~contactsep.studies.chunks.Chunks`); ``threshold`` (in, eq23
     only): also report P(max y3 > threshold);
     ``workers``: local processes (default: the usable cores; 1 runs in
     this process; at most WORKERS_PER_CORE a core); ``scheduler``: a Dask

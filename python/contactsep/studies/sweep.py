@@ -29,14 +29,6 @@ from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import MAX_MODES, Design
 from contactsep.studies import fields as design_fields
-from contactsep.studies.chunks import (  # noqa: F401 - the sweep's API
-    CHUNK_MEMORY,
-    CHUNKS_PER_WORKER,
-    FIRST_CHUNK_COST,
-    MIN_CHUNK_S,
-    TARGET_CHUNK_S,
-    Chunks,
-)
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep_checks import (

@@ -1,0 +1,311 @@
+"""Numbers on the pages, drawn from the committed data at build time.
+
+The inline role ``datum`` puts one value of a committed CSV into the
+text, so that a page and the data it quotes cannot disagree::
+
+    {datum}`studies/preload.csv:min_preload_lb@d_in=0.25,ys_in=0.5:.4g`
+
+The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
+
+``FILE``
+    a CSV file, relative to ``docs/``; its lines that start with ``#``
+    (the comments every CSV the package writes carries) are skipped.
+``COLUMN``
+    the column whose value is shown, or an aggregate over the rows the
+    filters select: ``max(col)``, ``min(col)``, ``sum(col)`` (NaN cells
+    skipped, as pandas does) or ``rows`` (how many rows match).
+``KEY=VALUE,...``
+    the filters: a row matches when each ``KEY`` column equals its
+    ``VALUE``, compared as numbers when both parse as numbers
+    (``0.25`` matches ``0.250``), else as text.  A plain ``COLUMN``
+    needs exactly one matching row.
+``FORMAT``
+    a Python format spec (``.2f``, ``.4g``, ``,d``); without one the
+    cell is shown as written in the file.
+
+:func:`resolve` is the whole lookup, a pure function without Sphinx, so
+the tests run it on every use in the pages; every way it can fail
+raises :class:`DatumError` with one printable line naming the file,
+column and filters.  The role reports that line as an error at the
+role's source line, so ``sphinx-build -W`` stops on it.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+#: The aggregates COLUMN may be, besides a plain column name.
+AGGREGATES = ("max", "min", "sum")
+_AGGREGATE = re.compile(rf"^({'|'.join(AGGREGATES)})\((.*)\)$")
+#: Format types that take an integer only (a float with no fraction is
+#: shown as one).
+_INTEGER_TYPES = set("bcdoxX")
+
+
+class DatumError(ValueError):
+    """A ``datum`` that cannot be shown; its message is one line."""
+
+
+@dataclass(frozen=True)
+class Datum:
+    """A parsed ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``."""
+
+    file: str
+    column: str                  # as written: "x", "max(x)", "rows"
+    filters: tuple[tuple[str, str], ...]
+    fmt: str | None
+
+    def where(self) -> str:
+        """The datum's file, column and filters, for a message."""
+        text = f"{self.file}: {self.column}"
+        if self.filters:
+            text += " where " + ", ".join(f"{k}={v}"
+                                         for k, v in self.filters)
+        return text
+
+
+def _one_line(text: str) -> str:
+    """``text`` with white space runs as one space and any other
+    unprintable character escaped, so a message stays one line."""
+    text = " ".join(str(text).split())
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
+def parse(spec: str) -> Datum:
+    """Split the role's text into its parts.
+
+    Parameters
+    ----------
+    spec : str
+        ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``.
+
+    Returns
+    -------
+    Datum
+
+    Raises
+    ------
+    DatumError
+        If a part is missing or a filter is not ``KEY=VALUE``.
+    """
+    text = _one_line(spec).strip()
+    file, sep, rest = text.partition(":")
+    if not sep or not file.strip() or not rest.strip():
+        raise DatumError(f"datum {text!r}: expected "
+                         "FILE:COLUMN[@KEY=VALUE,...][:FORMAT]")
+    selector, sep, fmt = rest.partition(":")
+    column, _, filter_text = selector.partition("@")
+    column = column.strip()
+    file = file.strip()
+    filters = []
+    for item in filter_text.split(",") if filter_text.strip() else ():
+        key, eq, value = item.partition("=")
+        if not eq or not key.strip():
+            raise DatumError(f"{file}: {column}: filter {item.strip()!r} "
+                             "is not KEY=VALUE")
+        filters.append((key.strip(), value.strip()))
+    if not column:
+        raise DatumError(f"{file}: no column in datum {text!r}")
+    return Datum(file, column, tuple(filters), fmt.strip() if sep else None)
+
+
+def _number(text: str):
+    """``text`` as an int or a float, or None if it is neither."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def read_rows(path: Path, label: str) -> tuple[list[str], list[dict]]:
+    """The header and rows of a CSV file, its ``#`` lines skipped.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    label : str
+        What a message names first (the file as the page names it,
+        the column and the filters).
+
+    Returns
+    -------
+    (list of str, list of dict)
+        The column names and one dict a row (column -> cell text).
+    """
+    try:
+        with open(path, encoding="utf-8", newline="") as handle:
+            lines = [line for line in handle
+                     if not line.startswith("#") and line.strip()]
+    except FileNotFoundError:
+        raise DatumError(f"{label}: no such file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise DatumError(f"{label}: cannot read it "
+                         f"({_one_line(error)})") from None
+    try:
+        table = list(csv.reader(lines))
+    except csv.Error as error:
+        raise DatumError(f"{label}: not a CSV table "
+                         f"({_one_line(error)})") from None
+    if not table:
+        raise DatumError(f"{label}: no header line")
+    header = [name.strip() for name in table[0]]
+    rows = []
+    for number, cells in enumerate(table[1:], start=2):
+        if len(cells) != len(header):
+            raise DatumError(f"{label}: data row {number - 1} has "
+                             f"{len(cells)} cells, the header "
+                             f"{len(header)}")
+        rows.append(dict(zip(header, (c.strip() for c in cells))))
+    return header, rows
+
+
+def _matches(cell: str, wanted: str) -> bool:
+    a, b = _number(cell), _number(wanted)
+    if a is not None and b is not None:
+        return a == b
+    return cell == wanted
+
+
+def _format(value, datum: Datum) -> str:
+    fmt = datum.fmt
+    if fmt is None:
+        return str(value)
+    number = _number(value) if isinstance(value, str) else value
+    if number is None:
+        raise DatumError(f"{datum.where()}: {value!r} is not a number, "
+                         f"for format {fmt!r}")
+    if fmt[-1:] in _INTEGER_TYPES and isinstance(number, float):
+        if not number.is_integer():
+            raise DatumError(f"{datum.where()}: {value} is not an "
+                             f"integer, for format {fmt!r}")
+        number = int(number)
+    try:
+        return format(number, fmt)
+    except (ValueError, TypeError) as error:
+        raise DatumError(f"{datum.where()}: bad format {fmt!r} "
+                         f"({_one_line(error)})") from None
+
+
+def resolve(spec: str, base: str | Path) -> str:
+    """The text the role ``{datum}`spec``` shows.
+
+    Parameters
+    ----------
+    spec : str
+        ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]`` (see the module).
+    base : str or os.PathLike
+        The directory ``FILE`` is relative to (``docs/``).
+
+    Returns
+    -------
+    str
+        The value, formatted.
+
+    Raises
+    ------
+    DatumError
+        A missing file, column or filter column; no matching row, or
+        more than one for a plain column; an empty cell or a NaN; a
+        value that is not a number where one is needed; a bad format.  One printable line
+        naming the file, column and filters.
+    """
+    datum = parse(spec)
+    if Path(datum.file).is_absolute():
+        raise DatumError(f"{datum.file}: FILE must be relative to docs/")
+    header, rows = read_rows(Path(base) / datum.file, datum.where())
+    aggregate = _AGGREGATE.match(datum.column)
+    name = aggregate.group(2).strip() if aggregate else datum.column
+    needed = [k for k, _ in datum.filters]
+    if datum.column != "rows":
+        needed.append(name)
+    for column in needed:
+        if column not in header:
+            raise DatumError(f"{datum.where()}: no column {column!r} "
+                             f"(the file has {', '.join(header)})")
+    chosen = [row for row in rows
+              if all(_matches(row[k], v) for k, v in datum.filters)]
+    if datum.column == "rows":
+        return _format(len(chosen), datum)
+    if not chosen:
+        raise DatumError(f"{datum.where()}: no row matches")
+    if aggregate is None:
+        if len(chosen) > 1:
+            raise DatumError(f"{datum.where()}: {len(chosen)} rows match, "
+                             "one is needed (add a filter or use "
+                             "max(), min(), sum(), rows)")
+        cell = chosen[0][name]
+        if not cell:
+            raise DatumError(f"{datum.where()}: the cell is empty")
+        if isinstance(_number(cell), float) and math.isnan(_number(cell)):
+            raise DatumError(f"{datum.where()}: the value is {cell}")
+        return _format(cell, datum)
+    numbers = []
+    for row in chosen:
+        number = _number(row[name])
+        if number is None:
+            raise DatumError(f"{datum.where()}: {row[name]!r} is not a "
+                             "number")
+        if not (isinstance(number, float) and math.isnan(number)):
+            numbers.append(number)
+    if not numbers:
+        raise DatumError(f"{datum.where()}: every matching value is NaN")
+    kind = aggregate.group(1)
+    if kind == "sum":
+        return _format(sum(numbers), datum)
+    best = (max if kind == "max" else min)(numbers)
+    if datum.fmt is None:    # as written in the file
+        return next(row[name] for row in chosen
+                    if _number(row[name]) == best)
+    return _format(best, datum)
+
+
+def source_line(source: str, text: str, lineno: int) -> int:
+    """The line of ``source`` (a file) where the role's ``text`` is,
+    the first at or after ``lineno``; ``lineno`` if it is not found.
+
+    MyST gives an inline role the line its paragraph starts on; an error
+    points at the role's own line instead."""
+    try:
+        lines = Path(source).read_text(encoding="utf-8").splitlines(True)
+    except (OSError, UnicodeDecodeError, ValueError):
+        return lineno
+    start = sum(len(line) for line in lines[:max(lineno - 1, 0)])
+    whole = "".join(lines)
+    at = whole.find(f"`{text}`", start)
+    return lineno if at < 0 else whole.count("\n", 0, at) + 1
+
+
+def datum_role(name, rawtext, text, lineno, inliner, options=None,
+               content=None):
+    """The ``datum`` role: the value as text, or an error at ``lineno``."""
+    from docutils import nodes
+
+    document = inliner.document
+    env = getattr(document.settings, "env", None)
+    base = Path(env.srcdir) if env is not None else Path(__file__).parents[1]
+    try:
+        datum = parse(text)
+        if env is not None:      # a changed CSV rebuilds the page
+            env.note_dependency(str(base / datum.file))
+        value = resolve(text, base)
+    except DatumError as error:
+        line = source_line(document.get("source", ""), text, lineno)
+        message = inliner.reporter.error(f"datum: {error}", line=line)
+        problem = inliner.problematic(rawtext, rawtext, message)
+        return [problem], [message]
+    return [nodes.Text(value)], []
+
+
+def setup(app):
+    """Register the ``datum`` role."""
+    app.add_role("datum", datum_role)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
