@@ -35,6 +35,7 @@ import numpy as np
 
 import contactsep
 from contactsep.studies import preload
+from contactsep.studies.preload_runs import PreloadRun
 
 CHART = "docs/studies/preload.csv"
 #: The chart's numerics (preload_chart gives them explicitly: the thesis
@@ -91,7 +92,8 @@ def convergence(full=False) -> None:
     start = time.perf_counter()
     with preload.Simulations() as sims:
         def has_event(tasks):
-            return sims.events([(designs[row], "hertz", settings[row], p)
+            return sims.events([PreloadRun(designs[row], "hertz",
+                                           settings[row], p)
                                 for row, p in tasks])
         found = preload.search(len(cases), has_event)
     print(f"thesis rig, Hertz, d = 0.25 in, y_s = 0.5 in "

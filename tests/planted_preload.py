@@ -28,7 +28,8 @@ def threshold(design, settings) -> float:
 
 
 def fake_event(task) -> bool:
-    design, _, settings, load = task
+    design, load = task.design, task.preload_lb
+    settings = task.settings
     CALLS.append(("event", load))
     return load < threshold(design, settings)
 
@@ -78,7 +79,8 @@ def plant_threshold(monkeypatch, where):
     :func:`threshold`; every run is kept in CALLS as ("event", preload,
     N), so that a test can tell the runs at N from those at 2N."""
     def event(task):
-        design, _, settings, load = task
+        design, load = task.design, task.preload_lb
+        settings = task.settings
         CALLS.append(("event", load, design.n_modes))
         return load < where(design, settings)
 

@@ -66,10 +66,11 @@ module chatter_adaptive
   use chatter_adaptive_state, only: adaptive_run, max_level, head, &
       max_waiting
   use chatter_adaptive_flow, only: table, flow, gaps, energy, &
-      amplitude_bounds, dot, advance
+      amplitude_bounds, dot, advance, safe_time
   use chatter_adaptive_crossings, only: watch
   use chatter_adaptive_gap_max, only: search_waiting
   use chatter_adaptive_laws, only: hertz_step, newton_step
+  use chatter_adaptive_event, only: event_start, event_watch
   use chatter_hertz_series, only: series_forces
   use chatter_contact_law, only: contact_law, law_setup, law_plastic_work
   implicit none
@@ -85,7 +86,7 @@ contains
   subroutine adaptive(law, n, k, m, p, h, g0, cmat, q, v, stiffness, &
       chi, restitution, dt, steps, stride, samples, threshold, n_moving, &
       energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
-      n_cross, gap_max, counts, status, contact, book)
+      n_cross, gap_max, counts, status, contact, book, stop_open)
     !> law_hertz or law_newton.
     integer, intent(in) :: law
     !> Modes (all members stacked) and contacts (1 or 2).
@@ -125,7 +126,8 @@ contains
     !> status_ok, status_crossings_full (the table filled up),
     !> status_lcp_unsolved (Newton: the contact LCP had no solution),
     !> status_energy_bound (a fixed step took the energy past
-    !> energy_bound, chatter_adaptive_crossings' watch_fixed) or
+    !> energy_bound, chatter_adaptive_crossings' watch_fixed),
+    !> status_stopped_at_event (stop_open: chatter_adaptive_event) or
     !> status_interrupted (chatter_stop's flag, read every
     !> stop_check_every passes of the loop).
     integer, intent(out) :: status
@@ -134,6 +136,9 @@ contains
     !> energy, the contacts' stored energy at the end (in lb).
     type(contact_law), intent(in), optional :: contact
     real(wp), intent(out), optional :: book(2)
+    !> Stop at the first discontinuity event: once the circuit has been
+    !> open this long (s; chatter_adaptive_event); < 0 or absent: never.
+    real(wp), intent(in), optional :: stop_open
 
     type(adaptive_run) :: run
     real(wp) :: e_end
@@ -153,6 +158,7 @@ contains
     allocate(q_copy(n), v_copy(n))
     if (law == law_hertz) call correct(run, cmat)
     run%crossings => crossings
+    if (present(stop_open)) call event_start(run, stop_open)
     sample = 1
     t_out(1) = 0.0_wp
     g_out(:, 1) = sampled_gaps(run)
@@ -247,6 +253,8 @@ contains
           first_in = 0
         end if
       end do
+      if (run%status == status_ok) call event_watch(run, &
+          real(step, wp) * dt)
       if (run%status /= status_ok) exit
     end do
     call search_waiting(run)
@@ -459,25 +467,5 @@ contains
     run%g_still(:) = run%g0
     run%shift(:) = 0.0_wp
   end subroutine thaw
-
-
-  !> The first root s > 0 of g + u s - b s^2 / 2 (g >= 0): no function
-  !> with these value and rate and |g''| <= b goes below 0 before it
-  !> (a gap at 0 with nothing moving, as the untouched lower contact
-  !> before the impact, never does).
-  pure function safe_time(g, u, b) result(s)
-    real(wp), intent(in) :: g, u, b
-    real(wp) :: s
-
-    if (g < 0.0_wp) then
-      s = 0.0_wp
-    else if (b <= 0.0_wp) then
-      s = merge(huge(1.0_wp), g / max(-u, tiny(1.0_wp)), u >= 0.0_wp)
-    else if (u >= 0.0_wp) then
-      s = (u + sqrt(u * u + 2.0_wp * b * g)) / b
-    else
-      s = 2.0_wp * g / (sqrt(u * u + 2.0_wp * b * g) - u)
-    end if
-  end function safe_time
 
 end module chatter_adaptive

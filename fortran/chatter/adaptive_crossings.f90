@@ -14,7 +14,7 @@ module chatter_adaptive_crossings
   use chatter_adaptive_gap_max, only: new_max, tolerance, wait_for_max
   implicit none
   private
-  public :: watch, watch_fixed, watch_grid
+  public :: watch, watch_fixed, watch_grid, record
 
 contains
 

@@ -14,7 +14,7 @@ module chatter_adaptive_flow
   private
   public :: table, flow, gaps, energy, amplitude_bounds, chord
   public :: end_rates, gap_at, monotone
-  public :: dot, advance
+  public :: dot, advance, safe_time
 
 contains
 
@@ -231,5 +231,24 @@ contains
     end do
     total = 0.5_wp * total
   end function modal_energy
+
+  !> The first root s > 0 of g + u s - b s^2 / 2 (g >= 0): no function
+  !> with these value and rate and |g''| <= b goes below 0 before it
+  !> (a gap at 0 with nothing moving, as the untouched lower contact
+  !> before the impact, never does).
+  pure function safe_time(g, u, b) result(s)
+    real(wp), intent(in) :: g, u, b
+    real(wp) :: s
+
+    if (g < 0.0_wp) then
+      s = 0.0_wp
+    else if (b <= 0.0_wp) then
+      s = merge(huge(1.0_wp), g / max(-u, tiny(1.0_wp)), u >= 0.0_wp)
+    else if (u >= 0.0_wp) then
+      s = (u + sqrt(u * u + 2.0_wp * b * g)) / b
+    else
+      s = 2.0_wp * g / (sqrt(u * u + 2.0_wp * b * g) - u)
+    end if
+  end function safe_time
 
 end module chatter_adaptive_flow

@@ -120,6 +120,13 @@ module chatter_adaptive_state
     real(wp), allocatable :: gap_max(:, :)
     !> Flight steps, fixed steps, flow evaluations of the searches.
     integer :: counts(3) = 0
+    !> The stop at the first discontinuity event (chatter_adaptive_event):
+    !> the circuit's opening that stops the run (s; < 0: never stop),
+    !> the crossings read so far, each contact's state by them, and the
+    !> instant the circuit opened (< 0: it is closed).
+    real(wp) :: stop_open = -1.0_wp, circuit_from = -1.0_wp
+    integer :: n_read = 0
+    logical :: is_open(max_contacts) = .false.
     !> A chatter_status code.
     integer :: status = status_ok
   end type adaptive_run

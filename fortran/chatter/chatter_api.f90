@@ -148,13 +148,15 @@ contains
   end subroutine run_hertz_adaptive
 
   !> run_hertz_adaptive with every law of the Hertz family and the
-  !> energy book (as run_hertz_book).
+  !> energy book (as run_hertz_book).  stop_open >= 0 stops the run at
+  !> its first discontinuity event (chatter_adaptive_event).
   subroutine run_hertz_adaptive_book(n, k, m, p, h, g0, cmat, q0, v0, &
       stiffness, chi, pressure, e_star, radius, line, dt, steps, stride, &
       samples, threshold, n_moving, energy_bound, max_cross, t_out, &
       g_out, e_out, first, crossings, n_cross, gap_max, counts, q_end, &
-      v_end, book, status)
+      v_end, book, status, stop_open)
     !f2py threadsafe
+    !f2py real(wp), optional, intent(in) :: stop_open = -1.0
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
     integer, intent(in) :: max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
@@ -168,6 +170,7 @@ contains
     real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
     integer, intent(out) :: n_cross, counts(3), status
     real(wp), intent(out) :: q_end(n), v_end(n), book(2)
+    real(wp), intent(in) :: stop_open
     type(contact_law) :: law
 
     q_end = q0
@@ -177,17 +180,20 @@ contains
     call adaptive(law_hertz, n, k, m, p, h, g0, cmat, q_end, v_end, &
         stiffness, chi, 0.0_wp, dt, steps, stride, samples, threshold, &
         n_moving, energy_bound, max_cross, t_out, g_out, e_out, first, &
-        crossings, n_cross, gap_max, counts, status, law, book)
+        crossings, n_cross, gap_max, counts, status, law, book, &
+        stop_open)
   end subroutine run_hertz_adaptive_book
 
   !> Newton's law, adaptive (see chatter_adaptive): arguments and
   !> results as run_hertz_adaptive, with the restitution e instead of
-  !> the Hertz constants.
+  !> the Hertz constants, and the final state q_end, v_end;
+  !> stop_open as run_hertz_adaptive_book's.
   subroutine run_newton_adaptive(n, k, m, p, h, g0, q0, v0, e, dt, &
       steps, stride, samples, threshold, n_moving, energy_bound, &
       max_cross, t_out, g_out, e_out, first, crossings, n_cross, &
-      gap_max, counts, status)
+      gap_max, counts, q_end, v_end, status, stop_open)
     !f2py threadsafe
+    !f2py real(wp), optional, intent(in) :: stop_open = -1.0
     integer, intent(in) :: n, k, steps, stride, samples, n_moving
     integer, intent(in) :: max_cross
     real(wp), intent(in) :: m(n), p(n), h(k, n), g0(k), q0(n), v0(n)
@@ -196,17 +202,19 @@ contains
     real(wp), intent(out) :: e_out(samples), first(2)
     real(wp), intent(out) :: crossings(2, max_cross), gap_max(2, k)
     integer, intent(out) :: n_cross, counts(3), status
-    real(wp) :: q(n), v(n), no_series(k, k)
+    real(wp), intent(out) :: q_end(n), v_end(n)
+    real(wp), intent(in) :: stop_open
+    real(wp) :: no_series(k, k)
 
-    q = q0
-    v = v0
+    q_end = q0
+    v_end = v0
     ! Newton's rigid law takes no series compliance
     no_series = 0.0_wp
-    call adaptive(law_newton, n, k, m, p, h, g0, no_series, q, v, &
+    call adaptive(law_newton, n, k, m, p, h, g0, no_series, q_end, v_end, &
         0.0_wp, 0.0_wp, &
         e, dt, steps, stride, samples, threshold, n_moving, &
         energy_bound, max_cross, t_out, g_out, e_out, first, crossings, &
-        n_cross, gap_max, counts, status)
+        n_cross, gap_max, counts, status, stop_open=stop_open)
   end subroutine run_newton_adaptive
 
   !> Appendix E on a rigid stop (see chatter_event_driven's rigid_stop);

@@ -27,4 +27,8 @@ module chatter_status
   !> The run ended but broke its energy check (elastic: energy ratio
   !> more than 1e-6 from 1; damped: energy gained): unconverged.
   integer, parameter, public :: status_unconverged = 9
+  !> The adaptive stepper stopped, asked to (stop_open >= 0), at the end
+  !> of the step where the circuit had been open for stop_open: its
+  !> first discontinuity event; the figures cover the run up to there.
+  integer, parameter, public :: status_stopped_at_event = 10
 end module chatter_status

@@ -70,7 +70,7 @@ def seen_settings(monkeypatch):
     seen = []
 
     def fake_event(task):
-        design, _, settings, load = task
+        settings, load = task.settings, task.preload_lb
         seen.append(dict(settings))
         return load < 1.0
 

@@ -11,6 +11,7 @@ import pytest
 
 from contactsep.model import evaluate, thesis_design
 from contactsep.studies import conclusions, preload
+from contactsep.studies.preload_runs import PreloadRun
 from package_call import run
 
 N = 2
@@ -31,9 +32,10 @@ def test_the_preload_search_counts_only_openings_of_at_least_min_open():
     assert longest > 0.0 and free.circuit_open_s > 0.0
     settings = dict(damping="none", **window)
     above = dict(settings, min_open=float(np.nextafter(longest, 1.0)))
-    assert not preload._simulate_event((design, "hertz", above, 0.0))
+    assert not preload._simulate_event(
+        PreloadRun(design, "hertz", above, 0.0))
     assert preload._simulate_event(
-        (design, "hertz", dict(settings, min_open=longest), 0.0))
+        PreloadRun(design, "hertz", dict(settings, min_open=longest), 0.0))
 
 
 @pytest.mark.parametrize("name, field, damping", [

@@ -78,7 +78,7 @@ def test_a_study_table_around_known_simulations(monkeypatch):
     to x3 / 1000: the columns, eq. 23 from the model itself, the search
     to 1 %."""
     def event(task):
-        design, _, _, load = task
+        design, load = task.design, task.preload_lb
         return load < 2.0 * float(design.x3) / float(design.L3)
 
     def free(task):

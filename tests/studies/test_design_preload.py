@@ -42,7 +42,8 @@ def _planted(window=None):
         return below != inside
 
     def fake_event(task):
-        design, _, settings, load = task
+        design, load = task.design, task.preload_lb
+        settings = task.settings
         return has_event(design, settings, load)
 
     def fake_simulate(design, model, preload=0.0, **settings):
@@ -438,7 +439,7 @@ def _converging(monkeypatch, coefficient=40.0):
         return 0.25 * largest_preload(design) * (1.0 + coefficient / n**3)
 
     def fake_event(task):
-        design, _, settings, load = task
+        design, load = task.design, task.preload_lb
         return load < threshold(design)
 
     def fake_simulate(design, model, preload=0.0, **settings):

@@ -179,7 +179,7 @@ def test_the_chart_has_its_rows_and_columns(monkeypatch):
     seen = []
 
     def fake(task):
-        design, _, _, load = task
+        design, load = task.design, task.preload_lb
         seen.append((float(design.h2), float(design.ys), design.n_modes))
         return load < 0.3 * float(design.ys)
 

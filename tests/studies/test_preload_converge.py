@@ -29,7 +29,9 @@ class Thresholds:
 
     def events(self, tasks):
         out = []
-        for design, model, settings, load in tasks:
+        for task in tasks:
+            design, settings, load = task.design, task.settings, \
+                task.preload_lb
             n = int(design.n_modes)
             self.runs.append((n, settings["dt"]))
             rule = self.thresholds[n][float(design.h2)]

@@ -167,7 +167,7 @@ def test_the_band_below_runs_where_the_scan_saw_a_closed_preload(
     plain = chart._simulate_event
 
     def with_window(task):
-        load = task[3]
+        load = task.preload_lb
         return plain(task) and not closed[0] <= load <= closed[1]
     monkeypatch.setattr(chart, "_simulate_event", with_window)
     answer = contactsep.preload(design, workers=1, verify=False)

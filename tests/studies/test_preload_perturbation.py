@@ -41,7 +41,8 @@ def _planted(monkeypatch, gain):
             1.0 + gain * (design.ys / ys0 - 1.0))
 
     def fake_event(task):
-        design, _, settings, load = task
+        design, load = task.design, task.preload_lb
+        settings = task.settings
         seen.append((design.ys, settings.get("dt"), settings.get("t_end")))
         return load < threshold(design)
 

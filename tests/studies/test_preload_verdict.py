@@ -71,7 +71,8 @@ def _threshold_moving(monkeypatch, coefficient, cost_s=0.0):
         return settings.get("dt", 5e-8 * math.sqrt(8 / design.n_modes))
 
     def fake_event(task):
-        design, _, settings, load = task
+        design, load = task.design, task.preload_lb
+        settings = task.settings
         if cost_s:
             clock.now += (cost_s * design.n_modes / 8 * 5e-8
                           / step(design, settings))

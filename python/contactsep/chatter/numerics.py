@@ -336,6 +336,9 @@ def checked_run(run_at, dt: float, dt_source: str, damped: bool,
         # (the last sample may fall a few steps before the end)
         end = run.book["end"] if getattr(run, "book", None) else \
             run.energy[-1]
+        if math.isfinite(getattr(run, "stopped_at", math.nan)) and \
+                not getattr(run, "book", None):
+            end = run.energy_end     # a Newton run stopped at its event
         ratio = float(end / run.energy[0])
         converged = energy_converged(ratio, damped)
         if book and converged and run.book:

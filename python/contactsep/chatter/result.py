@@ -105,7 +105,8 @@ class ChatterResult:
     rigid_stop: object = None
     #: How the run ended (contactsep.chatter.status): 0 ok; 7 stopped at
     #: the energy bound (no circuit figures); 8 interrupted; 9 finished
-    #: but unconverged (its energy check failed).
+    #: but unconverged (its energy check failed); 10 stopped at its first
+    #: discontinuity event, as asked (see stopped_s).
     status: int = 0
     #: How dt and t_end_s were chosen: "design" (from the design,
     #: contactsep.chatter.numerics) or "given" (by the caller).
@@ -143,6 +144,16 @@ class ChatterResult:
     #: and ``v`` (upper contact's modes, separator's, lower contact's;
     #: not in the JSON).
     end_state: dict = field(default_factory=dict)
+    #: Status 10 (``simulate(..., stop_at_event=True)``): the instant (s)
+    #: its first discontinuity event was established (its start +
+    #: min_open_s); NaN for a run of the whole window.  The stepper ran
+    #: on to the end of the step that holds it, and every figure covers
+    #: the run up to there only: ``chatters`` and ``first_circuit_open_s``
+    #: are the whole window's, ``n_events`` (1 or more: "at least"),
+    #: ``events`` (the last cut there), the open intervals and times,
+    #: ``max_lower_gap_in``, ``first_lift_in``, ``energy_ratio`` and the
+    #: energy book (at the stop) are partial, the samples after it NaN.
+    stopped_s: float = math.nan
 
     def __repr__(self) -> str:
         first = ("never" if math.isnan(self.first_circuit_open_s)
@@ -271,3 +282,21 @@ class ChatterResult:
             for t, psi, a, b, w in zip(r.impact_t, r.impulse, r.v_before,
                                        r.v_after, r.energy_after)],
             "rest_intervals": r.rest_intervals.tolist()}
+
+
+def blown_up(run, model, design, dt, preload, damping, stepper,
+             settings) -> ChatterResult:
+    """A run its stepper stopped at the energy bound (status
+    ENERGY_BOUND): the samples it reached, and no circuit figures (NaN;
+    n_events -1, as a failed design's row in a chatter sweep)."""
+    nan, none = math.nan, np.empty((0, 2))
+    return ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
+        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
+        energy=run.energy, upper_open_intervals=none,
+        lower_open_intervals=none, circuit_open_intervals=none,
+        circuit_open_s=nan, first_circuit_open_s=nan, longest_open_s=nan,
+        events=none, n_events=-1, chatters=False, max_lower_gap_in=nan,
+        first_impact_s=nan, first_impulse_lb_s=nan, energy_ratio=nan,
+        preload_lb=float(preload), damping=damping, stepper=stepper,
+        work=run.work, status=run.status, **settings)

@@ -119,14 +119,24 @@ class Run:
     max_lower_gap_in: float
     first: tuple              # (time s, impulse lb s); NaN: none
     work: dict
-    #: chatter_status: OK, or ENERGY_BOUND (the stepper stopped: its
+    #: chatter_status: OK, ENERGY_BOUND (the stepper stopped: its
     #: energy passed ENERGY_MARGIN times the start's; the samples not
-    #: reached are NaN)
+    #: reached are NaN) or STOPPED_AT_EVENT (as asked, at the end of the
+    #: step where its first discontinuity event lasted min_open: the
+    #: samples after are NaN, the intervals end there)
     status: int = chatter_status.OK
     #: The Hertz family's energy book: final ``q``, ``v``, the
     #: ``dissipated`` energy and the contacts' ``stored`` one (in lb);
     #: empty for Newton.
     book: dict = field(default_factory=dict)
+    #: STOPPED_AT_EVENT: the instant (s) the stepper stopped; NaN: it ran
+    #: the whole window.
+    stopped_at: float = math.nan
+    #: Newton (adaptive): the energy of the final state (in lb), which
+    #: the energy check of a run stopped at its event takes (its last
+    #: sample may lie far before the stop; the Hertz family's is
+    #: ``book["end"]``); NaN where not kept.
+    energy_end: float = math.nan
 
 
 def _energy_bound(system, law=None) -> float:
@@ -163,7 +173,8 @@ def _checked(status, bound=None, energy=None, t=None):
     is ENERGY_BOUND whatever the stepper said."""
     if status == chatter_status.LCP_UNSOLVED:
         raise StepperError("the contact LCP had no solution")
-    if status not in (chatter_status.OK, chatter_status.ENERGY_BOUND):
+    if status not in (chatter_status.OK, chatter_status.ENERGY_BOUND,
+                      chatter_status.STOPPED_AT_EVENT):
         raise StepperError(f"the stepper stopped with status {status}")
     if energy is not None:
         reached = energy if t is None else energy[t >= 0.0]
@@ -181,9 +192,19 @@ def _first(first) -> tuple:
         else (float("nan"), float("nan"))
 
 
+def _stopped_at(crossings, n_cross) -> float:
+    """The instant a run stopped at its first event recorded in its
+    table (a crossing of code 0; chatter_adaptive_event), else NaN."""
+    stops = crossings[0, :n_cross][crossings[1, :n_cross] == 0.0]
+    return float(stops[-1]) if len(stops) else math.nan
+
+
 def _open_from_crossings(crossings, n_cross, g_start, threshold, t_end):
-    """Each contact's open intervals from a stepper's crossing table."""
+    """Each contact's open intervals from a stepper's crossing table, up
+    to t_end or to the stop a run stopped at its event recorded."""
     times, codes = crossings[0, :n_cross], crossings[1, :n_cross]
+    stop = _stopped_at(crossings, n_cross)
+    t_end = t_end if math.isnan(stop) else stop
     spans = []
     for contact in (1, 2):
         mine = np.abs(codes) == contact
@@ -208,10 +229,13 @@ def _with_room(call, work=0.0):
         room *= 16
 
 
-def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
+def hertz_adaptive(system, law, dt, steps, stride, threshold,
+                   stop_open=-1.0) -> Run:
     """The compiled adaptive Hertz stepper (fortran/chatter/
     adaptive*.f90): the fixed-step splitting where a contact may
-    close, the exact flow elsewhere, crossings on the exact flow."""
+    close, the exact flow elsewhere, crossings on the exact flow;
+    ``stop_open`` >= 0 stops it once the circuit has been open that
+    long (s; its first discontinuity event)."""
     s = system
     samples = steps // stride + 1
     gap0 = s.h @ s.q0 + s.g0
@@ -220,8 +244,8 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
      status) = _with_room(lambda room: _api().run_hertz_adaptive_book(
          s.m, s.p, s.h, s.g0, s.c, s.q0, s.v0, law.k, law.chi,
          law.yield_pressure, law.e_star, law.radius, int(law.linear), dt,
-         steps, stride, samples, threshold, s.n_upper, bound, room),
-        steps * s.m.size)
+         steps, stride, samples, threshold, s.n_upper, bound, room,
+         stop_open=stop_open), steps * s.m.size)
     status = _checked(status)
     t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
@@ -229,7 +253,8 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold) -> Run:
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
                first=_first(first), work=_work(counts), status=status,
-               book=_book(s, q, v, book))
+               book=_book(s, q, v, book),
+               stopped_at=_stopped_at(crossings, n_cross))
 
 
 def _book(system, q, v, book) -> dict:
@@ -239,25 +264,29 @@ def _book(system, q, v, book) -> dict:
             "stored": float(book[1]), "end": modal + float(book[1])}
 
 
-def newton_adaptive(system, e, dt, steps, stride, threshold) -> Run:
+def newton_adaptive(system, e, dt, steps, stride, threshold,
+                    stop_open=-1.0) -> Run:
     """The compiled adaptive Newton stepper (fortran/chatter/
     adaptive*.f90): exact flow over half steps, Newton's impulses at the
-    midpoints where a contact may close, the exact flow elsewhere."""
+    midpoints where a contact may close, the exact flow elsewhere;
+    ``stop_open`` as :func:`hertz_adaptive`'s."""
     s = system
     samples = steps // stride + 1
     gap0 = s.h @ s.q0 + s.g0
-    t, g, energy, first, crossings, n_cross, gap_max, counts, status = \
-        _with_room(lambda room: _api().run_newton_adaptive(
+    (t, g, energy, first, crossings, n_cross, gap_max, counts, q, v,
+     status) = _with_room(lambda room: _api().run_newton_adaptive(
             s.m, s.p, s.h, s.g0, s.q0, s.v0, e, dt, steps, stride, samples,
-            threshold, s.n_upper, _energy_bound(s), room),
-            steps * s.m.size)
+            threshold, s.n_upper, _energy_bound(s), room,
+            stop_open=stop_open), steps * s.m.size)
     status = _checked(status)
     t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
                                         steps * dt)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work=_work(counts), status=status)
+               first=_first(first), work=_work(counts), status=status,
+               stopped_at=_stopped_at(crossings, n_cross),
+               energy_end=0.5 * float(np.sum(s.m * (v**2 + (s.p * q)**2))))
 
 
 def _work(counts) -> dict:

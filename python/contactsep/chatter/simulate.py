@@ -17,6 +17,7 @@ Models (docs/chatter.md):
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import warnings
 
@@ -24,10 +25,11 @@ import numpy as np
 
 from contactsep import output
 from contactsep.chatter import circuit, laws, numerics, runners, system
+from contactsep.chatter import stop_event
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.laws import ChatterError
-from contactsep.chatter.result import ChatterResult
+from contactsep.chatter.result import ChatterResult, blown_up
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import ContactsepWarning
@@ -146,7 +148,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
              single_impulse=True, verify=False,
              static_correction=True, alpha=None, contact="hertz",
              yield_pressure=None, button="sphere",
-             button_length=None) -> ChatterResult:
+             button_length=None, stop_at_event=False) -> ChatterResult:
     """Simulate the contact system of a (single) design from the release.
 
     Parameters
@@ -229,6 +231,12 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         across the flat (a line contact, F = (pi/4) E* L delta).
     button_length : float, optional
         The cylinder's length L (in; default its diameter).
+    stop_at_event : bool
+        Stop at the first discontinuity event (status 10,
+        STOPPED_AT_EVENT, ``stopped_s``): for a run that only answers
+        "is there an event?"; the same answer as the whole window's
+        (:mod:`contactsep.chatter.stop_event`).  The compiled adaptive
+        stepper only; not with ``verify``.
 
     Returns
     -------
@@ -236,9 +244,10 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         The sampled gaps (in) and the summary: ``circuit_open_s``,
         ``first_circuit_open_s``, ``n_events``, ``chatters``,
         ``max_lower_gap_in``, ``first_impulse_lb_s``, ...; ``status`` 0,
-        7 (stopped at the energy bound: no circuit figures) or 9
+        7 (stopped at the energy bound: no circuit figures), 9
         (unconverged: its energy check failed, with a warning,
-        :class:`UnconvergedWarning`); ``dt_source`` and
+        :class:`UnconvergedWarning`) or 10 (stopped at its first event:
+        figures up to there, ChatterResult.stopped_s); ``dt_source`` and
         ``t_end_source`` say whether the step and window were chosen
         from the design or given.  Every newton or hertz run checks its
         energy (elastic within 1e-6 of the start, damped never gaining);
@@ -273,6 +282,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     if not isinstance(verify, (bool, np.bool_)):
         raise ChatterError(f"verify: found {verify!r}, expected True or "
                            f"False")
+    stop = stop_event.check(stop_at_event, model, stepper, backend, verify)
     single = _single_impulse(design) if single_impulse else {}
     t_end_source = "given" if t_end is not None else "design"
     if t_end is None:
@@ -351,25 +361,28 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
                                     or contact != "hertz")) or (
         model == "newton" and float(design.e) < 1.0)
 
-    def run_at(step):
+    def run_at(step, stop_open=stop_event.NEVER):
         steps = max(1, int(round(t_end / step)))
         return t_end / steps, _run(model, stepper, backend, stack, law,
                                    design, theta, t_end / steps, steps,
-                                   max(1, steps // samples), open_threshold)
+                                   max(1, steps // samples), open_threshold,
+                                   stop_open)
     refine = None if law is None else (
         lambda step: numerics.design_step(parts, law.k, preload,
                                           largest=step,
                                           linear=law.linear).dt)
-    checked = numerics.checked_run(
+    checked = (functools.partial(stop_event.checked_run, min_open=min_open)
+               if stop else numerics.checked_run)(
         run_at, dt, dt_source, damped, least, refine,
         book=model == "hertz" and (damping == "hunt-crossley"
                                    or contact == "thornton"))
     run, ratio, halvings = checked.run, checked.ratio, checked.halvings
-    if run.status != chatter_status.OK:
-        return _blown_up(run, model, design, checked.dt, preload, damping,
-                         stepper if backend == "compiled" else "fixed",
-                         dict(settings, dt_source=dt_source))
-    status = chatter_status.OK if checked.converged \
+    if run.status not in (chatter_status.OK,
+                          chatter_status.STOPPED_AT_EVENT):
+        return blown_up(run, model, design, checked.dt, preload, damping,
+                        stepper if backend == "compiled" else "fixed",
+                        dict(settings, dt_source=dt_source))
+    status = run.status if checked.converged \
         else chatter_status.UNCONVERGED
     if not checked.converged:
         warnings.warn(checked.message(), UnconvergedWarning, stacklevel=2)
@@ -387,6 +400,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         stepper=stepper if backend == "compiled" else "fixed",
         work=run.work, status=status, dt_source=dt_source,
         energy_book=laws.energy_book(run, stack, parts),
+        stopped_s=stop_event.stopped_s(status, found["events"], min_open),
         end_state={"q": run.book["q"], "v": run.book["v"]}
         if run.book else {},
         numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
@@ -410,19 +424,21 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
 
 
 def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
-         stride, open_threshold) -> runners.Run:
-    """One run of the chosen stepper at ``dt`` over ``steps`` steps."""
+         stride, open_threshold, stop_open) -> runners.Run:
+    """One run of the chosen stepper at ``dt`` over ``steps`` steps
+    (the adaptive one stopped at its first event if ``stop_open`` >= 0)."""
     modes = stack.m.size
     if model == "newton" and stepper == "adaptive" and backend == "compiled":
         run, args = runners.newton_adaptive, (float(design.e), dt, steps,
-                                              stride, open_threshold)
+                                              stride, open_threshold,
+                                              stop_open)
     elif model == "newton":
         run = runners.moreau_jean if backend == "compiled" \
             else runners.moreau_jean_numpy
         args = (float(design.e), dt, theta, steps, stride, open_threshold)
     elif stepper == "adaptive" and backend == "compiled":
         run, args = runners.hertz_adaptive, (law, dt, steps, stride,
-                                             open_threshold)
+                                             open_threshold, stop_open)
     else:
         run, args = runners.hertz_fixed, (law, dt, steps, stride,
                                           open_threshold, backend)
@@ -456,24 +472,6 @@ def _verified(result, design, model, damping, settings) -> ChatterResult:
     changes["verify_n_modes"] = n
     changes["verify_status"] = check.status
     return dataclasses.replace(result, changes=changes)
-
-
-def _blown_up(run, model, design, dt, preload, damping, stepper,
-              settings) -> ChatterResult:
-    """A run its stepper stopped at the energy bound (status
-    ENERGY_BOUND): the samples it reached, and no circuit figures (NaN;
-    n_events -1, as a failed design's row in a chatter sweep)."""
-    nan, none = math.nan, np.empty((0, 2))
-    return ChatterResult(
-        model=model, n_modes=int(design.n_modes), dt=dt, t=run.t,
-        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
-        energy=run.energy, upper_open_intervals=none,
-        lower_open_intervals=none, circuit_open_intervals=none,
-        circuit_open_s=nan, first_circuit_open_s=nan, longest_open_s=nan,
-        events=none, n_events=-1, chatters=False, max_lower_gap_in=nan,
-        first_impact_s=nan, first_impulse_lb_s=nan, energy_ratio=nan,
-        preload_lb=float(preload), damping=damping, stepper=stepper,
-        work=run.work, status=run.status, **settings)
 
 
 def _appendix_e(design, backend, settings) -> ChatterResult:

@@ -25,3 +25,7 @@ INTERRUPTED = 8
 #: The run ended but broke its energy check (elastic: energy ratio more
 #: than 1e-6 from 1; damped: energy gained): unconverged.
 UNCONVERGED = 9
+#: The adaptive stepper stopped at its first discontinuity event, as
+#: asked (``simulate(..., stop_at_event=True)``): the run's figures cover
+#: it up to there only (ChatterResult.stopped_s).
+STOPPED_AT_EVENT = 10

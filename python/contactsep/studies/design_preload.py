@@ -396,8 +396,8 @@ def _perturbed(design, model, settings, sims, ceiling, perturbation,
     designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
                for sign in (1.0, -1.0)]
     start = answer if math.isfinite(answer) else None
-    return search(2, lambda tasks: sims.events(
-        [(designs[row], model, settings, load) for row, load in tasks]),
+    return search(2, lambda tasks: sims.search_events(
+        designs, model, settings, tasks),
         ceilings=[ceiling] * 2, starts=[start] * 2, band_below=band_below,
         ceiling_first=True)
 

@@ -28,6 +28,7 @@ from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload_converge import chart_columns, largest_check
+from contactsep.studies.preload_runs import PreloadRun
 from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
     BAND_HIGH,
     BAND_LOW,
@@ -65,27 +66,32 @@ FIXED = {"h2": "its rows, d = 0.125-0.75 in",
 
 
 def _preload_of(task) -> float:
-    """A task's preload (lb; 0 for a task without one): the cost order
-    of a batch (pool.map_longest_first)."""
-    value = task[3] if isinstance(task, tuple) and len(task) > 3 else 0.0
-    return float(value) if isinstance(value, (int, float)) else 0.0
+    """A task's cost, the order of a batch (pool.map_longest_first): a
+    :class:`~contactsep.studies.preload_runs.PreloadRun`'s preload (lb),
+    0 for any other task (a study's runs without one)."""
+    return task.cost if isinstance(task, PreloadRun) else 0.0
 
 
 def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
-    simulation; runs in a worker)."""
+    simulation; runs in a worker): ``task`` a
+    :class:`~contactsep.studies.preload_runs.PreloadRun`."""
     from contactsep.chatter.simulate import (
         CoarseStepWarning,
         UnconvergedWarning,
     )
-    design, model, settings, preload = task
+    design, model, settings = task.design, task.model, task.settings
+    preload = task.preload_lb
     with warnings.catch_warnings():
         # one line per run from every worker would bury the answer: the
         # chart says once what step it runs at (preload_chart)
         warnings.simplefilter("ignore", CoarseStepWarning)
         warnings.simplefilter("ignore", UnconvergedWarning)
         result = simulate(design, model=model, preload=preload, samples=1,
-                          single_impulse=False, **settings)
+                          single_impulse=False,
+                          stop_at_event=settings.get("stepper") != "fixed"
+                          and settings.get("backend") != "numpy",
+                          **settings)
     return result.n_events > 0
 
 
@@ -198,9 +204,26 @@ class Simulations:
         return out
 
     def events(self, tasks: list) -> list:
-        """Whether each (design, model, settings, preload) task has a
+        """Whether each of ``tasks``
+        (:class:`~contactsep.studies.preload_runs.PreloadRun`) has a
         discontinuity event."""
         return self.map(_simulate_event, tasks)
+
+    def search_events(self, designs, model: str, settings: dict,
+                      tasks) -> list:
+        """Whether each run of a search's batch (:func:`search_runs`)
+        has a discontinuity event."""
+        return self.events(search_runs(designs, model, settings, tasks))
+
+
+def search_runs(designs, model: str, settings: dict, tasks) -> list:
+    """The runs of a batch of :func:`search` (its ``has_event``'s
+    ``tasks``): each ``(row, preload)`` as a
+    :class:`~contactsep.studies.preload_runs.PreloadRun` of
+    ``designs[row]`` simulated by ``model`` with ``settings`` at
+    ``preload`` lb."""
+    return [PreloadRun(designs[row], model, settings, preload)
+            for row, preload in tasks]
 
 
 def min_preloads(designs, model: str = "hertz", settings=None,
@@ -252,8 +275,7 @@ def min_preloads(designs, model: str = "hertz", settings=None,
     check_workers(workers)
 
     def has_event(tasks, sims):
-        return sims.events([(designs[row], model, settings, preload)
-                            for row, preload in tasks])
+        return sims.events(search_runs(designs, model, settings, tasks))
 
     ceilings = [largest_preload(design) for design in designs]
     how = dict(ceilings=ceilings, band_below=band_below,

@@ -37,6 +37,7 @@ import numpy as np
 
 from contactsep.chatter.simulate import smallest_dt
 from contactsep.errors import InputError
+from contactsep.studies.preload_runs import PreloadRun
 
 #: How close the threshold at 2N, dt/2 must lie to a converged answer.
 MARGIN = 0.02
@@ -144,19 +145,18 @@ def brackets_hold(designs, answers, model, settings, sims) -> list[bool]:
     step the designs and settings carry; :func:`window_answer`) on the
     preloads MARGIN above and below it, and, where the one below is
     closed, every MARGIN / 8 between."""
-    tasks = []
-    for design, answer in zip(designs, answers):
-        tasks += [(design, model, settings, answer * (1.0 - MARGIN)),
-                  (design, model, settings, answer * (1.0 + MARGIN))]
+    tasks = [PreloadRun(design, model, settings, answer * factor)
+             for design, answer in zip(designs, answers)
+             for factor in (1.0 - MARGIN, 1.0 + MARGIN)]
     found = sims.events(tasks)
-    tested = [[(t[3], e) for t, e in zip(tasks[2 * i:2 * i + 2],
-                                         found[2 * i:2 * i + 2])]
+    tested = [[(t.preload_lb, e) for t, e in zip(tasks[2 * i:2 * i + 2],
+                                                 found[2 * i:2 * i + 2])]
               for i in range(len(designs))]
     closed = [i for i in range(len(designs)) if not found[2 * i]]
-    between = [(designs[i], model, settings, answers[i] * f)
+    between = [PreloadRun(designs[i], model, settings, answers[i] * f)
                for i in closed for f in BETWEEN]
     for j, (task, event) in enumerate(zip(between, sims.events(between))):
-        tested[closed[j // len(BETWEEN)]].append((task[3], event))
+        tested[closed[j // len(BETWEEN)]].append((task.preload_lb, event))
     return [window_answer(a, t) is not None
             for a, t in zip(answers, tested)]
 

@@ -50,6 +50,7 @@ from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies import fields as design_fields
 from contactsep.studies.chatter_sweep import simulate_design
 from contactsep.studies.preload_converge import MARGIN
+from contactsep.studies.preload_runs import SampleRun
 from contactsep.studies.preload_search import fine_band, search
 from contactsep.studies.robust_rule import (
     FIRST_BLOCK,
@@ -206,9 +207,12 @@ def _plain(value):
 
 
 def _sample_run(task) -> tuple:
-    """(n_events, status) of one sample at one preload (in a worker)."""
-    fields, model, settings = task
-    row = simulate_design(fields, model, settings)
+    """(n_events, status) of one sample at one preload (in a worker):
+    ``task`` a :class:`~contactsep.studies.preload_runs.SampleRun`."""
+    fields, model, settings = task.design, task.model, task.sample_settings
+    row = simulate_design(fields, model, {
+        **settings, "stop_at_event": settings.get("stepper") != "fixed"
+        and settings.get("backend") != "numpy"})
     return row[_EVENTS], row[_STATUS]
 
 
@@ -236,7 +240,7 @@ def sample_counts(samples, model: str, preloads, simulations) -> list:
     batch on ``simulations``: the samples that ran, that had a
     discontinuity event, that the simulation refused or could not
     finish."""
-    runs = [(fields, model, {**own, "preload": preload})
+    runs = [SampleRun(fields, model, own, preload)
             for preload in preloads for fields, own in samples]
     results = simulations.map(_sample_run, runs)
     counts = []

@@ -26,6 +26,7 @@ import math
 
 from contactsep.chatter.simulate import largest_preload
 from contactsep.studies.preload_converge import MARGIN, window_answer
+from contactsep.studies.preload_runs import PreloadRun
 from contactsep.studies.preload_search import (
     PreloadSearch,
     fine_grid,
@@ -75,7 +76,8 @@ def search_design(design, model, settings, sims, ceiling, start=None,
     def has_event(tasks):
         missing = [load for _, load in tasks if load not in known]
         found = dict(zip(missing, sims.events(
-            [(design, model, settings, load) for load in missing])))
+            [PreloadRun(design, model, settings, load)
+             for load in missing])))
         return [known[load] if load in known else found[load]
                 for _, load in tasks]
 
@@ -91,7 +93,7 @@ def verify_design(finer, model, settings, sims, answer, band_below):
     the check 2 % either side of ``answer``): :func:`verify_search`."""
     ceiling = largest_preload(finer)
     return verify_search(
-        lambda loads: sims.events([(finer, model, settings, load)
+        lambda loads: sims.events([PreloadRun(finer, model, settings, load)
                                    for load in loads]),
         answer, ceiling,
         lambda known: search_design(finer, model, settings, sims,

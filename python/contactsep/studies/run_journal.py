@@ -12,9 +12,12 @@ a directory (``.NAME.resume/`` beside the --csv file), holds
 and the digest of the simulation code,
 :mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per
 finished simulation: a digest of its task (the function, the design, the
-model, every setting, the preload) and its result.  A line is written
-whole as its simulation ends, so a SIGKILL at any moment can cut only
-the last line, which is then dropped.  Rerun on the same journal, the
+model, every setting, the preload) and its result; a named task
+(:mod:`~contactsep.studies.preload_runs`) is digested as the plain tuple
+it replaced, and the code digest reads the simulation layers only, so a
+journal kept before the tasks were named is still answered from.  A
+line is written whole as its simulation ends, so a SIGKILL at any moment
+can cut only the last line, which is then dropped.  Rerun on the same journal, the
 search takes each result the journal holds instead of simulating it, and
 its answer, notes and CSV are those of an uninterrupted run.  A journal
 made with other inputs is refused in one line; a second command on the
@@ -69,7 +72,11 @@ def canonical(value):
 
 def task_key(function, task) -> str:
     """The digest that names one simulation: ``function`` (by module and
-    name) applied to ``task``."""
+    name) applied to ``task``; a task with a ``key_tuple()`` (a
+    :class:`~contactsep.studies.preload_runs.PreloadRun`) by that tuple,
+    so that its key is the one its plain tuple had."""
+    if callable(getattr(task, "key_tuple", None)):
+        task = task.key_tuple()
     text = json.dumps([f"{function.__module__}.{function.__qualname__}",
                        canonical(task)], sort_keys=True,
                       separators=(",", ":"), allow_nan=True)

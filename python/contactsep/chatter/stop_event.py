@@ -1,0 +1,82 @@
+"""``simulate(..., stop_at_event=True)``: a run that only has to answer
+"is there a discontinuity event?" (the preload searches' runs) stops at
+its first one.
+
+The compiled adaptive stepper watches the circuit as it goes and
+returns at the end of the step where an opening has lasted
+``min_open`` (fortran/chatter/adaptive_event.f90; status
+STOPPED_AT_EVENT).  Its trajectory up to there is the full run's, bit
+for bit (the watch only reads the state), so the answer is the full
+run's: decided again here, from the returned crossings, by
+:func:`contactsep.chatter.circuit.discontinuity`, the rule every run
+uses.  A stopped run whose energy check fails, or that this rule does
+not confirm, is run again over the whole window.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from contactsep.chatter import circuit, numerics
+from contactsep.chatter import status as chatter_status
+from contactsep.chatter.laws import ChatterError
+
+#: The stepper's argument for "never stop".
+NEVER = -1.0
+
+
+def check(stop_at_event, model: str, stepper: str, backend: str,
+          verify) -> bool:
+    """Whether the run stops at its first event; a request the stop does
+    not cover is refused in one line (ChatterError)."""
+    if not isinstance(stop_at_event, (bool, np.bool_)):
+        raise ChatterError(f"stop_at_event: found {stop_at_event!r}, "
+                           f"expected True or False")
+    if not stop_at_event:
+        return False
+    if model == "appE":
+        raise ChatterError("stop_at_event: found True with model 'appE', "
+                           "expected newton or hertz (appE's lower contact "
+                           "never moves: its circuit never opens)")
+    if stepper != "adaptive" or backend != "compiled":
+        raise ChatterError(f"stop_at_event: found True with stepper "
+                           f"{stepper!r} and backend {backend!r}, expected "
+                           f"the compiled adaptive stepper (the one that "
+                           f"watches the circuit as it goes)")
+    if verify:
+        raise ChatterError("stop_at_event: found True with verify=True, "
+                           "expected one of them (verify compares figures "
+                           "of the whole window)")
+    return True
+
+
+def checked_run(run_at, dt: float, dt_source: str, *args,
+                min_open: float, **keywords) -> numerics.CheckedRun:
+    """:func:`numerics.checked_run` of ``run_at(step, stop_open)`` that
+    stops at the first event: the run at ``dt`` once, kept if its energy
+    check passes and it either ran the whole window (it met no event: the
+    full run itself) or stopped at an event that
+    :func:`circuit.discontinuity` confirms; else the full run's
+    ``checked_run`` (its halvings included)."""
+    stopped = numerics.checked_run(lambda step: run_at(step, min_open),
+                                   dt, "given", *args, **keywords)
+    run = stopped.run
+    if stopped.converged and (
+            run.status == chatter_status.OK or (
+                run.status == chatter_status.STOPPED_AT_EVENT
+                and circuit.discontinuity(run.upper_open, run.lower_open,
+                                          min_open)["chatters"])):
+        return dataclasses.replace(stopped, dt_source=dt_source)
+    return numerics.checked_run(lambda step: run_at(step, NEVER), dt,
+                                dt_source, *args, **keywords)
+
+
+def stopped_s(status: int, events, min_open: float) -> float:
+    """The instant (s) a stopped run's first event was established (its
+    start + min_open); NaN for a run of the whole window."""
+    if status != chatter_status.STOPPED_AT_EVENT:
+        return math.nan
+    return float(events[0, 0]) + float(min_open)
