@@ -12,6 +12,8 @@ from contactsep.restored.dataset import DataSet
 
 # the preload command's planted physics, a fixture for every test module
 from planted_preload import planted_preload  # noqa: E402, F401
+# a Dask deployment of a scheduler and two workers, one a test module
+from dask_deployment import deployment  # noqa: F401
 
 ROOT = Path(__file__).resolve().parent.parent
 DECK_DIR = ROOT / "data" / "decks"

@@ -11,26 +11,20 @@ nothing lost."""
 
 from __future__ import annotations
 
-import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
+from dask_deployment import Deployment
+from design_family import FAMILY
 
 import contactsep
 from contactsep.errors import InputError
-from design_family import FAMILY
 
 distributed = pytest.importorskip("distributed")
-
-#: The dask command of this environment (its workers import this
-#: checkout's contactsep).
-DASK = shutil.which("dask", path=os.path.dirname(sys.executable))
 
 #: A real design whose robust search is short (about 100 simulations of
 #: a few ms of physics): the light beryllium-copper relay at N = 4, no
@@ -42,61 +36,6 @@ SETTINGS = {"dt": 1e-8, "t_end": 0.005, "static_correction": False}
 #: three samples can show it and the robust search runs.
 ROBUST = {"tolerance": ["ys=uniform(0.029,0.031)"], "samples": 3,
           "p_target": 0.6, "converge": False}
-
-
-def _start(*args):
-    return subprocess.Popen([DASK, *args], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL,
-                            start_new_session=True)
-
-
-def _killpg(process) -> None:
-    try:
-        os.killpg(process.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-    process.wait(timeout=30)
-
-
-class Deployment:
-    """A scheduler and ``workers`` single-threaded workers sharing the
-    scheduler file ``path``."""
-
-    def __init__(self, path: Path, workers: int = 2) -> None:
-        self.path = path
-        self.scheduler = _start("scheduler", "--scheduler-file", str(path),
-                                "--host", "127.0.0.1", "--port", "0",
-                                "--no-dashboard")
-        self.workers = []
-        deadline = time.monotonic() + 60
-        while not path.exists():
-            assert time.monotonic() < deadline, "no scheduler file"
-            assert self.scheduler.poll() is None, "the scheduler died"
-            time.sleep(0.2)
-        for _ in range(workers):
-            self.workers.append(_start(
-                "worker", "--scheduler-file", str(path), "--nthreads", "1",
-                "--no-dashboard", "--host", "127.0.0.1"))
-        with distributed.Client(scheduler_file=str(path),
-                                timeout=60) as client:
-            client.wait_for_workers(workers, timeout=60)
-
-    @property
-    def address(self) -> str:
-        return json.loads(self.path.read_text())["address"]
-
-    def close(self) -> None:
-        for process in (*self.workers, self.scheduler):
-            _killpg(process)
-
-
-@pytest.fixture(scope="module")
-def deployment(tmp_path_factory):
-    if DASK is None:
-        pytest.skip("no dask command beside this Python")
-    cluster = Deployment(tmp_path_factory.mktemp("dask") / "scheduler.json")
-    yield cluster
-    cluster.close()
 
 
 def _robust(workers, journal=None):
@@ -292,3 +231,33 @@ def test_a_worker_lost_mid_search_loses_nothing(tmp_path):
     assert len(done) > 20 and left == 1
     assert remote.to_json_dict() == local.to_json_dict()
     assert remote.csv_text() == local.csv_text()
+
+
+#: The tasks _recorded ran, in the order they ran (an in-process worker).
+_RAN = []
+
+
+def _recorded(task):
+    _RAN.append(task)
+    return task.upper()
+
+
+def test_a_batch_runs_costliest_first_and_returns_in_the_tasks_order():
+    """One single-threaded worker, in this process, runs the batch in
+    the ``order`` given (the costliest first), whatever the tasks' own
+    order; the results come back in the tasks' order, each handed to
+    ``finished`` once."""
+    from contactsep.studies.dask_map import run_tasks
+    tasks = [f"task {i}" for i in range(12)]
+    order = [5, 11, 0, 7, 3, 9, 1, 10, 2, 8, 4, 6]
+    seen, counted = {}, []
+    _RAN.clear()
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1,
+                                  processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        out = run_tasks(client, _recorded, tasks, order=order,
+                        finished=seen.__setitem__, progress=counted.append)
+    assert _RAN == [tasks[i] for i in order]
+    assert out == [task.upper() for task in tasks]
+    assert seen == dict(enumerate(out)) and counted == [1] * len(tasks)

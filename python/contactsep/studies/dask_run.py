@@ -291,6 +291,26 @@ def gather_finished(client, futures) -> dict:
     return {f.key: value for f, value in zip(ready, values)}
 
 
+def scheduler_where(client) -> str:
+    """" ADDRESS" of the client's scheduler, for messages ("" unknown)."""
+    try:
+        return f" {client.scheduler.address}"
+    except Exception:        # noqa: BLE001 - only a name in a message
+        return ""
+
+
+def scheduler_lost(where: str, done_designs: int,
+                   kept: str | None = None) -> SchedulerLost:
+    """The one line of a scheduler lost at ``where``
+    (:func:`scheduler_where`); ``kept``: what became of the work
+    finished before it (default: the ``done_designs`` designs)."""
+    if kept is None:
+        kept = (f"the {done_designs} designs finished before it are kept "
+                f"(rerun with --resume to continue)")
+    return SchedulerLost(f"the Dask scheduler{where} was lost (its "
+                         f"connection closed); {kept}")
+
+
 def wait(client, future, stop, done_designs: int, kept: str | None = None):
     """A chunk's result, listening for a stop every quarter second and
     for the scheduler's loss (SchedulerLost: at once when Dask cancels
@@ -299,15 +319,8 @@ def wait(client, future, stop, done_designs: int, kept: str | None = None):
     ``done_designs`` designs finished before it are kept ...").  The
     wait is on a done-callback, not ``Future.result(timeout=...)``
     (which distributed 2026.8 can answer with an UnboundLocalError)."""
-    try:
-        where = f" {client.scheduler.address}"
-    except Exception:        # noqa: BLE001 - only a name in a message
-        where = ""
-    if kept is None:
-        kept = (f"the {done_designs} designs finished before it are kept "
-                f"(rerun with --resume to continue)")
-    lost = SchedulerLost(f"the Dask scheduler{where} was lost (its "
-                         f"connection closed); {kept}")
+    where = scheduler_where(client)
+    lost = scheduler_lost(where, done_designs, kept)
     ready = threading.Event()
     future.add_done_callback(lambda _: ready.set())
     lost_since = None
