@@ -11,7 +11,7 @@ import pytest
 from contactsep.cli import main
 from contactsep.model import evaluate
 from contactsep.studies import restitution
-from contactsep.studies.study import thesis_design
+from contactsep.studies.study import thesis_study_design
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +33,7 @@ def test_the_impact_velocity_is_the_release_flight_s(study):
     # same first impact (abs(dy1/dt) at t1) by its own search
     for d, ys, speed in zip(study["d_in"], study["ys_in"],
                             study["impact_velocity_in_s"]):
-        ev = evaluate(thesis_design(d=d, ys=ys, n_modes=4))
+        ev = evaluate(thesis_study_design(d=d, ys=ys, n_modes=4))
         assert speed == pytest.approx(float(ev.v_impact), rel=1e-6)
     on_one = np.isclose(study["d_in"], 0.25)
     ratio = study["impact_velocity_in_s"][on_one] / study["ys_in"][on_one]
@@ -43,7 +43,7 @@ def test_the_impact_velocity_is_the_release_flight_s(study):
 def test_read_early_the_first_mode_still_approaches():
     # 1 ms after the impact the upper contact's first mode has not
     # turned (its sub-impacts take several ms): e_apparent < 0
-    design = thesis_design(d=0.25, ys=0.5, n_modes=4)
+    design = thesis_study_design(d=0.25, ys=0.5, n_modes=4)
     for law in restitution.LAWS:
         _, early = restitution.e_apparent(design, law, 1e-3)
         _, late = restitution.e_apparent(design, law, 0.02)
@@ -56,7 +56,7 @@ def test_the_first_mode_s_energy_is_within_the_upper_member_s():
     # upper contact's modes
     from contactsep.chatter import simulate
     from contactsep.chatter.system import members
-    design = thesis_design(d=0.25, ys=0.5, n_modes=8)
+    design = thesis_study_design(d=0.25, ys=0.5, n_modes=8)
     upper = members(design)[0]
     first = 0.5 * upper.mass * (upper.p[0] * upper.q0[0])**2
     t1, _ = restitution.first_impact(design)
@@ -72,7 +72,7 @@ def test_the_first_mode_s_energy_is_within_the_upper_member_s():
 @pytest.mark.slow
 def test_e_apparent_converges_in_n():
     # docs/chatter.md's convergence rows: N = 16 and 32 within 0.02
-    design16 = thesis_design(d=0.25, ys=0.5, n_modes=16)
+    design16 = thesis_study_design(d=0.25, ys=0.5, n_modes=16)
     design32 = design16.replace(n_modes=32)
     for law in restitution.LAWS:
         _, coarse = restitution.e_apparent(design16, law)

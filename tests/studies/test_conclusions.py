@@ -11,9 +11,10 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate
-# the thesis studies' design: eq. 23's lower response as printed
-from contactsep.studies.study import thesis_design
 from contactsep.studies import conclusions, preload
+
+# the thesis studies' design: eq. 23's lower response as printed
+from contactsep.studies.study import thesis_study_design
 
 #: The design each study's rows change, and how.
 ROWS = {
@@ -37,7 +38,7 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
     damping = "flores" if name == "conclusion3" else "none"
     values = study[FIELD_COLUMNS[name]]
     for i, value in enumerate(values):
-        design = thesis_design(n_modes=n, **ROWS[name](float(value)))
+        design = thesis_study_design(n_modes=n, **ROWS[name](float(value)))
         assert evaluate(design).y3_max == pytest.approx(
             study["y3_max_in"][i], rel=1e-12)
         free = simulate(design, model="hertz", damping=damping, samples=1,
@@ -97,7 +98,7 @@ def test_a_study_table_around_known_simulations(monkeypatch):
     ratio = study["min_preload_lb"] / (2.0 * r)
     assert np.all((ratio >= 1.0) & (ratio <= 1.01))
     for x3, y3 in zip(study["x3_in"], study["y3_max_in"]):
-        assert evaluate(thesis_design(n_modes=4, x3=float(x3))).y3_max \
+        assert evaluate(thesis_study_design(n_modes=4, x3=float(x3))).y3_max \
             == pytest.approx(y3, rel=1e-12)
 
 

@@ -13,7 +13,7 @@ import pytest
 
 from contactsep.studies import preload_converge as pc
 from contactsep.studies.preload import min_preloads
-from contactsep.studies.study import thesis_design
+from contactsep.studies.study import thesis_study_design
 
 DT = 5e-8
 
@@ -43,7 +43,7 @@ ROWS = (0.25, 0.5)
 
 
 def designs_at(n, rows):
-    return [thesis_design(d=ROWS[i], n_modes=n) for i in rows]
+    return [thesis_study_design(d=ROWS[i], n_modes=n) for i in rows]
 
 
 def converge(thresholds, answers, max_modes=pc.MAX_MODES, t_end=None):

@@ -26,7 +26,7 @@ from contactsep.model import evaluate
 from contactsep.studies import runner, sweep
 
 # the thesis studies' design: eq. 23's lower response as printed
-from contactsep.studies.study import thesis_design
+from contactsep.studies.study import thesis_study_design
 
 
 def test_fig5_grid_and_trends():
@@ -72,7 +72,7 @@ def test_fig7_mode_two_content():
         return (_cantilever_mode(k2, xi) / _cantilever_mode(k1, xi))**2 \
             * (k1 / k2)**2
 
-    ev = evaluate(thesis_design(x3=np.array([0.98, 0.78]) * 19))
+    ev = evaluate(thesis_study_design(x3=np.array([0.98, 0.78]) * 19))
     for row, xi in enumerate((0.98, 0.78)):
         want = mode_ratio(k1, k2, xi)
         # the published k_jL carry 8 decimals (5e-9): near mode 2's node
@@ -181,7 +181,7 @@ def test_sweep_probability_is_a_direct_count():
     t = out.table()
     assert summary["n"] == spec().size == len(t["status"]) == 200
     assert summary["n_failed"] == 0
-    ev = evaluate(thesis_design(d=t["d_in"], ys=t["ys_in"], e=t["e"]))
+    ev = evaluate(thesis_study_design(d=t["d_in"], ys=t["ys_in"], e=t["e"]))
     y = np.array([reference.extremes(c, p, 0.06)[0]
                   for c, p in zip(ev.c3, ev.p3)])
     scale = np.sum(np.abs(ev.c3), axis=1)

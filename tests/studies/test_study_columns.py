@@ -15,8 +15,9 @@ import pytest
 
 from contactsep import studies
 from contactsep.model import evaluate
+
 # the thesis studies' design: eq. 23's lower response as printed
-from contactsep.studies.study import thesis_design
+from contactsep.studies.study import thesis_study_design
 
 mpmath = pytest.importorskip("mpmath")
 
@@ -141,8 +142,8 @@ def test_fig6_columns():
     np.testing.assert_array_equal(s["r"], np.concatenate([r, r]))
     np.testing.assert_allclose(s["L3_in"], np.concatenate(
         [np.full(r.size, L), L / r]), rtol=1e-15)
-    one = thesis_design(x3=r * L)
-    two = thesis_design(L3=L / r, x3=np.full(r.size, L))
+    one = thesis_study_design(x3=r * L)
+    two = thesis_study_design(L3=L / r, x3=np.full(r.size, L))
     want = np.concatenate([model_extremes(one)[:, 0],
                            model_extremes(two)[:, 0]])
     np.testing.assert_allclose(s["y3_max_in"], want, rtol=1e-12)
@@ -157,7 +158,7 @@ def test_fig7_columns():
     np.testing.assert_array_equal(s["t_s"], np.tile(t, 2))
     np.testing.assert_array_equal(s["r"], np.repeat([0.98, 0.78], t.size))
     for k, ratio in enumerate((0.98, 0.78)):
-        v0 = float(evaluate(thesis_design(x3=ratio * L)).v0)
+        v0 = float(evaluate(thesis_study_design(x3=ratio * L)).v0)
         kl, x3 = modes("clamped-free", 4, ratio)
         p = kl**2 * constant(H) / L**2
         c = (v0 / L) * x3**2 / p
@@ -174,7 +175,7 @@ def test_fig8_columns():
     for rr, gamma2 in zip(s["R"], s["gamma2_lb_in3"]):
         assert chain(4, 0.25, xi3=0.98, gamma2=gamma2)["r"] == \
             pytest.approx(rr, rel=1e-10)
-    want = model_extremes(thesis_design(gamma2=s["gamma2_lb_in3"],
+    want = model_extremes(thesis_study_design(gamma2=s["gamma2_lb_in3"],
                                         x1=0.98 * L, x3=0.98 * L))[:, 0]
     np.testing.assert_allclose(s["y3_max_in"], want, rtol=1e-12)
     law = want[0] * (1 + 2 * s["R"][0]) / (1 + 2 * s["R"])

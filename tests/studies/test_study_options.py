@@ -15,8 +15,9 @@ from contactsep import studies
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.model import evaluate
+
 # the thesis studies' design: eq. 23's lower response as printed
-from contactsep.studies.study import thesis_design
+from contactsep.studies.study import thesis_study_design
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -40,7 +41,7 @@ def test_fig5_draws_the_one_curve_it_is_given():
 def test_fig6_honours_the_thickness():
     s = studies.fig6(h2=0.5)
     at_tip = s["y3_max_in"][(s["curve"] == "I") & (s["r"] == 1.0)]
-    assert at_tip[0] == float(evaluate(thesis_design(d=0.5)).y3_max)
+    assert at_tip[0] == float(evaluate(thesis_study_design(d=0.5)).y3_max)
 
 
 @pytest.mark.parametrize("name, argv, message", [

@@ -23,7 +23,7 @@ from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, thesis_design
+from contactsep.studies.study import Study, thesis_study_design
 
 #: The shapes and radii (in) of the study.
 SHAPES = ("sphere", "cylinder")
@@ -52,7 +52,7 @@ def buttons(n_modes: int = MODES, radii=RADII, shapes=SHAPES, *,
         if shape not in SHAPES:
             raise ValueError(f"shapes: found {shape!r}, expected "
                              f"{', '.join(SHAPES)}")
-    design = thesis_design(n_modes=n_modes)
+    design = thesis_study_design(n_modes=n_modes)
     rows = [(shape, float(radius)) for shape in shapes for radius in radii]
     settings = [{"button": shape, "button_radius": radius,
                  "t_end": LISTING_TAU_S} for shape, radius in rows]

@@ -7,7 +7,7 @@ import numpy as np
 
 from contactsep.chatter.simulate import DEFAULT_DT, simulate
 from contactsep.constants import LISTING_TAU_S
-from contactsep.studies.study import Study, thesis_design
+from contactsep.studies.study import Study, thesis_study_design
 
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
 MODES = (4, 16, 32)
@@ -26,7 +26,7 @@ def chatter_table(thicknesses=THICKNESSES, modes=MODES,
         for d in thicknesses:
             for n in modes:
                 # the thesis's step and window, given explicitly
-                r = simulate(thesis_design(d=d, n_modes=n), model=model,
+                r = simulate(thesis_study_design(d=d, n_modes=n), model=model,
                              samples=1, t_end=LISTING_TAU_S,
                              dt=DEFAULT_DT[model])
                 if progress is not None:

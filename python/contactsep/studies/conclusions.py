@@ -40,7 +40,7 @@ from contactsep.studies.study import (
     Study,
     evaluate_all,
     refuse_fixed,
-    thesis_design,
+    thesis_study_design,
 )
 
 #: The values each study takes (the thesis rig's first, except e).
@@ -121,7 +121,7 @@ def conclusion(name: str, model: str = "hertz",
     check_search(name, model, MODELS, n_modes, workers, overrides, False)
     own, why, claim = STUDIES[name]
     refuse_fixed(name, overrides, {own: why})
-    base = thesis_design(n_modes=n_modes, **overrides)
+    base = thesis_study_design(n_modes=n_modes, **overrides)
     values = _values(name, base)
     designs = [base.replace(**{own: float(v)}) for v in values]
     single = _single_impulse(base, own, values, designs)

@@ -37,7 +37,7 @@ from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, refuse_fixed, thesis_design
+from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
 #: The positions of both contacts on the separator, as x / L2.
 RATIOS = (0.2, 0.35, 0.5, 0.65, 0.8)
@@ -93,7 +93,7 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
     ratios = check_values("ratios", ratios, "fractions of L2")
     preloads = check_values("preloads", preloads, "lb")
     refuse_fixed("contact-points", overrides, FIXED)
-    base = thesis_design(n_modes=n_modes, **overrides)
+    base = thesis_study_design(n_modes=n_modes, **overrides)
     length = float(base.L2)
     pairs = [(a * length, b * length) for a in ratios for b in ratios]
     designs = [base.replace(x2=a, x2_lower=b) for a, b in pairs]

@@ -16,7 +16,7 @@ from contactsep.studies.study import (
     Study,
     evaluate_all,
     refuse_fixed,
-    thesis_design,
+    thesis_study_design,
 )
 
 #: Figure 5's grids.
@@ -67,7 +67,7 @@ def fig5(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("fig5", overrides, FIXED["fig5"], arrays=("ys",))
     ys = np.atleast_1d(overrides.pop("ys", FIG5_DEFLECTIONS))[:, None]
     d = FIG5_THICKNESSES[None, :]
-    design = thesis_design(d=d, ys=ys, **overrides)
+    design = thesis_study_design(d=d, ys=ys, **overrides)
     ev = evaluate_all(design, backend)
     shape = ev.y3_max.shape
     return Study("fig5", "Figure 5: maximum lower-contact displacement vs "
@@ -85,7 +85,7 @@ def fig6(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("fig6", overrides, FIXED["fig6"])
     r = FIG6_RATIOS
     overrides.setdefault("h2", FIG6_THICKNESS)
-    base = thesis_design(**overrides)
+    base = thesis_study_design(**overrides)
     length = float(base.L3)
     one = evaluate_all(base.replace(x3=r * length), backend)
     two = evaluate_all(base.replace(L3=length / r,
@@ -108,7 +108,7 @@ def fig7(*, backend="compiled", **overrides) -> Study:
     I), with each mode's coefficient in the notes."""
     refuse_fixed("fig7", overrides, FIXED["fig7"])
     r = np.array(FIG7_RATIOS)
-    base = thesis_design(**overrides)
+    base = thesis_study_design(**overrides)
     ev = evaluate_all(base.replace(x3=r * float(base.L3)), backend)
     y = ev.y3(FIG7_TIMES)
     notes = [f"r = {ri}: mode coefficients c3_j (in) = "
@@ -125,7 +125,7 @@ def fig8(*, backend="compiled", **overrides) -> Study:
     the separator's density only, symmetric contacts x1/L1 = x3/L3 = 0.98;
     beside it the thesis's law y3_max ~ 1/(1 + 2R)."""
     refuse_fixed("fig8", overrides, FIXED["fig8"])
-    base = thesis_design(**overrides)
+    base = thesis_study_design(**overrides)
     base = base.replace(x1=FIG8_CONTACT * float(base.L1),
                         x3=FIG8_CONTACT * float(base.L3))
     r0 = float(evaluate_all(base, backend).R)
@@ -149,7 +149,7 @@ def fig23(*, backend="compiled", lc_reading="listing", **overrides) -> Study:
     refuse_fixed("fig23", overrides, FIXED["fig23"])
     d = np.array(list(TABLE_III))
     lc = np.array(list(TABLE_III.values()))
-    base = thesis_design(d=d, **overrides)
+    base = thesis_study_design(d=d, **overrides)
     plain = evaluate_all(base, backend)
     corrected = base.replace(Lc=lc, lc_reading=lc_reading)
     ev = evaluate_all(corrected, backend)
@@ -167,7 +167,7 @@ def convergence(*, backend="compiled", **overrides) -> Study:
     """t1, V, psi, v0 and max y3 for N = 1 ... 50 (docs/model.md)."""
     refuse_fixed("convergence", overrides, FIXED["convergence"])
     n = np.array(CONVERGENCE_MODES)
-    design = thesis_design(n_modes=n, **overrides)
+    design = thesis_study_design(n_modes=n, **overrides)
     ev = evaluate_all(design, backend)
     return Study("convergence", "Convergence in the number of modes N", {
         "N": n, "t1_s": ev.t1, "v_impact_in_s": ev.v_impact,

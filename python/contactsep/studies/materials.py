@@ -41,7 +41,7 @@ from contactsep.model.materials import (
 )
 from contactsep.studies.fields import design_lines
 from contactsep.studies.preload import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, refuse_fixed, thesis_design
+from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
 #: Modes per member (as study contact-points).
 MODES = 32
@@ -99,7 +99,7 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
     refuse_fixed("materials", overrides, FIXED)
     pairs = [(material(c), material(s)) for c in contacts
              for s in separators]
-    designs = [thesis_design(n_modes=n_modes, **overrides,
+    designs = [thesis_study_design(n_modes=n_modes, **overrides,
                              **material_fields(c.name, "13"),
                              **material_fields(s.name, "2"))
                for c, s in pairs]

@@ -33,7 +33,7 @@ from contactsep.studies.study import (
     Study,
     evaluate_all,
     refuse_fixed,
-    thesis_design,
+    thesis_study_design,
 )
 
 #: The contact points x3/L3.
@@ -104,7 +104,7 @@ def conclusion8(*, backend="compiled", **overrides) -> Study:
     ``n_modes`` defaults to MODES."""
     refuse_fixed("conclusion8", overrides, FIXED)
     overrides.setdefault("n_modes", MODES)
-    base = thesis_design(**overrides)
+    base = thesis_study_design(**overrides)
     ratios = RATIOS
     ev = evaluate_all(base.replace(x3=ratios * float(base.L3)), backend)
     c3 = np.nan_to_num(ev.c3)

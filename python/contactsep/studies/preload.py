@@ -27,6 +27,12 @@ from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
+from contactsep.studies.pool import (
+    map_longest_first,
+    stop_pool,
+    usable_cores,
+    worker_pool,
+)
 from contactsep.studies.preload_converge import chart_columns, largest_check
 from contactsep.studies.preload_runs import PreloadRun
 from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
@@ -45,13 +51,7 @@ from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
     start_index,
     top_index,
 )
-from contactsep.studies.pool import (
-    map_longest_first,
-    stop_pool,
-    usable_cores,
-    worker_pool,
-)
-from contactsep.studies.study import Study, refuse_fixed, thesis_design
+from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
 #: The chart's separators and release heights (in).
 THICKNESSES = (0.125, 0.25, 0.35, 0.5, 0.75)
@@ -330,7 +330,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     if damping != "none" and model != "hertz":
         raise InputError("damping: the Hertz contact's (--model hertz)")
     rows = [(d, ys) for d in thicknesses for ys in heights]
-    designs = [thesis_design(d=d, ys=ys, n_modes=n_modes, **overrides)
+    designs = [thesis_study_design(d=d, ys=ys, n_modes=n_modes, **overrides)
                for d, ys in rows]
     extra = dict(settings or {})
     settings = {"damping": damping} if model == "hertz" else {}
@@ -346,7 +346,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
         found = min_preloads(designs, model, settings, simulations=sims)
         if largest is not None:
             columns, converged, again = chart_columns(rows, lambda n, idx: [
-                thesis_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
+                thesis_study_design(d=rows[i][0], ys=rows[i][1], n_modes=n,
                               **overrides) for i in idx], found, n_modes,
                 step, model, settings, sims, largest,
                 search_again=min_preloads)

@@ -40,7 +40,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import UnconvergedWarning
 from contactsep.chatter.system import members
-from contactsep.studies.study import Study, thesis_design
+from contactsep.studies.study import Study, thesis_study_design
 
 #: The laws compared, their settings for simulate.  The static
 #: correction is on for the elastic and Hunt-Crossley laws (the default)
@@ -148,7 +148,7 @@ def conclusion4(n_modes: int = MODES, reading_time: float = READING_TIME,
         if d != SEPARATOR_OF_HEIGHTS]
     for law in laws:
         for d, ys in points:
-            design = thesis_design(d=d, ys=ys, n_modes=n_modes)
+            design = thesis_study_design(d=d, ys=ys, n_modes=n_modes)
             speed, e = e_apparent(design, law, reading_time, alpha=alpha,
                                   yield_pressure=yield_pressure)
             rows.append((law, d, ys, speed, e))

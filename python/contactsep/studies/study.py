@@ -147,9 +147,10 @@ def _format(value, digits: int = 12) -> str:
     return f"{float(value):.{digits}g}"
 
 
-def thesis_design(d=0.25, **overrides):
+def thesis_study_design(d=0.25, **overrides):
     """The thesis experiment as the thesis studies take it
-    (:func:`contactsep.model.thesis_design`), with eq. 13/23's lower
+    (:func:`contactsep.model.thesis_design`, whose default is the
+    physically consistent "impulse"), with eq. 13/23's lower
     response as printed (the listing's v0/L3) unless ``lower_response``
     is given: the studies reproduce the thesis, so their outputs do not
     change with the model's physically consistent default ("impulse")."""

@@ -17,7 +17,7 @@ from contactsep.studies.study import (
     Study,
     evaluate_all,
     refuse_fixed,
-    thesis_design,
+    thesis_study_design,
 )
 
 #: Table I (cps): theoretical and experimental, upper and lower contact.
@@ -45,7 +45,7 @@ def _relative(model, printed):
 def table1(*, backend="compiled", **overrides) -> Study:
     """Table I: the contacts' first four natural frequencies (cps)."""
     refuse_fixed("table1", overrides, FIXED["table1"])
-    design = thesis_design(n_modes=4, **overrides)
+    design = thesis_study_design(n_modes=4, **overrides)
     ev = evaluate_all(design, backend)
     model = ev.p1 / (2 * np.pi)
     return Study("table1", "Table I: contact natural frequencies", {
@@ -66,7 +66,7 @@ def table2(*, backend="compiled", **overrides) -> Study:
     """Table II: the separator's first natural frequency (cps)."""
     refuse_fixed("table2", overrides, FIXED["table2"])
     d = np.array(TABLE_II_D)
-    design = thesis_design(d=d, **overrides)
+    design = thesis_study_design(d=d, **overrides)
     ev = evaluate_all(design, backend)
     model = ev.p2[:, 0] / (2 * np.pi)
     return Study("table2", "Table II: separator natural frequency", {
@@ -90,7 +90,7 @@ def table3(*, backend="compiled", **overrides) -> Study:
     refuse_fixed("table3", overrides, FIXED["table3"])
     d = np.array(TABLE_II_D)
     p = np.array(TABLE_III_P)
-    design = thesis_design(d=d, **overrides)
+    design = thesis_study_design(d=d, **overrides)
     ev = evaluate_all(design, backend)
     formula = np.sqrt(1.3e6 * d / p)
     model = float(design.L2) * np.sqrt(ev.p2[:, 0] / p)
