@@ -156,3 +156,26 @@ def test_the_nominal_batches_reach_the_pool_costliest_first(name, pool):
         assert PER_IN * design.h2 <= result.min_preload_lb <= \
             1.01 * PER_IN * design.h2
     assert _costliest_first(pool.batches) >= 2
+
+
+@pytest.mark.parametrize("study, worker", [("contact_points", "_opening"),
+                                           ("materials", "_run")])
+def test_the_studies_batches_reach_the_pool_costliest_first(
+        study, worker, monkeypatch):
+    """The contact-point and materials studies mix free and preloaded
+    runs in one batch: the preloaded ones (tens of times slower) are
+    handed out first, whatever order the rows are in."""
+    import importlib
+    module = importlib.import_module(f"contactsep.studies.{study}")
+    recorder = RecordingPool()
+    handed = []
+
+    def planted(task):
+        handed.append(task[1])         # (design, preload, ...)
+        return (0.0,) * (4 if study == "contact_points" else 3)
+
+    monkeypatch.setattr(preload, "worker_pool", lambda workers: recorder)
+    monkeypatch.setattr(module, worker, planted)
+    getattr(module, study)(n_modes=4, preloads=(0.0, 6.0), workers=2)
+    assert set(handed) == {0.0, 6.0}
+    assert handed == sorted(handed, reverse=True)

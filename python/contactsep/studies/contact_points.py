@@ -100,8 +100,10 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
     settings = {"dt": dt, "t_end": LISTING_TAU_S}
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
+        # (design, preload, settings): the preloaded runs first
         rows = sims.map(_opening, [(d, p, settings) for p in preloads
-                                   for d in designs])
+                                   for d in designs],
+                        cost=lambda task: task[1])
         found = min_preloads(designs, "hertz", settings, simulations=sims) \
             if min_preload else []
     open_s, events, longest, gap = (np.array(v, dtype=float)

@@ -119,7 +119,8 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
                 rows.append((law, preload, c, s))
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
-        answers = sims.map(_run, tasks)
+        # (design, preload, law, settings): the preloaded runs first
+        answers = sims.map(_run, tasks, cost=lambda task: task[1])
         found = min_preloads(designs, "hertz", settings, simulations=sims) \
             if min_preload else []
     open_s, events, gap = (np.array(v, dtype=float) for v in zip(*answers))

@@ -138,24 +138,27 @@ class Simulations:
         # waited for (a run may take a minute at large N)
         stop_pool(self._pool, finished=kind is None)
 
-    def map(self, function, tasks: list) -> list:
+    def map(self, function, tasks: list, cost=None) -> list:
         """function(task) for every task, in order (function and tasks
         picklable: module-level, plain data and Designs); a task the
-        journal holds is not run again."""
+        journal holds is not run again.  ``cost(task)``: the order the
+        tasks are handed out in, costliest first (default: a typed
+        task's own cost, the preload; 0 for any other task)."""
         start = time.perf_counter()
+        cost = cost or _preload_of
         if self.journal is None:
-            out = self._run(function, tasks)
+            out = self._run(function, tasks, cost=cost)
         else:
-            out = self._run_journaled(function, tasks)
+            out = self._run_journaled(function, tasks, cost)
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
         return out
 
-    def _run(self, function, tasks: list, finished=None) -> list:
+    def _run(self, function, tasks: list, finished=None,
+             cost=_preload_of) -> list:
         if self.client is not None:
             from contactsep.studies.dask_map import run_tasks
-            order = sorted(range(len(tasks)),
-                           key=lambda i: -_preload_of(tasks[i]))
+            order = sorted(range(len(tasks)), key=lambda i: -cost(tasks[i]))
             return run_tasks(self.client, function, tasks, order=order,
                              finished=finished, progress=self.progress,
                              kept=self._kept)
@@ -170,7 +173,7 @@ class Simulations:
             return out
         # the preloaded runs (slower: fixed steps while pressed) first
         return map_longest_first(self._pool, function, tasks,
-                                 cost=_preload_of, done=self.progress,
+                                 cost=cost, done=self.progress,
                                  finished=finished)
 
     def _kept(self, done: int) -> str:
@@ -181,7 +184,7 @@ class Simulations:
         return (f"the {len(self.journal)} simulations finished before it "
                 f"are kept (rerun with --resume to continue)")
 
-    def _run_journaled(self, function, tasks: list) -> list:
+    def _run_journaled(self, function, tasks: list, cost) -> list:
         from contactsep.studies.run_journal import task_key
         journal = self.journal
         keys = [task_key(function, task) for task in tasks]
@@ -198,7 +201,7 @@ class Simulations:
         results = self._run(
             function, [tasks[i] for i in missing],
             finished=lambda j, result: journal.record(keys[missing[j]],
-                                                      result))
+                                                      result), cost=cost)
         for i, result in zip(missing, results):
             out[i] = result
         return out
