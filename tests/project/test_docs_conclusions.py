@@ -126,7 +126,7 @@ def test_the_committed_study_is_what_the_code_computes(name):
 
 def physical_section() -> str:
     text = PAGE.read_text()
-    start = text.index("### With the physical separator (issue 27)")
+    start = text.index("### With the physical separator")
     return text[start:text.index("## The thesis's conclusions", start)]
 
 

@@ -22,7 +22,7 @@ STUDIES = {"own": ROOT / "docs" / "studies" / "preload_conditioning.csv",
            "0.06 s, 5e-8 s":
                ROOT / "docs" / "studies" / "preload_conditioning_chart.csv"}
 FAMILY_STUDY = ROOT / "docs" / "studies" / "preload_family.csv"
-TITLE = "### How well-posed the answer is (issue 25)"
+TITLE = "### How well-posed the answer is"
 HEADER = "| design | window, step | N | min preload (lb) |"
 CHANGES = [0.0, 1e-9, -1e-9, 1e-6, -1e-6]
 

@@ -19,7 +19,7 @@ from test_preload_docs import section, table
 
 ROOT = Path(__file__).resolve().parents[2]
 STUDY = ROOT / "docs" / "studies" / "preload_family.csv"
-TITLE = "### The preload command on the family (issue 25)"
+TITLE = "### The preload command on the family"
 HEADER = "| design | N | dt (s) | min preload (lb) | at 2N, dt/2 (lb) |"
 
 

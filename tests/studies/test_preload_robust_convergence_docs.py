@@ -19,7 +19,7 @@ from test_preload_docs import section, table
 ROOT = Path(__file__).resolve().parents[2]
 STUDY = ROOT / "docs" / "studies" / "preload_robust_convergence.csv"
 TESTED = ROOT / "docs" / "studies" / "preload_robust_convergence_tested.csv"
-TITLE = "### The robust answer at N and 2N (issue 25)"
+TITLE = "### The robust answer at N and 2N"
 ANSWERS = "| design | band | samples | N | nominal min preload (lb) |"
 CURVE = "| preload (lb) | N = 32 | N = 64 |"
 RELAYS = ("steel_relay", "becu_light")
