@@ -23,7 +23,7 @@ from sweep_collect import Collect
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import runner, sweep
+from contactsep.studies import runner, stops, sweep
 
 # the thesis studies' design: eq. 23's lower response as printed
 from contactsep.studies.study import thesis_study_design
@@ -349,9 +349,9 @@ def test_parquet_output_equals_the_csv(tmp_path):
 def test_progress_bar_only_on_a_terminal(monkeypatch):
     pytest.importorskip("tqdm")
     monkeypatch.setattr("sys.stderr.isatty", lambda: False, raising=False)
-    assert runner._progress(10**6, None) is None
-    assert runner._progress(10**6, False) is None
-    bar = runner._progress(10, True)
+    assert stops.progress_bar(10**6, None) is None
+    assert stops.progress_bar(10**6, False) is None
+    bar = stops.progress_bar(10, True)
     assert bar is not None
     bar.close()
 

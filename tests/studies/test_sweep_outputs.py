@@ -20,7 +20,7 @@ from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import SIZE_RANGE
-from contactsep.studies import runner, sweep
+from contactsep.studies import runner, stops, sweep
 from contactsep.studies.stats import wilson_interval
 
 
@@ -219,11 +219,11 @@ def test_bad_sweeps_are_one_line_errors(argv, message, capsys):
 def test_progress_always_without_tqdm_says_so(monkeypatch):
     monkeypatch.setitem(sys.modules, "tqdm", None)
     with pytest.warns(ContactsepWarning, match="needs tqdm"):
-        assert runner._progress(10, True) is None
+        assert stops.progress_bar(10, True) is None
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert runner._progress(10, None) is None    # auto: silent
-        assert runner._progress(10, False) is None
+        assert stops.progress_bar(10, None) is None    # auto: silent
+        assert stops.progress_bar(10, False) is None
 
 
 def test_comments_say_what_the_sweep_was(tmp_path):

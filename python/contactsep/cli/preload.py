@@ -207,7 +207,7 @@ def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.studies.design_preload import journal_inputs, preload
-    from contactsep.studies.runner import _progress
+    from contactsep.studies.stops import progress_bar
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
@@ -216,7 +216,7 @@ def _run(args, design, p_target, workers) -> int:
         p_target=p_target, samples=args.samples, seed=args.seed,
         converge=args.converge, perturbation=args.perturbation,
         band_below=args.band_below))
-    bar = _progress(None, enabled)
+    bar = progress_bar(None, enabled)
     if bar is not None:
         bar.unit = "run"
     try:

@@ -334,10 +334,10 @@ def _recommendation(name: str, args, overrides: dict, journal=None):
 def _bar(args, total):
     """A progress bar's update (or None) for a study of simulations:
     --progress auto (on a terminal), always, never; closed after."""
-    from contactsep.studies.runner import _progress
+    from contactsep.studies.stops import progress_bar
     enabled = {"auto": None, "always": True,
                "never": False}[getattr(args, "progress", "auto")]
-    bar = _progress(total, enabled)
+    bar = progress_bar(total, enabled)
     if bar is not None:
         bar.unit, bar.unit_scale = " simulations", False
     try:

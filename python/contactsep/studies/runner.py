@@ -35,11 +35,7 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     load_columns,
     save_columns,
 )
-from contactsep.studies.stops import (  # noqa: F401 - the runner's API
-    _progress,
-    _StopRequests,
-    _wait,
-)
+from contactsep.studies.stops import StopRequests, progress_bar, wait_for
 from contactsep.studies.sweep import (
     CHUNK_SIZE,
     MAX_CHUNK_SIZE,
@@ -217,7 +213,7 @@ def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         bits: a chunk does not depend on where it runs)."""
         while True:
             try:
-                return _wait(work, stop)
+                return wait_for(work, stop)
             except BrokenProcessPool:
                 stop.check()   # a SIGTERM to the group: workers went first
                 restart(work.pool)
@@ -405,10 +401,10 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
         workers = 1
     summary = _new_summary(spec, threshold)
     mode = "columns" if writers or store is not None else "summary"
-    bar = _progress(spec.size, progress)
+    bar = progress_bar(spec.size, progress)
     done = 0
     start = time.perf_counter()
-    with _StopRequests() as stop, output.stop_checks(stop.check):
+    with StopRequests() as stop, output.stop_checks(stop.check):
         results = _results_dask(
             spec, bounds, scheduler, stop, mode, threshold, store) \
             if scheduler else _results_local(

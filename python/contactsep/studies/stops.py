@@ -11,7 +11,7 @@ import warnings
 from contactsep.errors import ContactsepWarning
 
 
-def _progress(total: int, enabled: bool | None):
+def progress_bar(total: int, enabled: bool | None):
     """A tqdm bar on a terminal (stderr), or nothing.  Asked for
     (``enabled`` True) without tqdm installed: a warning says so."""
     if enabled is None:
@@ -33,7 +33,7 @@ def _progress(total: int, enabled: bool | None):
                 file=sys.stderr)
 
 
-class _StopRequests:
+class StopRequests:
     """SIGINT and SIGTERM during a sweep only note the request; the sweep
     acts on it between chunks and while it waits for one.  An exception
     raised by a handler anywhere else (inside the process pool's own
@@ -43,7 +43,7 @@ class _StopRequests:
         self.signum = None
         self._previous = {}
 
-    def __enter__(self) -> "_StopRequests":
+    def __enter__(self) -> "StopRequests":
         if threading.current_thread() is threading.main_thread():
             for signum in (signal.SIGINT, signal.SIGTERM):
                 previous = signal.getsignal(signum)
@@ -70,7 +70,7 @@ class _StopRequests:
         self._previous = {}
 
 
-def _wait(future, stop: _StopRequests):
+def wait_for(future, stop: StopRequests):
     """A chunk's columns, listening for a stop every quarter second (a
     chunk that failed because the same Ctrl-C ended it: the stop)."""
     while True:
