@@ -294,3 +294,17 @@ def test_a_design_file_sweep_is_titled_by_its_file(tmp_path, capsys):
                                  x3=10.0))
     assert float(rows[1]["v0_in_s"]) == pytest.approx(float(one.v0),
                                                       rel=6e-12, abs=0)
+
+
+def test_a_progress_bar_leaves_no_thread_behind():
+    """tqdm's monitor thread, once started, made every later long call
+    of the process run in it rather than in a child a signal can stop
+    (output.interruptible with other threads running)."""
+    import threading
+    pytest.importorskip("tqdm")
+    before = {t.ident for t in threading.enumerate()}
+    bar = stops.progress_bar(10, True)
+    bar.update(1)
+    bar.close()
+    after = {t.ident for t in threading.enumerate() if t.is_alive()}
+    assert after <= before

@@ -28,6 +28,10 @@ def progress_bar(total: int, enabled: bool | None):
             warnings.warn("no progress bar: it needs tqdm (pip install "
                           "'contactsep[progress]')", ContactsepWarning)
         return None
+    # no monitor thread: a live thread keeps every later long call of
+    # this process from forking (output.interruptible runs it here, deaf
+    # to Ctrl-C until it returns)
+    tqdm.monitor_interval = 0
     # shown only once the run has taken a second
     return tqdm(total=total, unit="design", unit_scale=True, delay=1.0,
                 file=sys.stderr)
