@@ -26,15 +26,6 @@ from contactsep.output import one_line
 from contactsep.studies import dask_run
 
 
-class _NoStop:
-    """A batch has no stop requests of its own: Ctrl-C and SIGTERM
-    reach the waiting thread as exceptions."""
-
-    @staticmethod
-    def check() -> None:
-        return None
-
-
 def on_worker(function, task):
     """``function(task)`` on a Dask worker, with glibc's own heap
     thresholds (dask_run.heap_as_glibc_default)."""
@@ -133,7 +124,7 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
                 if not arrived.has_ready():
                     # nothing arrives, and no connection for
                     # SCHEDULER_LOST_S: a scheduler that never cancelled
-                    if client.status in _CONNECTED:
+                    if client.status in dask_run.CONNECTED:
                         lost_since = None
                     else:
                         lost_since = lost_since or time.monotonic()
@@ -163,10 +154,6 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
                     pass
 
 
-#: A client's states while it holds its scheduler's connection.
-_CONNECTED = ("running", "newly-created")
-
-
 def _fetch(client, ready: list, arrived, lost, where: str) -> list:
     """[(key, result)] of the done futures ``ready``, in one gather (a
     worker lost holding one: Dask runs it again and the gather waits for
@@ -182,7 +169,7 @@ def _fetch(client, ready: list, arrived, lost, where: str) -> list:
     except CancelledError:                   # cancelled during the gather
         raise lost() from None
     except OSError:                          # CommClosedError
-        if client.status not in _CONNECTED:
+        if client.status not in dask_run.CONNECTED:
             raise lost() from None
         arrived.update(ready)
         return []

@@ -43,6 +43,8 @@ SCHEDULER_TIMEOUT_S = 10
 PROBE_TIMEOUT_S = 5
 #: Seconds a sweep waits for a scheduler whose connection was lost.
 SCHEDULER_LOST_S = 15
+#: A client's states while it holds its scheduler's connection.
+CONNECTED = ("running", "newly-created")
 #: The largest first message a Dask scheduler sends (its handshake is a
 #: few hundred bytes): more is another protocol.
 _LARGEST_HANDSHAKE = 1 << 20
@@ -343,7 +345,7 @@ def wait(client, future, stop, done_designs: int, kept: str | None = None):
                 raise InputError(f"the Dask cluster{where} could not run "
                                  f"a chunk: {one_line(error)}") from None
             except OSError:                     # CommClosedError
-                if client.status not in ("running", "newly-created"):
+                if client.status not in CONNECTED:
                     raise lost from None
             # a worker holding the result died ("lost"): Dask runs the
             # chunk again; wait for that
