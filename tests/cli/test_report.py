@@ -6,11 +6,11 @@ Chromium as a person would."""
 from __future__ import annotations
 
 import html.parser
-import shutil
 import subprocess
 
 import numpy as np
 import pytest
+from browser import chromium, headless
 
 from contactsep.cli import main
 from contactsep.model.names import FIELDS, OUTPUT_NAMES
@@ -132,22 +132,14 @@ def test_the_robust_page_has_its_p_open_curve(page):
     assert len(_parsed(text).images) == len(_parsed(page[0][0]).images) + 1
 
 
-def _chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        if shutil.which(name):
-            return shutil.which(name)
-    return None
-
-
-@pytest.mark.skipif(_chromium() is None, reason="needs Chromium (CI "
+@pytest.mark.skipif(chromium() is None, reason="needs Chromium (CI "
                     "installs Debian's chromium)")
 def test_the_page_opens_in_a_browser(page, tmp_path):
     """Headless Chromium loads the page: its DOM has every image, and a
     screenshot shows the figures (far more than a blank page's ink)."""
     matplotlib_image = pytest.importorskip("matplotlib.image")
     path = page[1][1]
-    browser = [_chromium(), "--headless", "--no-sandbox", "--disable-gpu",
-               f"--user-data-dir={tmp_path / 'profile'}"]
+    browser = headless(tmp_path / "profile")
     dom = subprocess.run(browser + ["--dump-dom", path.as_uri()],
                          capture_output=True, text=True, timeout=120)
     assert dom.returncode == 0, dom.stderr[-2000:]

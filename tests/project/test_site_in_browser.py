@@ -16,6 +16,7 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
+from browser import chromium, headless
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The pages a new reader meets first: the index, the tutorial, the
@@ -33,13 +34,6 @@ PROBE = ("<script>window.addEventListener('load', function () {"
          "root.setAttribute('data-images', String(document.images.length));"
          "root.setAttribute('data-broken', JSON.stringify(bad)); });"
          "</script></body>")
-
-
-def _chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        if shutil.which(name):
-            return shutil.which(name)
-    return None
 
 
 @pytest.fixture(scope="module")
@@ -107,12 +101,13 @@ def test_every_local_link_and_anchor_of_the_page_exists(site, name):
     assert not missing, (name, missing[:10])
 
 
-@pytest.mark.skipif(_chromium() is None, reason="needs Chromium (CI "
+@pytest.mark.skipif(chromium() is None, reason="needs Chromium (CI "
                     "installs Debian's chromium)")
 @pytest.mark.parametrize("name", PAGES)
-def test_the_page_opens_in_a_browser_with_every_image(site, name):
+def test_the_page_opens_in_a_browser_with_every_image(site, name,
+                                                     tmp_path):
     page = site / name
-    parsed = _opened(page)
+    parsed = _opened(page, tmp_path / "profile")
     assert json.loads(parsed.broken) == [], name
     expected = len(_parse(page).images)
     assert int(parsed.images) == expected, name
@@ -132,7 +127,7 @@ class _Attributes(html.parser.HTMLParser):
             self.broken = attrs.get("data-broken")
 
 
-def _opened(page: Path) -> "_Attributes":
+def _opened(page: Path, profile: Path) -> "_Attributes":
     """A copy of ``page`` with the probe, opened in Chromium: the
     probe's attributes on the page as the browser left it."""
     text = page.read_text(encoding="utf-8")
@@ -140,8 +135,8 @@ def _opened(page: Path) -> "_Attributes":
     probe = page.with_name(f"_probe_{page.name}")
     probe.write_text(text.replace("</body>", PROBE, 1), encoding="utf-8")
     dom = subprocess.run(
-        [_chromium(), "--headless", "--no-sandbox", "--disable-gpu",
-         "--virtual-time-budget=10000", "--dump-dom", probe.as_uri()],
+        [*headless(profile), "--virtual-time-budget=10000", "--dump-dom",
+         probe.as_uri()],
         capture_output=True, text=True, timeout=120).stdout
     parsed = _Attributes()
     parsed.feed(dom)
@@ -152,13 +147,14 @@ def _opened(page: Path) -> "_Attributes":
 def test_a_missing_image_is_seen(site, tmp_path):
     """The probe can fail: the same check on a copy of a page whose
     image file is gone names it."""
-    if _chromium() is None:
+    if chromium() is None:
         pytest.skip("needs Chromium")
     name = next(n for n in PAGES if _parse(site / n).images)
     copy = tmp_path / "html"
     shutil.copytree(site, copy)
     image = _parse(copy / name).images[0]
     (copy / image).unlink()
-    assert image in json.loads(_opened(copy / name).broken)
+    assert image in json.loads(_opened(copy / name,
+                                       tmp_path / "profile").broken)
     with pytest.raises(AssertionError):
         test_every_local_link_and_anchor_of_the_page_exists(copy, name)
