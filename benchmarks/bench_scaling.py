@@ -1,9 +1,23 @@
-"""Scaling of the sweeps on 1, 2, 4, ... usable cores (issue 29), beside
-a yardstick measured in the same run.
+"""Scaling of the sweeps on 1, 2, 4, ... usable cores, beside a
+yardstick measured in the same run: one script for a session lent a
+many-core machine, done in about ``--minutes`` (default 8).
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/bench_scaling.py \\
-        [--eq23 DESIGNS] [--hertz DESIGNS] [--repeat R] [--no-dask] \
+        [--minutes M] [--max-workers K] [--eq23 DESIGNS] \
+        [--hertz DESIGNS] [--repeat R] [--no-dask] [--no-robust] \
         [--preload [--preload-at K,K] [--preload-converged]]
+
+The budget: each sweep's cost a design is measured first on one worker
+(a small calibration sweep), and its size (unless ``--eq23``/``--hertz``
+give it) is then chosen so that its runs on every engine and worker
+count, at the yardstick's speed-ups, take its share of ``--minutes``
+(eq. 23 and Hertz 40 % each, the robust search the rest); the plan is
+printed before the runs.  The robust search (unless ``--no-robust``): a
+robust preload of the light beryllium-copper relay at N = 4 (fixed step
+1e-8 s, window 5 ms, no static correction, ``--robust-samples`` draws of
+y_s), on the local pool and on a Dask LocalCluster of the same worker
+counts (2 and the most), so that Dask / local for a search is measured
+beside the sweeps'.
 
 The yardstick: an embarrassingly parallel NumPy kernel (numpy.sin on 1e6
 elements, 60 times) in k processes at once; its speed-up k * t1 / tk is
@@ -37,12 +51,20 @@ import numpy as np
 
 from contactsep.studies import runner, sweep
 
+#: Shares of --minutes: the eq. 23 sweep, the Hertz sweep (the robust
+#: search takes the rest).
+SHARES = {"eq23": 0.4, "hertz": 0.4}
+#: Designs of the calibration sweeps (eq. 23, Hertz N = 16).
+CALIBRATION = {"eq23": 50_000, "hertz": 8}
+#: Smallest sizes the budget may choose (a sweep shorter than its
+#: start-up says nothing about scaling).
+SMALLEST = {"eq23": 100_000, "hertz": 16}
+
 
 def _sin_kernel(_):
     x = np.linspace(0.0, 1.0, 1_000_000)
     for _ in range(60):
         np.sin(x)
-    return None
 
 
 def yardstick(k: int) -> float:
@@ -82,12 +104,87 @@ def timed_sweep(spec, threshold, k, dask, warm=None):
     return time.perf_counter() - start, _cpu() - cpu
 
 
+def sweep_specs(eq23: int, hertz: int) -> dict:
+    """The two sweeps (spec, threshold) at the given sizes."""
+    return {
+        "eq23": (sweep.make_spec(sample=["d=normal(0.25,0.01)",
+                                         "ys=uniform(0.45,0.55)"],
+                                 samples=eq23, seed=1), 0.115),
+        "hertz": (sweep.make_spec(vary=[f"h2=0.1:0.8:{hertz}"],
+                                  model="hertz", base={"n_modes": 16}),
+                  None)}
+
+
+def planned_sizes(args, ks, sticks, engines) -> dict:
+    """Each sweep's size: as given, or the budget's (module doc)."""
+    given = {"eq23": args.eq23, "hertz": args.hertz}
+    if all(v is not None for v in given.values()):
+        return given
+    # the sum over configurations of 1 / (the yardstick's speed-up)
+    inverse = sum(sticks[k] / (k * sticks[1]) for k in ks) * \
+        len(engines) * args.repeat
+    calibration = sweep_specs(CALIBRATION["eq23"], CALIBRATION["hertz"])
+    sizes = {}
+    for name, size in given.items():
+        if size is not None:
+            sizes[name] = size
+            continue
+        spec, threshold = calibration[name]
+        seconds, _ = timed_sweep(spec, threshold, 1, False)
+        each = seconds / CALIBRATION[name]
+        budget = SHARES[name] * 60.0 * args.minutes
+        sizes[name] = max(SMALLEST[name], int(budget / (each * inverse)))
+        print(f"{name}: {1e6 * each:.3g} us a design on one worker; "
+              f"{sizes[name]:,} designs fit {budget:.0f} s", flush=True)
+    return sizes
+
+
+def timed_robust(k: int, samples: int, dask: bool):
+    """(seconds, parent CPU seconds, answer's JSON) of the robust
+    search (module doc) on k local workers or k Dask workers."""
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..",
+                                    "tests"))
+    from design_family import FAMILY
+
+    import contactsep
+    design = FAMILY["becu_light"].replace(n_modes=4)
+    options = {"tolerance": ["ys=uniform(0.029,0.031)"], "samples": samples,
+                   "p_target": 0.6, "converge": False, "dt": 1e-8, "t_end": 0.005,
+                   "static_correction": False}
+    if dask:
+        import distributed
+        with distributed.LocalCluster(
+                n_workers=k, threads_per_worker=1, processes=True,
+                dashboard_address=None) as cluster, \
+                distributed.Client(cluster) as client:
+            # the workers import the compiled modules once, as a
+            # long-lived cluster's have
+            client.run(lambda: __import__("contactsep.chatter"))
+            cpu, start = _cpu(), time.perf_counter()
+            answer = contactsep.preload(design, workers=client, **options)
+            return (time.perf_counter() - start, _cpu() - cpu,
+                    answer.to_json_dict())
+    cpu, start = _cpu(), time.perf_counter()
+    answer = contactsep.preload(design, workers=k, **options)
+    return time.perf_counter() - start, _cpu() - cpu, answer.to_json_dict()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--eq23", type=int, default=2_000_000,
-                        help="designs of the eq. 23 sweep")
-    parser.add_argument("--hertz", type=int, default=200,
-                        help="designs of the Hertz N = 16 sweep")
+    parser.add_argument("--minutes", type=float, default=8.0,
+                        help="the budget that sizes the sweeps")
+    parser.add_argument("--max-workers", type=int, default=None,
+                        help="most workers (default: the usable cores)")
+    parser.add_argument("--eq23", type=int, default=None,
+                        help="designs of the eq. 23 sweep (default: "
+                             "the budget's)")
+    parser.add_argument("--hertz", type=int, default=None,
+                        help="designs of the Hertz N = 16 sweep "
+                             "(default: the budget's)")
+    parser.add_argument("--no-robust", action="store_true",
+                        help="leave out the robust search")
+    parser.add_argument("--robust-samples", type=int, default=12,
+                        help="draws of the robust search")
     parser.add_argument("--repeat", type=int, default=1,
                         help="best of R runs of each configuration")
     parser.add_argument("--no-dask", action="store_true")
@@ -100,7 +197,10 @@ def main() -> None:
     parser.add_argument("--no-sweeps", action="store_true",
                         help="only the yardstick and the preload chart")
     args = parser.parse_args()
+    start_all = time.perf_counter()
     cores = runner.usable_cores()
+    if args.max_workers is not None:
+        cores = max(1, min(cores, args.max_workers))
     ks = [1]
     while ks[-1] * 2 <= cores:
         ks.append(ks[-1] * 2)
@@ -113,13 +213,9 @@ def main() -> None:
     print(f"{'k':>3} {'yardstick s':>11} {'speed-up':>8}")
     for k in ks:
         print(f"{k:3d} {sticks[k]:11.2f} {k * sticks[1] / sticks[k]:8.2f}")
-    sweeps = {
-        "eq23": (sweep.make_spec(sample=["d=normal(0.25,0.01)",
-                                         "ys=uniform(0.45,0.55)"],
-                                 samples=args.eq23, seed=1), 0.115),
-        "hertz": (sweep.make_spec(vary=[f"h2=0.1:0.8:{args.hertz}"],
-                                  model="hertz", base={"n_modes": 16}),
-                  None)}
+    engines = ("local",) + (() if args.no_dask else ("dask",))
+    sweeps = {} if args.no_sweeps else \
+        sweep_specs(**planned_sizes(args, ks, sticks, engines))
     warm = {"eq23": sweep.make_spec(sample=["d=normal(0.25,0.01)"],
                                     samples=4 * max(ks)),
             "hertz": sweep.make_spec(vary=[f"h2=0.2:0.3:{2 * max(ks)}"],
@@ -127,9 +223,8 @@ def main() -> None:
     print(f"\n{'sweep':>6} {'engine':>6} {'k':>3} {'seconds':>8} "
           f"{'speed-up':>8} {'efficiency':>10} {'dask/local':>10} "
           f"{'parent %':>8}")
-    engines = ("local",) + (() if args.no_dask else ("dask",))
     for name, (spec, threshold) in \
-            ({} if args.no_sweeps else sweeps).items():
+            sweeps.items():
         runs = {}
         for _ in range(args.repeat):
             for engine in engines:
@@ -156,13 +251,31 @@ def main() -> None:
                 print(f"{name:>6} {engine:>6} {k:3d} {seconds:8.2f} "
                       f"{speedup:8.2f} {efficiency:10.2f} {ratio} "
                       f"{share}", flush=True)
+    if not args.no_robust:
+        robust_at = sorted({min(2, cores), cores})
+        print(f"\n{'search':>6} {'engine':>6} {'k':>3} {'seconds':>8} "
+              f"{'dask/local':>10} {'parent %':>8} same answer")
+        for k in robust_at:
+            local = timed_robust(k, args.robust_samples, False)
+            rows = [("local", local)]
+            if not args.no_dask:
+                rows.append(("dask", timed_robust(k, args.robust_samples,
+                                                  True)))
+            for engine, (seconds, cpu, answer) in rows:
+                ratio = f"{local[0] / seconds:10.2f}" \
+                    if engine == "dask" else f"{'':>10}"
+                share = f"{'-':>8}" if engine == "local" and k == 1 else \
+                    f"{100 * cpu / (k * seconds):8.1f}"
+                same = "yes" if answer == local[2] else "NO"
+                print(f"{'robust':>6} {engine:>6} {k:3d} {seconds:8.2f} "
+                      f"{ratio} {share} {same}", flush=True)
     if args.preload:
         from contactsep.studies.preload import preload_chart
         at = (1, cores) if args.preload_at is None else \
             tuple(int(k) for k in args.preload_at.split(","))
-        charts = [("N = 4", dict(n_modes=4))]
+        charts = [("N = 4", {"n_modes": 4})]
         if args.preload_converged:
-            charts.append(("N = 32 converged", dict(converge=True)))
+            charts.append(("N = 32 converged", {"converge": True}))
         for label, options in charts:
             for k in at:
                 start = time.perf_counter()
@@ -171,7 +284,7 @@ def main() -> None:
                       f"{time.perf_counter() - start:.1f} s", flush=True)
     load = os.getloadavg()
     print(f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at the "
-          f"end")
+          f"end; {time.perf_counter() - start_all:.0f} s in all")
 
 
 if __name__ == "__main__":
