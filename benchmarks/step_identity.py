@@ -84,7 +84,7 @@ def cases(quick=False, laws=tuple(LAWS), plain=True):
 def window(design) -> float:
     """The design's own window (s), as simulate chooses it."""
     from contactsep.chatter import numerics, runners
-    from contactsep.chatter.simulate import _stack
+    from contactsep.chatter.stack import _stack
 
     m, p, h, q0, v0, parts = _stack(design)
     return numerics.design_window(runners.System(

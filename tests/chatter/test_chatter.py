@@ -18,7 +18,7 @@ from contactsep.chatter.event_driven import (
     rigid_stop_from_design,
     simulate_rigid_stop,
 )
-from contactsep.chatter.simulate import _stack
+from contactsep.chatter.stack import _stack
 from contactsep.chatter.system import members
 from contactsep.cli import main
 

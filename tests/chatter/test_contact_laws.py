@@ -284,7 +284,7 @@ def test_the_cylinder_runs_in_both_steppers_and_the_twin():
         runs[1].first_impulse_lb_s, rel=1e-6)
     # the twin, plain and with the series correction's linear elements
     from contactsep.chatter import runners
-    from contactsep.chatter.simulate import _system
+    from contactsep.chatter.stack import _system
     law = HertzLaw.for_materials(float(design.E1), button="cylinder")
     for correct in (False, True):
         system = _system(design, 0.2, law, correct)

@@ -11,7 +11,7 @@ from design_family import FAMILY
 from contactsep import chatter
 from contactsep.chatter import _chatter, steppers, system
 from contactsep.chatter.contacts import HertzLaw, series_energy, series_forces
-from contactsep.chatter.simulate import _system
+from contactsep.chatter.stack import _system
 
 #: The pre-change build's answers: fortran/chatter/*.f90 of commit
 #: dde3286 (before the static correction), compiled apart with the

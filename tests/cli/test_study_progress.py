@@ -9,7 +9,7 @@ import argparse
 import pytest
 
 from contactsep.cli import build_parser
-from contactsep.cli.studies import _bar
+from contactsep.cli.study_runs import study_bar
 
 pytest.importorskip("tqdm")
 
@@ -20,7 +20,7 @@ def test_always_draws_a_bar_that_counts_and_closes(monkeypatch):
     # long calls from forking (output.interruptible)
     import tqdm
     monkeypatch.setattr(tqdm.tqdm, "monitor_interval", 0)
-    with _bar(argparse.Namespace(progress="always"), 3) as update:
+    with study_bar(argparse.Namespace(progress="always"), 3) as update:
         bar = update.__self__
         for _ in range(3):
             update(1)
@@ -31,7 +31,7 @@ def test_always_draws_a_bar_that_counts_and_closes(monkeypatch):
 
 @pytest.mark.parametrize("choice", ["never", "auto"])
 def test_never_and_auto_off_a_terminal_draw_nothing(choice, capsys):
-    with _bar(argparse.Namespace(progress=choice), 3) as update:
+    with study_bar(argparse.Namespace(progress=choice), 3) as update:
         assert update is None
     assert capsys.readouterr().err == ""
 

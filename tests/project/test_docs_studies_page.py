@@ -57,7 +57,7 @@ def test_the_failed_designs_message_is_the_commands(capsys):
 
 
 def test_the_dask_chunking_is_the_codes():
-    from contactsep.studies import chunks, runner
+    from contactsep.studies import chunk_runs, chunks
     a_worker, smallest = quoted(
         "studies.md", r"every worker gets at least (\d+) of what is left "
         r"\(down to ([\d.]+) s of work a chunk\)")
@@ -65,7 +65,7 @@ def test_the_dask_chunking_is_the_codes():
     assert float(smallest) == chunks.MIN_CHUNK_S
     quoted("studies.md", r"twice as many chunks as the cluster has "
            r"threads, plus two, are in flight")
-    assert "2 * bounds.workers + 2" in inspect.getsource(runner)
+    assert "2 * bounds.workers + 2" in inspect.getsource(chunk_runs)
 
 
 def test_osmiums_density():

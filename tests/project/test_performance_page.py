@@ -193,7 +193,7 @@ def test_the_constants_the_page_states_are_the_codes():
 
     from contactsep.model import design
     from contactsep.output import pieces
-    from contactsep.studies import chunks, runner, sweep
+    from contactsep.studies import chunk_runs, chunks, runner, sweep
     target, first, growth, piece = quoted(
         r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
         r"of work each, the first ([\d,]+) designs at N = 4, growing at "
@@ -222,7 +222,7 @@ def test_the_constants_the_page_states_are_the_codes():
     assert {"three": 3, "four": 4, "six": 6, "eight": 8}[per] == \
         runner.DASK_WINDOW_PER_WORKER
     assert "DASK_WINDOW_PER_WORKER * bounds.workers + 2" in \
-        inspect.getsource(runner)
+        inspect.getsource(chunk_runs)
     (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "
                      r"\(`model.design.MAX_MODES`\)")
     assert int(most.replace(",", "")) == design.MAX_MODES

@@ -16,7 +16,7 @@ import pytest
 from forked import killed_at
 
 from contactsep.cli import main as cli_main
-from contactsep.studies import resume, runner, sweep, writers
+from contactsep.studies import chunk_runs, resume, runner, sweep, writers
 from contactsep.studies.chatter_sweep import ChatterSummary
 from contactsep.studies.stats import BLOCK, RunningMoments
 
@@ -116,12 +116,12 @@ def test_the_resumed_run_computes_only_what_is_missing(tmp_path, capsys,
     kept = store.designs
     assert kept >= 4 * 23
     computed = []
-    original = runner.evaluate_chunk_timed
+    original = chunk_runs.evaluate_chunk_timed
 
     def counted(spec, first, last):
         computed.append(last - first)
         return original(spec, first, last)
-    monkeypatch.setattr(runner, "evaluate_chunk_timed", counted)
+    monkeypatch.setattr(chunk_runs, "evaluate_chunk_timed", counted)
     status, _, err = _run(capsys, command)
     assert status == 0, err
     assert sum(computed) == 7 * 40 - kept

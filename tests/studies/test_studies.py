@@ -23,7 +23,7 @@ from sweep_collect import Collect
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import runner, stops, sweep
+from contactsep.studies import chunk_runs, runner, stops, sweep
 
 # the thesis studies' design: eq. 23's lower response as printed
 from contactsep.studies.study import thesis_study_design
@@ -222,7 +222,7 @@ def test_sweep_on_a_dask_local_cluster_equals_local():
 
 def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
     """Summary only (no output): the chunks fetched in batches ahead of
-    their turn (runner._results_dask) are still merged in order, so the
+    their turn (chunk_runs.results_dask) are still merged in order, so the
     summary is the local one's, bit for bit (a different merge order
     would move the means' last bits).  The chunks are held at 7 designs
     in both runs: chunks are sized from measured times (Chunks.record),
@@ -290,7 +290,7 @@ def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
             raise KeyboardInterrupt
         return original(s, first, last)
 
-    monkeypatch.setattr(runner, "evaluate_chunk", flaky)
+    monkeypatch.setattr(chunk_runs, "evaluate_chunk", flaky)
     with pytest.raises(runner.SweepInterrupted,
                        match="interrupted: 20 of 200 designs"):
         runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path),
@@ -299,7 +299,7 @@ def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
                          store=runner.ChunkStore(str(path), spec(),
                                                  resume=False))
     assert not path.exists() and kept_designs(path) == 20
-    monkeypatch.setattr(runner, "evaluate_chunk", original)
+    monkeypatch.setattr(chunk_runs, "evaluate_chunk", original)
     runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path), spec())],
                      chunk_size=10, workers=1,
                      store=runner.ChunkStore(str(path), spec()))

@@ -1,5 +1,5 @@
 """``--resume`` for the commands of three-beam simulations
-(``preload``, and the studies of ``cli.studies.RESUMABLE``): every
+(``preload``, and the studies of ``cli.study_runs.RESUMABLE``): every
 finished simulation kept beside the output CSV in ``.FILE.resume/``
 (:class:`contactsep.studies.run_journal.RunJournal`), what the command
 says about it, and its removal once the CSV is in place."""

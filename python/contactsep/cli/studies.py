@@ -1,9 +1,10 @@
-"""``contactsep study`` (``contactsep sweep``: cli/sweep.py)."""
+"""``contactsep study``: its options, the studies of eq. 23 and the
+outputs of every study (the studies of three-beam simulations run in
+cli/study_runs.py; ``contactsep sweep``: cli/sweep.py)."""
 
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
 import sys
 from pathlib import Path
@@ -11,12 +12,7 @@ from pathlib import Path
 from contactsep import output
 from contactsep.cli import journal as journals
 from contactsep.cli import sweep
-from contactsep.cli.cluster import (
-    add_cluster_options,
-    check_cluster,
-    cluster,
-    given,
-)
+from contactsep.cli.cluster import add_cluster_options, check_cluster, cluster
 from contactsep.cli.design_options import (
     add_design_options,
     design_overrides,
@@ -29,6 +25,15 @@ from contactsep.cli.guards import (
     drop_echoes,
 )
 from contactsep.cli.help import examples
+from contactsep.cli.study_runs import (
+    RESUMABLE,
+    buttons_study,
+    conclusion4_study,
+    recommendation_study,
+    refuse_cluster,
+    search_study,
+    study_bar,
+)
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
 from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
@@ -36,9 +41,6 @@ from contactsep.studies.sweep_checks import CHATTER_UNUSED
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100
-#: The studies of three-beam simulations, which --resume can keep.
-RESUMABLE = ("preload", "conclusion3", "conclusion5", "conclusion6",
-             "conclusion7", "contact-points", "materials", "buttons")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -177,9 +179,9 @@ def _compute(name: str, args, overrides: dict, journal=None):
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
     from contactsep.studies.recommendations import STUDIES as ADVICE
     if name in ADVICE:
-        return _recommendation(name, args, overrides, journal)
+        return recommendation_study(name, args, overrides, journal)
     searches = ("preload", *CONCLUSIONS)
-    _refuse_cluster(name, args)
+    refuse_cluster(name, args)
     if name not in (*searches, "buttons") and (args.model or args.workers):
         raise InputError(f"--model and --workers are options of study "
                          f"{', '.join(searches)}, not study {name}'s")
@@ -203,11 +205,11 @@ def _compute(name: str, args, overrides: dict, journal=None):
         raise InputError(f"{given}: options of study conclusion4, not "
                          f"study {name}'s")
     if name == "conclusion4":
-        return _conclusion4(args, overrides)
+        return conclusion4_study(args, overrides)
     if name == "buttons":
-        return _buttons(args, overrides, journal)
+        return buttons_study(args, overrides, journal)
     if name in searches:
-        return _search_study(name, args, overrides, journal)
+        return search_study(name, args, overrides, journal)
     if name == "separator-fit":
         if args.backend:
             raise InputError("study separator-fit computes the beams' "
@@ -225,126 +227,9 @@ def _compute(name: str, args, overrides: dict, journal=None):
             THICKNESSES,
             chatter_table,
         )
-        with _bar(args, 3 * len(THICKNESSES) * len(MODES)) as bar:
+        with study_bar(args, 3 * len(THICKNESSES) * len(MODES)) as bar:
             return chatter_table(progress=bar)
     return STUDIES[name](backend=args.backend or "compiled", **overrides)
-
-
-def _conclusion4(args, overrides: dict):
-    """study conclusion4: e_apparent of three contact laws."""
-    from contactsep.studies import restitution
-    overrides = dict(overrides)
-    n_modes = overrides.pop("n_modes", restitution.MODES)
-    if overrides or args.backend:
-        raise InputError("study conclusion4 takes no design options but "
-                         "--n-modes: it runs the thesis rig over its "
-                         "separators and release heights")
-    settings = {"alpha": args.alpha, "yield_pressure": args.yield_pressure,
-                "reading_time": args.reading_time}
-    settings = {k: v for k, v in settings.items() if v is not None}
-    try:
-        with _bar(args, 3 * restitution.ROWS) as bar:
-            return restitution.conclusion4(n_modes=n_modes, progress=bar,
-                                           **settings)
-    except ValueError as error:
-        name, _, rest = str(error).partition(":")
-        raise InputError(f"--{name.replace('_', '-')}:{rest}") from None
-
-
-def _buttons(args, overrides: dict, journal=None):
-    """study buttons: open time and smallest preload against the
-    button's shape and radius."""
-    from contactsep.studies import buttons
-    overrides = dict(overrides)
-    n_modes = overrides.pop("n_modes", buttons.MODES)
-    if overrides or args.backend or args.model:
-        raise InputError("study buttons takes no design options but "
-                         "--n-modes (and --workers): it runs the thesis "
-                         "rig with each button")
-    with _bar(args, None) as bar:
-        return buttons.buttons(n_modes=n_modes, workers=_workers(args),
-                               progress=bar, journal=journal)
-
-
-def _refuse_cluster(name: str, args) -> None:
-    """A scheduler only for the studies of three-beam simulations."""
-    if given(args) and name not in RESUMABLE:
-        raise InputError(f"--scheduler and --scheduler-file are options of "
-                         f"study {', '.join(RESUMABLE)}, not study "
-                         f"{name}'s")
-
-
-def _workers(args):
-    """What runs a study's simulations: the Dask client of --scheduler
-    or --scheduler-file, else --workers (local processes)."""
-    client = getattr(args, "cluster", None)
-    return args.workers if client is None else client
-
-
-def _search_study(name: str, args, overrides: dict, journal=None):
-    """study preload and conclusion3|5|6|7: three-beam simulations with
-    the preload search; their own model, N (default 32) and workers."""
-    from contactsep.studies.conclusions import conclusion
-    from contactsep.studies.preload import DEFAULT_MODES, preload_chart
-    if args.backend:
-        raise InputError(f"study {name} runs the chatter simulation (no "
-                         f"--backend)")
-    overrides = dict(overrides)
-    options = {"model": args.model or "hertz",
-               "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
-               "workers": _workers(args), "journal": journal}
-    from contactsep.studies.search_checks import SearchError
-    try:
-        with _bar(args, None) as bar:
-            if name == "preload":
-                extra = {} if args.alpha is None else {
-                    "settings": {"alpha": args.alpha}}
-                return preload_chart(**options,
-                                     damping=args.damping or "none",
-                                     converge=args.converge,
-                                     progress=bar, **extra, **overrides)
-            return conclusion(name, **options, progress=bar, **overrides)
-    except SearchError as error:
-        # the study names its arguments; the command, its options
-        names, sep, rest = str(error).partition(":")
-        if not sep:
-            raise
-        options = ", ".join("--" + n.strip().replace("_", "-")
-                            for n in names.split(","))
-        raise InputError(f"{options}:{rest}") from None
-
-
-def _recommendation(name: str, args, overrides: dict, journal=None):
-    """study contact-points and materials (the thesis's recommendations
-    3 and 4): three-beam simulations, Hertz contact; N and workers."""
-    from contactsep.studies.recommendations import STUDIES as ADVICE
-    if args.backend or args.model or args.damping:
-        raise InputError(f"study {name} runs the chatter simulation with "
-                         f"Hertz contact (no --backend, --model or "
-                         f"--damping)")
-    study, _, fixed = ADVICE[name]
-    own = {k: v for k, v in overrides.items() if k not in fields_from_file(
-        args) or k not in fixed}
-    with _bar(args, None) as bar:
-        return study(workers=_workers(args), progress=bar, journal=journal,
-                     **own)
-
-
-@contextlib.contextmanager
-def _bar(args, total):
-    """A progress bar's update (or None) for a study of simulations:
-    --progress auto (on a terminal), always, never; closed after."""
-    from contactsep.studies.stops import progress_bar
-    enabled = {"auto": None, "always": True,
-               "never": False}[getattr(args, "progress", "auto")]
-    bar = progress_bar(total, enabled)
-    if bar is not None:
-        bar.unit, bar.unit_scale = " simulations", False
-    try:
-        yield None if bar is None else bar.update
-    finally:
-        if bar is not None:
-            bar.close()
 
 
 def _save(study, out: Path, dpi: int) -> None:
@@ -409,7 +294,7 @@ def run_study(args: argparse.Namespace) -> int:
         # the journal lies beside DIR/NAME.csv: DIR is made now
         Path(args.out).mkdir(parents=True, exist_ok=True)
     check_cluster(args)
-    _refuse_cluster(args.name, args)
+    refuse_cluster(args.name, args)
     with cluster(args) as args.cluster:
         journal = journals.open_journal(args.resume, csv, _journal_inputs(
             args, overrides))

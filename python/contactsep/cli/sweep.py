@@ -33,11 +33,8 @@ from contactsep.studies.chatter_sweep import (
 from contactsep.studies.fields import SETTINGS
 from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
 from contactsep.studies.runner import kept_note as runner_note
-from contactsep.studies.sweep import (
-    CHUNK_SIZE,
-    MAX_CHUNK_SIZE,
-    MAX_DESIGNS,
-)
+from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE
+from contactsep.studies.sweep_axes import MAX_DESIGNS
 from contactsep.studies.sweep_checks import CHATTER_UNUSED
 from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
 
@@ -222,7 +219,8 @@ def _say_unfinished(writers, store) -> None:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from contactsep.studies import runner
-    from contactsep.studies.sweep import make_spec, parse_sample, parse_vary
+    from contactsep.studies.sweep import make_spec
+    from contactsep.studies.sweep_axes import parse_sample, parse_vary
 
     vary = [parse_vary(text) for text in args.vary]
     sample = [parse_sample(text) for text in args.sample]

@@ -23,7 +23,8 @@ from contactsep.chatter import simulate
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.circuit import MIN_OPEN, OPEN_THRESHOLD
 from contactsep.chatter.runners import StepperError
-from contactsep.chatter.simulate import CoarseStepWarning, UnconvergedWarning
+from contactsep.chatter.simulate import UnconvergedWarning
+from contactsep.chatter.stack import CoarseStepWarning
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.output import ComputationLost

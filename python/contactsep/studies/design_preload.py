@@ -19,37 +19,37 @@ unchanged to every run.
 
 from __future__ import annotations
 
-import contextlib
-import functools
 import math
 import warnings
 
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies.preload import (
-    BAND_HIGH,
-    BAND_LOW,
     FINE_RATIO,
     MODELS,
-    TOLERANCE,
     Simulations,
     limit_notes,
-    min_preloads,
-    search,
 )
 from contactsep.studies.preload_answer import (  # noqa: F401 (old home)
     PreloadAnswer,
     spans_text,
 )
-from contactsep.studies.preload_converge import (
-    LEAST_REFINEMENT,
-    MARGIN,
-    MAX_MODES,
-    converge_rows,
-    largest_check,
-    reachable,
+from contactsep.studies.preload_checks import (  # noqa: F401 (old home)
+    MAX_PERTURBATION,
+    check_converge,
+    check_perturbation,
+    converged_fields,
+    doubled_modes,
+    journal_inputs,
+    opened_journal,
+    perturbed_fields,
+    perturbed_searches,
+    relative_change,
+    search_notes,
+    windows,
 )
+from contactsep.studies.preload_converge import MARGIN, MAX_MODES
 from contactsep.studies.preload_robust import (
     DEFAULT_P_TARGET,
     DEFAULT_SAMPLES,
@@ -59,11 +59,7 @@ from contactsep.studies.preload_robust import (
     robust_preload,
 )
 from contactsep.studies.preload_verify import search_design, verify_design
-from contactsep.studies.run_journal import RunJournal
 
-#: The largest ``perturbation``: a probe of the threshold's conditioning,
-#: not a tolerance (those are ``tolerance``'s).
-MAX_PERTURBATION = 1e-3
 #: Where the answer moves with N or the step: it may be the threshold's
 #: own conditioning (docs/chatter.md, "How well-posed the answer is").
 _HINT = ("; if it is the threshold itself, ill-conditioned, more modes "
@@ -72,48 +68,12 @@ _HINT = ("; if it is the threshold itself, ill-conditioned, more modes "
 _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
 
-def windows(tested, below: float = math.inf, event: bool = True) -> tuple:
-    """Runs of consecutive tested preloads (by preload) that all have an
-    event (``event``) or all have none, below ``below`` lb: ((first,
-    last), ...), each run's ends the tested preloads at its edges (the
-    window itself reaches at most to the neighbouring tested preloads)."""
-    runs, current = [], None
-    for preload, has_event in tested:
-        if preload >= below:
-            break
-        if bool(has_event) == event:
-            current = [preload, preload] if current is None else \
-                [current[0], preload]
-        elif current is not None:
-            runs.append(tuple(current))
-            current = None
-    if current is not None:
-        runs.append(tuple(current))
-    return tuple(runs)
-
-
-def _doubled(n_modes):
-    """Twice the modes of every member (n_modes: one count, or one per
-    member)."""
-    if isinstance(n_modes, (tuple, list)):
-        return type(n_modes)(2 * int(n) for n in n_modes)
-    return 2 * int(n_modes)
-
-
 def _probe(design, model, settings):
     """One run at no preload in this process: the design and settings
     checked (an InputError here, in one line, not in a worker), and the
     step simulate() takes for them."""
     return simulate(design, model=model, preload=0.0, samples=1,
                     single_impulse=False, **settings)
-
-
-def _change(answer: float, other: float) -> float | None:
-    if answer == other:
-        return 0.0
-    if not (math.isfinite(answer) and math.isfinite(other)) or answer == 0:
-        return None
-    return (other - answer) / answer
 
 
 def preload(design, model: str = "hertz", *, tolerance=(),
@@ -211,13 +171,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                          "tolerance")
     perturbation = check_perturbation(perturbation)
     probe = _probe(design, model, settings)
-    max_check = _check_converge(converge, verify, design.n_modes)
+    max_check = check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
     notes = []
     if verify:
         # refused here (the work budget at 2N, dt/2) rather than after
         # the search at N has run
-        finer = design.replace(n_modes=_doubled(design.n_modes))
+        finer = design.replace(n_modes=doubled_modes(design.n_modes))
         verify_settings = {**settings, "dt": probe.dt / 2}
         _probe(finer, model, verify_settings)
     inputs = journal_inputs(design, model, settings, tolerance=tolerance,
@@ -225,7 +185,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                             verify=verify, converge=converge,
                             perturbation=perturbation,
                             band_below=band_below)
-    with _journal(journal, inputs) as kept, \
+    with opened_journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
         # with tolerances the band below too: the robust search tries
         # the nominal design's events above its own answer
@@ -242,11 +202,12 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                             sims.seconds - timing["search"][1])
         perturbed = None
         if perturbation is not None:
-            perturbed = _perturbed(design, model, settings, sims, ceiling,
-                                   perturbation, answer, band_below)
+            perturbed = perturbed_searches(design, model, settings, sims,
+                                           ceiling, perturbation, answer,
+                                           band_below)
         converged = None
         if max_check is not None:
-            converged, converge_notes = _converge(
+            converged, converge_notes = converged_fields(
                 design, model, settings, sims, found, verify_found, probe,
                 max_check, band_below)
             notes += converge_notes
@@ -277,7 +238,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         at_answer = simulate(design, model=model, preload=answer,
                              samples=1, single_impulse=False,
                              **settings).longest_open_s
-    notes += _notes(found, probe)
+    notes += search_notes(found, probe)
     verify_answer = None if verify_found is None else \
         verify_found.min_preload_lb
     if local:
@@ -289,8 +250,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     elif verify_found is not None:
         notes += [f"at half the step and twice the modes: {note}" for note
                   in limit_notes("the design", verify_found)]
-    change = None if verify_found is None else _change(answer,
-                                                       verify_answer)
+    change = None if verify_found is None else relative_change(
+        answer, verify_answer)
     hint = "" if perturbation is not None else _HINT
     # no answer at N nor at 2N (an event up to the ceiling at both): the
     # verdict says so; "not converged" would read as a number to refine
@@ -343,158 +304,3 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
         **(converged or {}), **spread)
-
-
-def journal_inputs(design, model: str, settings: dict, *, tolerance=(),
-                   p_target=DEFAULT_P_TARGET, samples=None, seed=0,
-                   verify=True, converge=None, perturbation=None,
-                   band_below=False) -> dict:
-    """What a search's journal must have been made with to be continued
-    (its manifest): :func:`preload`'s arguments that choose the
-    simulations it asks for."""
-    # band_below named only when asked: a journal of the default search
-    # keeps the manifest it had before the option
-    return dict(design=design, model=model, settings=settings,
-                tolerance=list(tolerance), p_target=p_target,
-                samples=samples, seed=seed, verify=verify,
-                converge=converge, perturbation=perturbation,
-                **({"band_below": True} if band_below else {}))
-
-
-@contextlib.contextmanager
-def _journal(journal, inputs: dict):
-    """The RunJournal ``journal`` names (a path: opened here and closed
-    at the end, left in place; a RunJournal: the caller's), or None."""
-    if journal is None or isinstance(journal, RunJournal):
-        yield journal
-        return
-    with RunJournal(journal, inputs) as opened:
-        yield opened
-
-
-def check_perturbation(value) -> float | None:
-    """``perturbation`` as a float, or an InputError in one line."""
-    if value is None:
-        return None
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        number = math.nan
-    if isinstance(value, bool) or not 0.0 < number <= MAX_PERTURBATION:
-        raise InputError(f"perturbation: found {value!r}, expected a "
-                         f"relative change of y_s above 0 and at most "
-                         f"{MAX_PERTURBATION:g} (1e-6 is far below any "
-                         f"part's tolerance; tolerances themselves: "
-                         f"tolerance)")
-    return number
-
-
-def _perturbed(design, model, settings, sims, ceiling, perturbation,
-               answer, band_below=False):
-    """The searches on y_s (1 + r) and y_s (1 - r) with the nominal's
-    settings, in the same batches."""
-    designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
-               for sign in (1.0, -1.0)]
-    start = answer if math.isfinite(answer) else None
-    return search(2, lambda tasks: sims.search_events(
-        designs, model, settings, tasks),
-        ceilings=[ceiling] * 2, starts=[start] * 2, band_below=band_below,
-        ceiling_first=True)
-
-
-def perturbed_fields(perturbation, perturbed, answer) -> dict:
-    """The perturbed_* fields of PreloadAnswer (empty: not asked)."""
-    if perturbation is None:
-        return {}
-    found = tuple(p.min_preload_lb for p in perturbed)
-    changes = [_change(answer, p) for p in found]
-    return dict(perturbation=perturbation, perturbed_min_preload_lb=found,
-                min_preload_spread=None if None in changes else
-                max(abs(c) for c in changes),
-                perturbed_tested=tuple(p.tested for p in perturbed))
-
-
-def _check_converge(converge, verify, n_modes):
-    """The largest N of a convergence check (None: none), or an
-    InputError in one line.  The default (``converge`` None): the
-    answer at 2N checked once at 4N, where there is one N and verify."""
-    if converge is None:
-        if not verify or isinstance(n_modes, (tuple, list)):
-            return None
-        return 4 * int(n_modes)
-    if converge is False:
-        return None
-    if not verify:
-        raise InputError("converge: starts from the search at twice the "
-                         "modes; it needs verify")
-    if isinstance(n_modes, (tuple, list)):
-        raise InputError("converge: doubles one N; give the same n_modes "
-                         "for every member")
-    return largest_check(converge, int(n_modes))
-
-
-def _converge(design, model, settings, sims, found, verify_found, probe,
-              max_check, band_below=False) -> tuple[dict, list]:
-    """The converged_* fields of the answer (PreloadAnswer) and notes."""
-    n, dt = int(design.n_modes), probe.dt
-    answer, finer = found.min_preload_lb, verify_found.min_preload_lb
-    history = ((n, answer), (2 * n, finer))
-    change = _change(answer, finer)
-    if change is not None and abs(change) <= MARGIN:
-        return dict(converged_min_preload_lb=answer, converged_n_modes=n,
-                    converged_dt_s=dt, converged_check_n_modes=2 * n,
-                    converged=True, converge_history=history), []
-    last = reachable(2 * n, dt / 2, probe.t_end_s, max_check)
-    notes = []
-    if last < max_check:
-        notes.append(f"converge: checks stop at N = {last}: a run at "
-                     f"N = {2 * last} exceeds the simulation's work budget "
-                     f"over the {probe.t_end_s:g} s window even at "
-                     f"{LEAST_REFINEMENT:g} of the last step")
-    if not math.isfinite(finer) or last < 4 * n:
-        return dict(converged_min_preload_lb=finer,
-                    converged_n_modes=2 * n, converged_dt_s=dt / 2,
-                    converged_check_n_modes=2 * n, converged=False,
-                    converge_history=history), notes
-    row, = converge_rows(
-        lambda m, rows: [design.replace(n_modes=m) for _ in rows],
-        [finer], 2 * n, dt / 2, model,
-        {k: v for k, v in settings.items() if k != "dt"}, sims, last,
-        search_again=functools.partial(min_preloads, band_below=band_below,
-                                       ceiling_first=True),
-        t_end=probe.t_end_s)
-    if row.converged:
-        notes.append(f"converged: the answer at N = {row.n_modes} held "
-                     f"its check at N = {row.check_n_modes}, which tries "
-                     f"the preloads {MARGIN:.0%} either side of it (and "
-                     f"between, below) only: a window of events further "
-                     f"above it there is not seen (docs/chatter.md, \"The "
-                     f"preload command on the family\"); a whole search at "
-                     f"N = {row.check_n_modes} is the stronger test")
-    return dict(converged_min_preload_lb=row.min_preload_lb,
-                converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,
-                converged_check_n_modes=row.check_n_modes,
-                converged=row.converged,
-                converge_history=((n, answer),) + row.history), notes
-
-
-def _notes(found, probe) -> list:
-    notes = [
-        f"an event: the circuit open (both gaps above "
-        f"{probe.open_threshold_in:g} in) for at least "
-        f"{probe.min_open_s:g} s in the window 0-{probe.t_end_s:g} s; "
-        f"the answer depends on that min_open (docs/chatter.md)",
-        f"search: the ceiling, scan 2^(k/4) lb, bisection to "
-        f"{TOLERANCE:.0%}, every {FINE_RATIO - 1:.2%} step from "
-        f"{found.band_low:g} to {BAND_HIGH:g} times the answer simulated; "
-        f"windows of events narrower than 1 % may lie between two steps "
-        f"unseen, and beyond {BAND_HIGH:g} times the answer windows "
-        f"narrower than the scan's 19 %",
-        f"windows below {found.band_low:g} times the answer are resolved "
-        f"to the scan's 19 % steps only" + (
-            f" (the scan was monotone; band_below, --band-below: from "
-            f"{BAND_LOW:g})" if found.band_low > BAND_LOW else "")]
-    notes += limit_notes("the design", found)
-    if found.min_preload_lb == 0.0:
-        notes.append("closed with no preload at all")
-    return notes

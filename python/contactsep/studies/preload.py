@@ -23,7 +23,8 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.chatter.circuit import MIN_OPEN
-from contactsep.chatter.simulate import DEFAULT_DT, largest_preload
+from contactsep.chatter.simulate import DEFAULT_DT
+from contactsep.chatter.stack import largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contactsep.chatter.simulate import smallest_dt
+from contactsep.chatter.stack import smallest_dt
 from contactsep.errors import InputError
 from contactsep.studies.preload_runs import PreloadRun
 

@@ -7,8 +7,8 @@ threshold in a phase-sensitive system: a part made to its drawing's
 tolerances may open at a preload the nominal design keeps closed.  Here
 the tolerances are distributions of design fields, written as a sweep's
 ``--sample`` (``'d=normal(0.25,0.005)'``, ``'ys=uniform(0.45,0.55)'``;
-:func:`contactsep.studies.sweep.parse_sample`), and the samples are the
-sweep's own draws (:func:`contactsep.studies.sweep.chunk_inputs`: the
+:func:`contactsep.studies.sweep_axes.parse_sample`), and the samples are
+the sweep's own draws (:func:`contactsep.studies.sweep.chunk_inputs`: the
 same seed gives the same designs as ``contactsep sweep``).  The same
 samples are simulated at every preload tried (common random numbers),
 each through :func:`contactsep.studies.chatter_sweep.simulate_design`:

@@ -24,7 +24,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.studies.preload_converge import MARGIN, window_answer
 from contactsep.studies.preload_runs import PreloadRun
 from contactsep.studies.preload_search import (

@@ -1,20 +1,28 @@
-"""Running a sweep: chunks in order, locally or on a Dask cluster, streamed
-to writers, with a progress bar on a terminal."""
+"""Running a sweep: its options checked, its chunks' results (computed
+locally or on a Dask cluster: :mod:`contactsep.studies.chunk_runs`)
+streamed in order to writers, with a progress bar on a terminal, and its
+writers closed however it ends."""
 
 from __future__ import annotations
 
-import collections
 import math
-import os
-import shutil
-import tempfile
 import time
-from concurrent.futures.process import BrokenProcessPool
 
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
-from contactsep.studies import chatter_sweep, dask_run
+from contactsep.studies import chatter_sweep
+from contactsep.studies.chunk_runs import (  # noqa: F401 - the runner's API
+    DASK_WINDOW_PER_WORKER,
+    MAX_POOL_RESTARTS,
+    chunk_result,
+    chunk_result_on_dask,
+    evaluate,
+    evaluate_chunk_timed,
+    new_summary,
+    results_dask,
+    results_local,
+)
 from contactsep.studies.chunks import Chunks
 from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
     SCHEDULER_TIMEOUT_S,
@@ -35,14 +43,8 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     load_columns,
     save_columns,
 )
-from contactsep.studies.stops import StopRequests, progress_bar, wait_for
-from contactsep.studies.sweep import (
-    CHUNK_SIZE,
-    MAX_CHUNK_SIZE,
-    Summary,
-    SweepSpec,
-    evaluate_chunk,
-)
+from contactsep.studies.stops import StopRequests, progress_bar
+from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
 from contactsep.studies.writers import (  # noqa: F401 - the runner's API
     COLUMNS_NOTE,
     TITLE,
@@ -77,260 +79,6 @@ def check_threshold(spec: SweepSpec, threshold) -> None:
         raise InputError(f"--threshold: eq23's max y3; a {spec.model} "
                          f"sweep reports p_open, the designs with a "
                          f"discontinuity event")
-
-
-def evaluate(spec: SweepSpec, first: int, last: int) -> dict:
-    """The columns of designs first..last-1, by the sweep's model."""
-    if spec.model == "eq23":
-        return evaluate_chunk(spec, first, last)
-    return chatter_sweep.evaluate_chunk(spec, first, last)
-
-
-def evaluate_chunk_timed(spec, first, last) -> tuple[dict, float]:
-    """A chunk's columns and the seconds it took (chunks are sized by
-    the time per design: Chunks.record)."""
-    start = time.perf_counter()
-    columns = evaluate(spec, first, last)
-    return columns, time.perf_counter() - start
-
-
-def _new_summary(spec: SweepSpec, threshold):
-    return Summary(threshold=threshold) if spec.model == "eq23" \
-        else chatter_sweep.ChatterSummary()
-
-
-def chunk_result(spec, first, last, threshold, mode, directory=None):
-    """A chunk computed where it runs (a worker), in the form the parent
-    wants, with the seconds it took: ``mode`` "summary" (nothing is
-    written: the chunk's own summary, a few numbers), "file" (its
-    columns saved as ``directory``/FIRST-LAST.npz, the message back a
-    short path: a worker killed while it sent megabytes of columns
-    would leave the pool reading the rest of the message forever), or
-    "columns" (the NumPy columns themselves: Dask)."""
-    columns, seconds = evaluate_chunk_timed(spec, first, last)
-    if mode == "summary":
-        summary = _new_summary(spec, threshold)
-        summary.add(columns)
-        return summary, last - first, seconds
-    if mode == "file":
-        path = os.path.join(directory, f"{first:012d}-{last:012d}.npz")
-        save_columns(path, columns)
-        return path, last - first, seconds
-    return columns, last - first, seconds
-
-
-def chunk_result_on_dask(spec, first, last, threshold, mode):
-    """:func:`chunk_result` on a Dask worker, its malloc set back to
-    glibc's own thresholds first (dask_run.heap_as_glibc_default)."""
-    dask_run.heap_as_glibc_default()
-    return chunk_result(spec, first, last, threshold, mode)
-
-
-class _Done:
-    """A chunk that needs no work (stored by an earlier run)."""
-
-    def __init__(self, value) -> None:
-        self.value = value
-
-
-def _submit_all(bounds: Chunks, submit, store, window_size, take):
-    """Submit each chunk the store lacks (``submit(first, last)``, a
-    future), ``window_size`` at most in flight, and yield
-    ``take(item)`` of each chunk in order."""
-    window = collections.deque()
-    for first, last, stored in bounds.plan():
-        if stored:
-            window.append((first, last, _Done(store.load(first))))
-        else:
-            window.append((first, last, submit(first, last)))
-        while len(window) >= window_size or (
-                window and isinstance(window[0][2], _Done)):
-            yield take(window.popleft())
-    while window:
-        yield take(window.popleft())
-
-
-#: Times a sweep's local pool is started again after a worker died.
-MAX_POOL_RESTARTS = 3
-
-
-def _results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
-                   store):
-    """(kind, value, designs) of each chunk in order: kind "summary"
-    (value a partial summary) or "columns"."""
-    if workers <= 1:
-        for first, last, stored in bounds.plan():
-            stop.check()
-            if stored:
-                yield "columns", store.load(first), last - first
-                continue
-            value, designs, seconds = chunk_result(
-                spec, first, last, threshold,
-                "summary" if mode == "summary" else "columns")
-            bounds.record(designs, seconds)
-            if store is not None:
-                store.save(first, last, value)
-            yield ("summary" if mode == "summary" else "columns"), value, \
-                designs
-        return
-    if store is not None:
-        directory = store.path          # the workers save into the store
-    else:
-        shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
-        directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
-                                     dir=shared)
-    pools = [worker_pool(workers)]      # the last one is in use
-    finished = started = False
-    task_mode = "summary" if mode == "summary" else "file"
-
-    def restart(broken: int) -> None:
-        """Pool number ``broken`` lost a worker: a new one, unless that
-        happened MAX_POOL_RESTARTS times (a chunk that kills its worker
-        each time, as the OOM killer would)."""
-        if broken == len(pools):
-            if len(pools) > MAX_POOL_RESTARTS:
-                raise BrokenProcessPool("a worker died too often")
-            stop_pool(pools[-1], finished=False)
-            pools.append(worker_pool(workers))
-
-    def submit(first, last):
-        nonlocal started
-        while True:
-            try:
-                future = pools[-1].submit(chunk_result, spec, first, last,
-                                          threshold, task_mode, directory)
-                break
-            except BrokenProcessPool:
-                stop.check()
-                restart(len(pools))
-        future.pool = len(pools)
-        started = True
-        return future
-
-    def result(first, last, work):
-        """A chunk's result; a worker killed meanwhile (its pool broken)
-        costs the chunks in flight, run again on a new pool (the same
-        bits: a chunk does not depend on where it runs)."""
-        while True:
-            try:
-                return wait_for(work, stop)
-            except BrokenProcessPool:
-                stop.check()   # a SIGTERM to the group: workers went first
-                restart(work.pool)
-                work = submit(first, last)
-
-    def take(item):
-        first, last, work = item
-        if isinstance(work, _Done):
-            return "columns", work.value, last - first
-        value, designs, seconds = result(first, last, work)
-        bounds.record(designs, seconds)
-        if task_mode == "summary":
-            return "summary", value, designs
-        columns = load_columns(value)
-        if store is None:
-            os.unlink(value)
-        else:
-            store.chunks[first] = last
-        return "columns", columns, designs
-
-    try:
-        yield from _submit_all(bounds, submit, store, 2 * workers, take)
-        finished = True
-    except BrokenProcessPool:
-        stop.check()   # a SIGTERM to the whole group: the workers went first
-        raise InputError(f"a worker process died {MAX_POOL_RESTARTS + 1} "
-                         f"times (killed, or out of memory: try a smaller "
-                         f"--chunk-size)") from None
-    except OSError as error:
-        if started:
-            raise
-        # the pool starts its processes at the first chunk: one that
-        # could not start (a process limit) left the others waiting for
-        # work forever, and the interpreter's exit waiting for them
-        raise InputError(f"--workers {workers}: the worker processes could "
-                         f"not be started ({error.strerror or error}); try "
-                         f"fewer") from None
-    finally:
-        # stopped early (a signal, a writer's error, a dead worker, a
-        # pool that could not start): the chunks still running are
-        # dropped, so their workers are stopped now rather than waited
-        # for (a design may take seconds)
-        stop_pool(pools[-1], finished, wait=started)
-        if store is None:
-            shutil.rmtree(directory, ignore_errors=True)
-
-
-#: Chunks in flight per Dask worker thread when only summaries come back.
-DASK_WINDOW_PER_WORKER = 4
-
-
-def _results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
-                  store):
-    """As :func:`_results_local`, the chunks on a Dask cluster
-    (contactsep.studies.dask_run).
-
-    The parent's loop is the limit on many workers (measured on 16:
-    docs/performance.md): a result fetched alone costs a round trip to
-    the scheduler and a worker, and a window of two chunks a worker
-    left workers idle while the parent fetched the oldest.  So the
-    window holds DASK_WINDOW_PER_WORKER chunks a worker (the scheduler
-    queues them), and each fetch takes every finished chunk in one
-    gather; the chunks are still taken in order."""
-    client = address if hasattr(address, "submit") else connect(address)
-    task_mode = "summary" if mode == "summary" else "columns"
-    bounds.workers = dask_run.threads(client)
-    pending = {}        # key -> future, submitted and not yet taken
-    fetched = {}        # key -> result, gathered ahead of its turn
-    done = 0
-    # the spec goes to the workers once, not with every task
-    try:
-        shared = client.scatter(spec, broadcast=True, hash=False)
-    except Exception:        # noqa: BLE001 - a client without scatter
-        shared = spec
-
-    def submit(first, last):
-        future = client.submit(chunk_result_on_dask, shared, first, last,
-                               threshold, task_mode, pure=False)
-        pending[future.key] = future
-        return future
-
-    def take(item):
-        nonlocal done
-        first, last, work = item
-        if isinstance(work, _Done):
-            done += last - first
-            return "columns", work.value, last - first
-        if work.key in fetched:
-            value, designs, seconds = fetched.pop(work.key)
-        else:
-            value, designs, seconds = dask_run.wait(client, work, stop,
-                                                    done)
-            fetched.update(dask_run.gather_finished(
-                client, [f for key, f in pending.items()
-                         if key != work.key and key not in fetched]))
-        del pending[work.key]
-        bounds.record(designs, seconds)
-        if store is not None:
-            store.save(first, last, value)
-        done += designs
-        return task_mode, value, designs
-
-    window = DASK_WINDOW_PER_WORKER * bounds.workers + 2
-    if task_mode == "columns":
-        # columns wait in the parent until their turn: fewer of them
-        window = 2 * bounds.workers + 2
-    try:
-        with dask_run.quiet_dask():
-            yield from _submit_all(bounds, submit, store, window, take)
-    finally:
-        with dask_run.quiet_dask():
-            try:
-                client.cancel([f for f in pending.values() if not f.done()])
-            except Exception:    # noqa: BLE001 - a lost scheduler
-                pass
-            if client is not address:
-                client.close()
 
 
 def check_run(*, chunk_size=None, workers=None, threshold=None
@@ -399,15 +147,15 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     if spec.size - (store.designs if store is not None else 0) \
             <= bounds.next:
         workers = 1
-    summary = _new_summary(spec, threshold)
+    summary = new_summary(spec, threshold)
     mode = "columns" if writers or store is not None else "summary"
     bar = progress_bar(spec.size, progress)
     done = 0
     start = time.perf_counter()
     with StopRequests() as stop, output.stop_checks(stop.check):
-        results = _results_dask(
+        results = results_dask(
             spec, bounds, scheduler, stop, mode, threshold, store) \
-            if scheduler else _results_local(
+            if scheduler else results_local(
                 spec, bounds, workers, stop, mode, threshold, store)
         ended = None
         try:

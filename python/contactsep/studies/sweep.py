@@ -9,7 +9,8 @@ simulation, contactsep.studies.chatter_sweep, which may also vary the
 simulation's settings preload, min_open and damping).  Chunks are
 evaluated in this process, in a process pool on the local cores, or on
 a Dask cluster, and streamed in order to the output: memory is bounded
-by a few chunks whatever the size.
+by a few chunks whatever the size.  What --vary and --sample take is
+parsed in :mod:`contactsep.studies.sweep_axes`.
 
 Samples are reproducible and independent of the chunking: sample k of a
 field is drawn from block k // SAMPLE_BLOCK of a generator seeded with
@@ -19,15 +20,12 @@ field is drawn from block k // SAMPLE_BLOCK of a generator seeded with
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from contactsep import units
-from contactsep.errors import InputError
 from contactsep.model import evaluate, thesis_design
-from contactsep.model.design import MAX_MODES, Design
+from contactsep.model.design import Design
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
@@ -41,6 +39,12 @@ from contactsep.studies.sweep_checks import (
     check_elastic,
     check_used,
 )
+from contactsep.studies.sweep_axes import (
+    MAX_DESIGNS,
+    LinearAxis,
+    parse_sample,
+    parse_vary,
+)
 
 #: Samples drawn per generator block (fixes the stream, not the chunking).
 SAMPLE_BLOCK = 65536
@@ -48,139 +52,8 @@ SAMPLE_BLOCK = 65536
 #: columns of a million designs are ~0.5 GB in the parent).
 CHUNK_SIZE = 100_000
 MAX_CHUNK_SIZE = 1_000_000
-#: Most designs a sweep may have: 1e12 takes weeks on a hundred cores
-#: and writes a 100 TB CSV; the designs are counted in Python integers
-#: (a grid of 2^32 x 2^32 points wrapped to 0 in int64 and ran nothing).
-MAX_DESIGNS = 10**12
 #: Output columns beside the varied fields.
 RESULT_COLUMNS = ("y3_max_in", "t_max_s", "psi_lb_s", "v0_in_s", "status")
-
-#: What --vary and --sample take: design fields, and chatter settings
-#: (make_spec refuses the settings for eq23).
-_VARIABLE = design_fields.VARIABLE + design_fields.VARIABLE_SETTINGS
-_SAMPLED = design_fields.SAMPLED + design_fields.SAMPLED_SETTINGS
-#: What --vary takes as START:STOP:COUNT: the numbers.
-_LINEAR = _SAMPLED + ("dt", "alpha", "yield_pressure")
-
-
-def _field(name: str, option: str, allowed: tuple) -> str:
-    field = design_fields.field_name(name, f"{option} {name.strip()}",
-                                     settings=True)
-    if field not in allowed:
-        raise SweepError(f"{option} {name.strip()}: {field} cannot be "
-                         f"{'varied' if option == '--vary' else 'sampled'}"
-                         f" (one of {', '.join(allowed)})")
-    return field
-
-
-@dataclass(frozen=True)
-class LinearAxis:
-    """START:STOP:COUNT values, exactly as numpy.linspace gives them
-    (k * step + START, the last one STOP), without holding the array:
-    a grid of a billion points costs nothing until its chunks are made,
-    and the spec that travels to every worker stays small."""
-
-    start: float
-    stop: float
-    count: int
-
-    def __len__(self) -> int:
-        return self.count
-
-    def __getitem__(self, k):
-        k = np.asarray(k, dtype=np.int64)
-        k = np.where(k < 0, k + self.count, k)
-        if np.any((k < 0) | (k >= self.count)):
-            raise IndexError("axis index out of range")
-        if self.count == 1:
-            return np.full(k.shape, self.start)[()]
-        # ends a whole float range apart (-1e308:1e308) overflow STOP -
-        # START: the halves' axis, doubled (exact), is the same grid
-        scale = 1.0 if math.isfinite(self.stop - self.start) else 0.5
-        step = (scale * self.stop - scale * self.start) / (self.count - 1)
-        values = (k * step + scale * self.start) / scale
-        return np.where(k == self.count - 1, self.stop, values)[()]
-
-
-def parse_vary(text: str) -> tuple[str, object]:
-    """'h2=0.1:1.0:19' (START:STOP:COUNT, numeric fields), 'd=0.1,0.25'
-    (a list) or 'end2=clamped-clamped,pinned-pinned'; the name may be
-    any name of the field (h2, d, d_in).  Returns (field, values)."""
-    name, sep, values_text = text.partition("=")
-    field = _field(name, "--vary", _VARIABLE)
-    label = f"--vary {name.strip()}"
-    if not sep:
-        raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT or "
-                         f"NAME=V1,V2,...")
-    if ":" in values_text and field in _LINEAR:
-        try:
-            start, stop, count = values_text.split(":")
-            start, stop, count = float(start), float(stop), int(count)
-        except ValueError:
-            raise SweepError(f"--vary {text}: expected NAME=START:STOP:COUNT"
-                             f" or NAME=V1,V2,...") from None
-        if not (math.isfinite(start) and math.isfinite(stop)):
-            raise SweepError(f"--vary {text}: found START {start!r} and "
-                             f"STOP {stop!r}, expected finite numbers")
-        if not 1 <= count <= MAX_DESIGNS:
-            raise SweepError(f"--vary {text}: found COUNT {count}, expected "
-                             f"1 to {MAX_DESIGNS:,} values")
-        values = LinearAxis(start, stop, count)
-        if field in design_fields.SETTINGS:
-            # a linear axis lies between its ends: checking them checks it
-            for end in (values.start, values.stop):
-                design_fields.parse_value(field, end, label)
-    else:
-        items = [design_fields.parse_value(field, item, label)
-                 for item in values_text.split(",")]
-        for item in items:
-            if isinstance(item, float) and not math.isfinite(item):
-                raise SweepError(f"{label}: found {item!r}, expected "
-                                 f"finite numbers")
-        values = np.array(items)
-        if field == "n_modes" and np.any(values > MAX_MODES):
-            raise SweepError(f"{label}: found {np.max(values)}, expected "
-                             f"at most {MAX_MODES:,} modes")
-    return field, values
-
-
-_SAMPLE = re.compile(r"^\s*(normal|uniform)\(\s*([^,]+),\s*([^)]+)\)\s*$")
-
-
-def _sample_number(text: str, field: str, label: str) -> float:
-    """One parameter of a distribution: a bare number in the field's
-    unit, or a number with a unit converted as the design options
-    convert theirs (contactsep.units: '1mm' is 1/25.4 in); ValueError
-    for what is not a number."""
-    if units.split(text) is not None:
-        return units.convert(text, design_fields.unit(field), label)
-    return float(text)
-
-
-def parse_sample(text: str) -> tuple[str, str, float, float]:
-    """'h2=normal(0.25,0.005)' or 'ys=uniform(0.45,0.55)' (numeric
-    fields, any of their names); each number may carry a unit,
-    'd=normal(1mm,0.02mm)'."""
-    name, _, spec = text.partition("=")
-    field = _field(name, "--sample", _SAMPLED)
-    match = _SAMPLE.match(spec)
-    label = f"--sample {name.strip()}"
-    try:
-        kind = match.group(1)
-        a = _sample_number(match.group(2), field, label)
-        b = _sample_number(match.group(3), field, label)
-    except InputError as error:     # a unit pint refuses: its own line
-        raise SweepError(str(error)) from None
-    except (AttributeError, ValueError):
-        raise SweepError(f"--sample {text}: expected NAME=normal(MEAN,SD) or "
-                         f"NAME=uniform(LO,HI)") from None
-    if not (math.isfinite(a) and math.isfinite(b)) or (
-            kind == "normal" and b < 0) or (kind == "uniform" and b < a):
-        raise SweepError(f"--sample {text}: the parameters are out of range")
-    if kind == "uniform" and not math.isfinite(b - a):
-        raise SweepError(f"--sample {text}: HI - LO overflows (more than "
-                         f"the largest float); expected a narrower range")
-    return field, kind, a, b
 
 
 @dataclass(frozen=True)

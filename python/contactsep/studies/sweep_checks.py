@@ -119,7 +119,7 @@ def check_preload(preload, base: dict, swept: set) -> None:
     otherwise a design above its limit is its row's status 2."""
     if preload is None or swept & _PRELOAD_LIMIT_FIELDS:
         return
-    from contactsep.chatter.simulate import largest_preload
+    from contactsep.chatter.stack import largest_preload
     most = largest_preload(thesis_design(**base))
     if preload > most:
         raise SweepError(f"--preload: found {preload!r}, expected at most "
