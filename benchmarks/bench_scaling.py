@@ -139,7 +139,7 @@ def planned_sizes(args, ks, sticks, engines) -> dict:
     return sizes
 
 
-def timed_robust(k: int, samples: int, dask: bool):
+def timed_robust(k: int, samples: int, dask: bool, modes: int = 4):
     """(seconds, parent CPU seconds, answer's JSON) of the robust
     search (module doc) on k local workers or k Dask workers."""
     sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..",
@@ -147,10 +147,14 @@ def timed_robust(k: int, samples: int, dask: bool):
     from design_family import FAMILY
 
     import contactsep
-    design = FAMILY["becu_light"].replace(n_modes=4)
+    design = FAMILY["becu_light"].replace(n_modes=modes)
     options = {"tolerance": ["ys=uniform(0.029,0.031)"], "samples": samples,
                    "p_target": 0.6, "converge": False, "dt": 1e-8, "t_end": 0.005,
                    "static_correction": False}
+    if modes != 4:
+        # runs as long as a designer's: the design's own numerics
+        for name in ("dt", "t_end", "static_correction"):
+            options.pop(name)
     if dask:
         import distributed
         with distributed.LocalCluster(
@@ -185,6 +189,9 @@ def main() -> None:
                         help="leave out the robust search")
     parser.add_argument("--robust-samples", type=int, default=12,
                         help="draws of the robust search")
+    parser.add_argument("--robust-modes", type=int, default=4,
+                        help="its modes (other than 4: the design's own "
+                             "step, window and static correction)")
     parser.add_argument("--repeat", type=int, default=1,
                         help="best of R runs of each configuration")
     parser.add_argument("--no-dask", action="store_true")
@@ -256,11 +263,12 @@ def main() -> None:
         print(f"\n{'search':>6} {'engine':>6} {'k':>3} {'seconds':>8} "
               f"{'dask/local':>10} {'parent %':>8} same answer")
         for k in robust_at:
-            local = timed_robust(k, args.robust_samples, False)
+            local = timed_robust(k, args.robust_samples, False,
+                                 args.robust_modes)
             rows = [("local", local)]
             if not args.no_dask:
                 rows.append(("dask", timed_robust(k, args.robust_samples,
-                                                  True)))
+                                                  True, args.robust_modes)))
             for engine, (seconds, cpu, answer) in rows:
                 ratio = f"{local[0] / seconds:10.2f}" \
                     if engine == "dask" else f"{'':>10}"
