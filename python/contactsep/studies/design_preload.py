@@ -93,17 +93,15 @@ def windows(tested, below: float = math.inf, event: bool = True) -> tuple:
 
 
 def _doubled(n_modes):
-    """Twice the modes of every member (n_modes: one count, or one per
-    member)."""
+    """Twice the modes of every member (one count, or one per member)."""
     if isinstance(n_modes, (tuple, list)):
         return type(n_modes)(2 * int(n) for n in n_modes)
     return 2 * int(n_modes)
 
 
 def _probe(design, model, settings):
-    """One run at no preload in this process: the design and settings
-    checked (an InputError here, in one line, not in a worker), and the
-    step simulate() takes for them."""
+    """One run at no preload here: the design and settings checked (an
+    InputError in one line, not in a worker), the step simulate() takes."""
     return simulate(design, model=model, preload=0.0, samples=1,
                     single_impulse=False, **settings)
 
@@ -342,6 +340,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
+        runs=tuple(sims.log),
         **(converged or {}), **spread)
 
 
@@ -391,11 +390,12 @@ def check_perturbation(value) -> float | None:
 
 def _perturbed(design, model, settings, sims, ceiling, perturbation,
                answer, band_below=False):
-    """The searches on y_s (1 + r) and y_s (1 - r) with the nominal's
-    settings, in the same batches."""
+    """The searches on y_s (1 +- r), the nominal's settings, one batch."""
     designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
                for sign in (1.0, -1.0)]
     start = answer if math.isfinite(answer) else None
+    sims.search = lambda run: "perturbed_up" if run.design.ys > design.ys \
+        else "perturbed_down"
     return search(2, lambda tasks: sims.search_events(
         designs, model, settings, tasks),
         ceilings=[ceiling] * 2, starts=[start] * 2, band_below=band_below,
@@ -415,9 +415,8 @@ def perturbed_fields(perturbation, perturbed, answer) -> dict:
 
 
 def _check_converge(converge, verify, n_modes):
-    """The largest N of a convergence check (None: none), or an
-    InputError in one line.  The default (``converge`` None): the
-    answer at 2N checked once at 4N, where there is one N and verify."""
+    """The largest N of a convergence check (None: none), or an InputError
+    in one line; by default 4N, where there is one N and verify."""
     if converge is None:
         if not verify or isinstance(n_modes, (tuple, list)):
             return None
@@ -436,6 +435,7 @@ def _check_converge(converge, verify, n_modes):
 def _converge(design, model, settings, sims, found, verify_found, probe,
               max_check, band_below=False) -> tuple[dict, list]:
     """The converged_* fields of the answer (PreloadAnswer) and notes."""
+    sims.search = "converge"
     n, dt = int(design.n_modes), probe.dt
     answer, finer = found.min_preload_lb, verify_found.min_preload_lb
     history = ((n, answer), (2 * n, finer))
