@@ -155,6 +155,7 @@ class PreloadAnswer:
                  f"preload with no discontinuity event ({self.model}, "
                  f"N = {self.n_modes}, dt {self.dt_s:g} s)",
                  f"# min_preload_lb = {_g(self.min_preload_lb)}",
+                 f"# ceiling_lb = {_g(self.ceiling_lb)}",
                  f"# min_preload_change = {_g(self.min_preload_change)} "
                  f"(at half the step and twice the modes: "
                  f"{_g(self.verify_min_preload_lb)} lb)",
@@ -245,14 +246,15 @@ CSV_COLUMNS = ("search", "preload_lb", "n", "n_open", "n_failed", "n_modes",
 def run_line(search: str, preload_lb: float, n_modes, event, dt_s=None,
              n: int = 1, n_open: int | None = None, n_failed: int = 0
              ) -> str:
-    """One row of the preload CSV (:data:`CSV_COLUMNS`); ``n_open``
-    defaults to ``event`` (one run)."""
+    """One row of the preload CSV (:data:`CSV_COLUMNS`), the preload and
+    step to the last digit; ``n_open`` defaults to ``event`` (one run)."""
     modes = ";".join(str(int(m)) for m in n_modes) if isinstance(
         n_modes, (tuple, list)) else str(int(n_modes))
     opened = int(bool(event)) if n_open is None else int(n_open)
-    step = "" if dt_s is None else f"{dt_s:.12g}"
-    return (f"{search},{preload_lb:.12g},{int(n)},{opened},{int(n_failed)},"
-            f"{modes},{step},{int(bool(event))}")
+    # every float as repr writes it: read back, the very number run
+    step = "" if dt_s is None else repr(float(dt_s))
+    return (f"{search},{float(preload_lb)!r},{int(n)},{opened},"
+            f"{int(n_failed)},{modes},{step},{int(bool(event))}")
 
 
 def _plain(value):
