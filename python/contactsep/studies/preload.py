@@ -121,8 +121,7 @@ class Simulations:
         self.runs = 0
         self.seconds = 0.0
         #: The search the next runs belong to (a name, or a function of
-        #: the run), and every run of :meth:`events` as a CSV row
-        #: (:func:`~contactsep.studies.preload_runs.run_row`).
+        #: the run); every run of :meth:`events`, a row (preload_runs).
         self.search = "nominal"
         self.log = []
         self._pool = None
