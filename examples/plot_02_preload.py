@@ -8,7 +8,10 @@ smallest preload with no discontinuity event in the window; for the
 tutorial's relay (Hertz, N = 8) that search simulates dozens of preloads
 (a minute or so on one core), so this example reads its committed
 result, ``docs/studies/tutorial_preload.csv`` (the tests hold it equal to
-the code), and simulates only the two preloads it draws.
+the code), and simulates only the two preloads it draws.  The file has
+the columns of ``contactsep preload --csv FILE`` (one row a simulation:
+``search``, ``preload_lb``, ``event`` 1 or 0, ...), so the same lines
+read and draw a file that command wrote for your design.
 """
 
 from pathlib import Path
@@ -32,6 +35,9 @@ found = dict(line.split(" = ") for line in comments
              if line.startswith(("min_preload_lb", "ceiling_lb")))
 smallest = float(found["min_preload_lb"])
 tested = pd.read_csv(CSV, comment="#")
+# the search at the design's own N and step (a command's file also has
+# its checks: at twice the modes, perturbed, robust)
+tested = tested[tested["search"] == "nominal"]
 print(f"{len(tested)} preloads simulated, {int(tested['event'].sum())} "
       f"with an event; smallest preload with no event above it: "
       f"{smallest:.4g} lb (the simulation takes up to "

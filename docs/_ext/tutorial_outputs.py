@@ -108,16 +108,18 @@ def setup_steps() -> list[Step]:
 
 
 def preload_csv_text(search, design) -> str:
-    """The preload search as CSV: every preload simulated, in order of
+    """The preload search as the preload CSV (the columns of
+    ``contactsep preload --csv``): every preload simulated, in order of
     preload, and whether it gave a discontinuity event."""
     from contactsep.studies.fields import design_lines
+    from contactsep.studies.preload_answer import CSV_COLUMNS, run_line
     lines = ["# Tutorial relay (docs/tutorial.md): the preload search of "
              "contactsep.studies.preload.min_preloads, Hertz, N = 8",
              *(f"# {line}" for line in design_lines(design)),
              f"# min_preload_lb = {search.min_preload_lb!r}",
              f"# ceiling_lb = {search.ceiling_lb!r}",
-             "preload_lb,event"]
-    lines += [f"{p!r},{int(bool(event))}"
+             ",".join(CSV_COLUMNS)]
+    lines += [run_line("nominal", p, design.n_modes, event)
               for p, event in sorted(search.tested)]
     return "\n".join(lines) + "\n"
 

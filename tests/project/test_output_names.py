@@ -45,7 +45,7 @@ DIMENSIONLESS = {
     "separator_material", "law", "perturbation", "min_preload_spread",
     "ys_change", "change_from_unperturbed", "ys_tolerance",
     "p_open_ci95_high", "robust_tested", "robust_band", "samples_needed",
-    "simulations_saved", "verdict"}
+    "simulations_saved", "verdict", "search"}
 #: Structures: lists of [start, end] intervals (s) or confidence
 #: intervals (of a dimensionless probability), and groups of keys.
 STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",

@@ -141,15 +141,21 @@ def test_the_pages_tolerance_numbers_are_the_committed_rows():
 def test_the_pages_preload_is_the_committed_search():
     step, = [s for s in tutorial.steps() if "min_preloads" in s.code]
     comments, header, rows = parse_csv(tutorial.PRELOAD_CSV.read_text())
-    assert header == ["preload_lb", "event"]
+    # the columns of contactsep preload --csv: one layout for both
+    from contactsep.studies.preload_answer import CSV_COLUMNS
+    assert header == list(CSV_COLUMNS)
+    rows = [dict(zip(header, r)) for r in rows]
+    assert {(r["search"], r["n"], r["n_failed"], r["n_modes"], r["dt_s"])
+            for r in rows} == {("nominal", "1", "0", "8", "")}
+    assert all(r["n_open"] == r["event"] for r in rows)
     smallest = float([c for c in comments if "min_preload_lb" in c][0]
                      .split(" = ")[1])
     printed = re.search(r"no event: (\S+) lb", step.shown).group(1)
     assert numbers_agree(printed, f"{smallest:.4g}")
     # the answer is a simulated preload with no event, and no preload
     # above it gave one
-    preloads = np.array([float(r[0]) for r in rows])
-    event = np.array([r[1] == "1" for r in rows])
+    preloads = np.array([float(r["preload_lb"]) for r in rows])
+    event = np.array([r["event"] == "1" for r in rows])
     assert smallest in preloads and not event[preloads == smallest][0]
     assert not np.any(event[preloads >= smallest])
     assert np.any(event[preloads < smallest])

@@ -312,9 +312,9 @@ def test_the_command_writes_strict_json_and_a_commented_csv(
     assert lines[:len(comments)] == comments and len(comments) >= 5
     rows = list(csv.DictReader(io.StringIO("\n".join(lines[len(comments):]))))
     assert list(rows[0]) == ["search", "preload_lb", "n", "n_open",
-                             "n_failed"]
-    assert {r["search"] for r in rows} == {"nominal", "verify", "robust",
-                                           "robust_check"}
+                             "n_failed", "n_modes", "dt_s", "event"]
+    assert {r["search"] for r in rows} == {"nominal", "verify", "converge",
+                                           "robust", "robust_check"}
     # the planted tolerance study does not depend on N: its answer holds
     assert data["robust"]["converged"] is True
     assert data["robust"]["check_n_modes"] == 16

@@ -63,7 +63,7 @@ def _killed_at(args, count: int, cut: bool = False) -> None:
 def uninterrupted(planted_preload, tmp_path, capsys):
     """The command's CSV bytes, JSON and simulation count, run without
     --resume, and the count of simulations each search ran, in the
-    order they run (the CSV's rows: one a preload, a robust one a
+    order they run (the CSV's rows: one a simulation, a robust one a
     preload of up to 20 samples, its n and n_failed those that ran; the
     convergence check's runs lie between the repeat at 2N and the robust
     search)."""
@@ -74,7 +74,7 @@ def uninterrupted(planted_preload, tmp_path, capsys):
     rows = [line.split(",") for line in path.read_text().splitlines()
             if not line.startswith("#")][1:]
     searches = {name: [r[0] for r in rows].count(name) for name in (
-        "nominal", "verify", "robust", "robust_check")}
+        "nominal", "verify", "converge", "robust", "robust_check")}
     for name in ("robust", "robust_check"):
         searches[f"{name}_runs"] = sum(int(r[2]) + int(r[4]) for r in rows
                                        if r[0] == name)
@@ -107,8 +107,11 @@ def test_a_killed_search_resumes_to_the_same_answer_and_csv(
     not kept."""
     reference, answer, total, searches = uninterrupted
     assert searches["nominal"] > 50 and searches["verify"] > 50
+    # every simulation is in the CSV: the check at 4N's too (a few)
+    assert 0 < searches["converge"] < 10
     assert searches["nominal"] + searches["verify"] + searches[
-        "robust_runs"] + searches["robust_check_runs"] < total  # 4N: a few
+        "converge"] + searches["robust_runs"] + searches[
+        "robust_check_runs"] == total
     assert searches["robust"] > 10 and searches["robust_check"] == 5
     count = WHERE[where]({**searches, "total": total})
     path = tmp_path / "p.csv"

@@ -113,8 +113,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
     out_group.add_argument("--csv", metavar="FILE",
-                           help="write every preload tried (comments: the "
-                                "answers); replaced only when finished")
+                           help="write every simulation of the search, one "
+                                "row each (comments: the answers); "
+                                "replaced only when finished")
     out_group.add_argument("--resume", action="store_true",
                            help="keep every finished simulation beside the "
                                 "--csv file, in .FILE.resume/, and continue "
@@ -242,8 +243,7 @@ def _run(args, design, p_target, workers) -> int:
         if bar is not None:
             bar.close()
     if args.csv:
-        with output.open_output(args.csv) as out:
-            output.write_text(out, answer.csv_text())
+        answer.to_csv(args.csv)
         journals.finished(args.csv, journal)
     if args.json:
         output.write_json(sys.stdout, with_sources(answer.to_json_dict(),

@@ -69,9 +69,8 @@ _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
 
 def _probe(design, model, settings):
-    """One run at no preload in this process: the design and settings
-    checked (an InputError here, in one line, not in a worker), and the
-    step simulate() takes for them."""
+    """One run at no preload here: the design and settings checked (an
+    InputError in one line, not in a worker), the step simulate() takes."""
     return simulate(design, model=model, preload=0.0, samples=1,
                     single_impulse=False, **settings)
 
@@ -303,4 +302,5 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         verify_tested=() if verify_found is None else verify_found.tested,
         ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
         simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
+        runs=tuple(sims.log),
         **(converged or {}), **spread)

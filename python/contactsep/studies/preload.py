@@ -35,7 +35,7 @@ from contactsep.studies.pool import (
     worker_pool,
 )
 from contactsep.studies.preload_converge import chart_columns, largest_check
-from contactsep.studies.preload_runs import PreloadRun
+from contactsep.studies.preload_runs import PreloadRun, run_row
 from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
     BAND_HIGH,
     BAND_LOW,
@@ -121,6 +121,10 @@ class Simulations:
         #: does), and the seconds this process spent on them.
         self.runs = 0
         self.seconds = 0.0
+        #: The search the next runs belong to (a name, or a function of
+        #: the run); every run of :meth:`events`, a row (preload_runs).
+        self.search = "nominal"
+        self.log = []
         self._pool = None
 
     def __enter__(self) -> "Simulations":
@@ -211,7 +215,9 @@ class Simulations:
         """Whether each of ``tasks``
         (:class:`~contactsep.studies.preload_runs.PreloadRun`) has a
         discontinuity event."""
-        return self.map(_simulate_event, tasks)
+        found = self.map(_simulate_event, tasks)
+        self.log += [run_row(self.search, t, e) for t, e in zip(tasks, found)]
+        return found
 
     def search_events(self, designs, model: str, settings: dict,
                       tasks) -> list:

@@ -85,6 +85,12 @@ class PreloadAnswer:
     min_preload_spread: float | None = None
     #: (preload lb, has an event) of the two perturbed searches.
     perturbed_tested: tuple = ()
+    #: (search, preload lb, N, the step given in s or None, has an
+    #: event) of every simulation of :attr:`tested`, :attr:`verify_tested`,
+    #: the convergence check and :attr:`perturbed_tested`, in the order
+    #: run: the CSV's rows (search "nominal", "verify", "converge",
+    #: "perturbed_up", "perturbed_down"; the robust runs in robust).
+    runs: tuple = ()
     #: (simulations, wall seconds) of the search at N ("search"), its
     #: repeat at 2N ("verify") and every nominal run ("nominal"): what
     #: the verdict's rerun estimate scales (not in the JSON, nor in
@@ -138,16 +144,18 @@ class PreloadAnswer:
             "verdict": self.verdict.text}
 
     def csv_text(self) -> str:
-        """'#' comments (the answer, its change, the windows, the robust
-        answer, the notes), then one row per preload tried: search
-        (nominal, verify, robust, robust_check: the robust answer's check
-        at 2N), preload_lb, n (designs run), n_open
-        (with an event), n_failed; perturbed_up, perturbed_down: the
-        searches on y_s (1 + r) and y_s (1 - r)."""
+        """The preload CSV (module :data:`CSV_COLUMNS`): '#' comments,
+        one line each (the answer, its change, the windows, the robust
+        answer, the notes, the verdict), then one row per simulation of
+        the search, in the order run, with the search it belongs to
+        (:attr:`runs`), then one per preload the robust search tried
+        ("robust"; "robust_check": its check at 2N), n the samples run
+        (without the n_failed that failed), event 1 where any opened."""
         lines = [f"# contactsep preload: the smallest lower-contact "
                  f"preload with no discontinuity event ({self.model}, "
                  f"N = {self.n_modes}, dt {self.dt_s:g} s)",
                  f"# min_preload_lb = {_g(self.min_preload_lb)}",
+                 f"# ceiling_lb = {_g(self.ceiling_lb)}",
                  f"# min_preload_change = {_g(self.min_preload_change)} "
                  f"(at half the step and twice the modes: "
                  f"{_g(self.verify_min_preload_lb)} lb)",
@@ -172,19 +180,27 @@ class PreloadAnswer:
                              f"{robust_check_text(r)}")
         lines += [f"# {note}" for note in self.notes]
         lines.append(f"# verdict: {self.verdict.text}")
-        lines.append("search,preload_lb,n,n_open,n_failed")
-        for name, tested in (("nominal", self.tested),
-                             ("verify", self.verify_tested),
-                             *zip(("perturbed_up", "perturbed_down"),
-                                  self.perturbed_tested)):
-            lines += [f"{name},{p:.12g},1,{int(bool(e))},0"
-                      for p, e in tested]
+        # a comment is one line whatever a note holds
+        lines = [" ".join(line.splitlines()) for line in lines]
+        lines.append(",".join(CSV_COLUMNS))
+        lines += [run_line(name, p, n, e, dt, 1, int(e), 0)
+                  for name, p, n, dt, e in self.runs]
         if self.robust is not None:
-            lines += [f"robust,{p:.12g},{n},{k},{f}"
-                      for p, n, k, f in self.robust.tested]
-            lines += [f"robust_check,{p:.12g},{n},{k},{f}"
+            given = self.settings.get("dt")
+            lines += [run_line("robust", p, self.n_modes, k > 0, given, n,
+                               k, f) for p, n, k, f in self.robust.tested]
+            lines += [run_line("robust_check", p, self.robust.check_n_modes,
+                               k > 0, self.dt_s / 2, n, k, f)
                       for p, n, k, f in self.robust.checked]
         return "\n".join(lines) + "\n"
+
+    def to_csv(self, path) -> None:
+        """Write :meth:`csv_text` to ``path``, replacing it only once
+        the file is finished (``contactsep preload --csv``'s file);
+        ``contactsep.read(path)`` reads it back."""
+        from contactsep import output
+        with output.open_output(path) as out:
+            output.write_text(out, self.csv_text())
 
     def converged_text(self) -> str | None:
         """The converged answer in words (None: not asked): its N and
@@ -216,6 +232,29 @@ class PreloadAnswer:
         text = self.converged_text()
         return [] if text is None else \
             [f"# converged_min_preload_lb = {text}"]
+
+
+#: The preload CSV's columns: the search a simulation belongs to, its
+#: preload, the designs run (1; a robust row: its samples), how many of
+#: them opened and failed, its N per member (one number, or one per
+#: member joined by ";"), the step it was given (s; empty: its design's
+#: own step at its preload) and whether it had an event (1 or 0).
+CSV_COLUMNS = ("search", "preload_lb", "n", "n_open", "n_failed", "n_modes",
+               "dt_s", "event")
+
+
+def run_line(search: str, preload_lb: float, n_modes, event, dt_s=None,
+             n: int = 1, n_open: int | None = None, n_failed: int = 0
+             ) -> str:
+    """One row of the preload CSV (:data:`CSV_COLUMNS`), the preload and
+    step to the last digit; ``n_open`` defaults to ``event`` (one run)."""
+    modes = ";".join(str(int(m)) for m in n_modes) if isinstance(
+        n_modes, (tuple, list)) else str(int(n_modes))
+    opened = int(bool(event)) if n_open is None else int(n_open)
+    # every float as repr writes it: read back, the very number run
+    step = "" if dt_s is None else repr(float(dt_s))
+    return (f"{search},{float(preload_lb)!r},{int(n)},{opened},"
+            f"{int(n_failed)},{modes},{step},{int(bool(event))}")
 
 
 def _plain(value):

@@ -125,6 +125,8 @@ def perturbed_searches(design, model, settings, sims, ceiling,
     designs = [design.replace(ys=design.ys * (1.0 + sign * perturbation))
                for sign in (1.0, -1.0)]
     start = answer if math.isfinite(answer) else None
+    sims.search = lambda run: "perturbed_up" if run.design.ys > design.ys \
+        else "perturbed_down"
     return search(2, lambda tasks: sims.search_events(
         designs, model, settings, tasks),
         ceilings=[ceiling] * 2, starts=[start] * 2, band_below=band_below,
@@ -166,6 +168,7 @@ def converged_fields(design, model, settings, sims, found, verify_found,
                      probe, max_check, band_below=False
                      ) -> tuple[dict, list]:
     """The converged_* fields of the answer (PreloadAnswer) and notes."""
+    sims.search = "converge"
     n, dt = int(design.n_modes), probe.dt
     answer, finer = found.min_preload_lb, verify_found.min_preload_lb
     history = ((n, answer), (2 * n, finer))

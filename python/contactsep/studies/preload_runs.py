@@ -77,3 +77,15 @@ class SampleRun(PreloadRun):
         """``(fields, model, settings with the preload)``: what names
         the run in a journal."""
         return (self.design, self.model, self.sample_settings)
+
+
+def run_row(search, task: PreloadRun, event) -> tuple:
+    """One simulation of a search as a row of the preload CSV
+    (:meth:`contactsep.studies.preload_answer.PreloadAnswer.csv_text`):
+    ``(search, preload_lb, n_modes, dt_s, event)``; ``search`` the name
+    of the search the run belongs to, or a function of the task giving
+    it; ``dt_s`` the step the run was given (None: it took its design's
+    own at its preload)."""
+    name = search(task) if callable(search) else search
+    return (name, float(task.preload_lb), task.design.n_modes,
+            task.settings.get("dt"), bool(event))

@@ -91,6 +91,7 @@ def search_design(design, model, settings, sims, ceiling, start=None,
 def verify_design(finer, model, settings, sims, answer, band_below):
     """(the search at 2N, dt/2 on the design ``finer``, whether it is
     the check 2 % either side of ``answer``): :func:`verify_search`."""
+    sims.search = "verify"
     ceiling = largest_preload(finer)
     return verify_search(
         lambda loads: sims.events([PreloadRun(finer, model, settings, load)
