@@ -1,0 +1,42 @@
+"""benchmarks/bench_scaling.py runs as the one script a session lent a
+many-core machine would run: the yardstick, both sweeps on both engines
+at every worker count, and the robust search on both engines with the
+same answer, all in one call (here at the smallest budget, two
+workers).  Its timings are not checked: only that every row it promises
+is printed."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from conftest import ROOT
+
+pytest.importorskip("distributed")
+
+
+def test_the_script_prints_every_configuration_within_its_budget(tmp_path):
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "bench_scaling.py"),
+         "--minutes", "0.05", "--max-workers", "2", "--robust-samples",
+         "3"], cwd=tmp_path, env=env, capture_output=True, text=True,
+        timeout=900)
+    assert done.returncode == 0, done.stderr[-2000:]
+    rows = [line.split() for line in done.stdout.splitlines()]
+    # the budget's plan before the runs: the smallest sizes bind
+    assert "eq23: " in done.stdout and "100,000 designs fit" in done.stdout
+    assert "16 designs fit" in done.stdout
+    for sweep in ("eq23", "hertz"):
+        for engine in ("local", "dask"):
+            for k in ("1", "2"):
+                assert [sweep, engine, k] in [r[:3] for r in rows], \
+                    (sweep, engine, k)
+    robust = [r for r in rows if r[:1] == ["robust"]]
+    assert [r[1:3] for r in robust] == [["local", "2"], ["dask", "2"]]
+    # the two engines found the same answer
+    assert all(r[-1] == "yes" for r in robust), robust
+    assert done.stdout.rstrip().endswith(" s in all")
