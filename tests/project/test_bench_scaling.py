@@ -23,7 +23,8 @@ def test_the_script_prints_every_configuration_within_its_budget(tmp_path):
     done = subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "bench_scaling.py"),
          "--minutes", "0.05", "--max-workers", "2", "--robust-samples",
-         "3"], cwd=tmp_path, env=env, capture_output=True, text=True,
+         "3"], check=False, cwd=tmp_path, env=env, capture_output=True,
+        text=True,
         timeout=900)
     assert done.returncode == 0, done.stderr[-2000:]
     rows = [line.split() for line in done.stdout.splitlines()]
