@@ -11,6 +11,7 @@ package's table."""
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -91,8 +92,6 @@ def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
                                  "commands that take it are model, "
                                  "chatter, preload"),
     (["study", "fig5", "--units", "si"], "--units si: study writes"),
-    (["preload", "--units", "si"], "--units si: only the --json output "
-                                   "of preload"),
     (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
      "--units si: --csv stays in in, lb, s"),
 ])
@@ -284,3 +283,67 @@ def test_chatter_text_in_si_is_its_inch_pound_text_converted(capsys):
         assert float(design_si[name][0]) == pytest.approx(
             float(design_us[name][0]) * factor, rel=1e-5), name
     assert "preload 0.889644 N" in si and "preload 0.2 lb" in us
+
+
+def test_preload_text_and_csv_in_si_are_its_inch_pound_ones_converted(
+        planted_preload, capsys, tmp_path):
+    """The planted search's text and CSV under --units si: every force in
+    N (the us run's times N), every other column and count unchanged, no
+    number left in lb or in (the grid's definition, "2^(k/4) lb", is a
+    name of the search, not a value)."""
+    import re
+    argv = ["preload", "--n-modes", "4", "--workers", "1", "--progress",
+            "never"]
+    assert main([*argv, "--csv", str(tmp_path / "us.csv")]) == 0
+    us_text = capsys.readouterr().out
+    assert main([*argv, "--units", "si", "--open-threshold", repr(1e-6 * M),
+                 "--csv", str(tmp_path / "si.csv")]) == 0
+    si_text = capsys.readouterr().out
+
+    def table(name):
+        lines = (tmp_path / name).read_text().splitlines()
+        comments = [line for line in lines if line.startswith("#")]
+        rows = [line.split(",") for line in lines if not line.startswith("#")]
+        return comments, rows[0], rows[1:]
+
+    us_comments, us_header, us_rows = table("us.csv")
+    si_comments, si_header, si_rows = table("si.csv")
+    assert us_header[1] == "preload_lb" and si_header[1] == "preload_N"
+    assert si_header[:1] + si_header[2:] == us_header[:1] + us_header[2:]
+    assert len(si_rows) == len(us_rows) > 10
+    for us, si in zip(us_rows, si_rows):
+        assert float(si[1]) == pytest.approx(float(us[1]) * N, rel=1e-14)
+        assert si[:1] + si[2:] == us[:1] + us[2:]
+    answer_lb = float(next(c for c in us_comments
+                           if c.startswith("# min_preload_lb = ")
+                           ).rpartition("= ")[2])
+    answer_n = float(next(c for c in si_comments
+                          if c.startswith("# min_preload_N = ")
+                          ).rpartition("= ")[2])
+    assert answer_n == pytest.approx(answer_lb * N, rel=1e-5)
+    # the verdict, last line of the text, with the answer in N
+    assert f"{answer_lb:.4g} lb" in us_text.splitlines()[-1]
+    assert f"{answer_lb * N:.4g} N" in si_text.splitlines()[-1]
+    for text in (si_text, "\n".join(si_comments)):
+        left = re.findall(r"[0-9.]+ (?:lb|in)\b", text)
+        assert not left, left
+        assert " lb" in us_text
+
+
+def test_preload_tolerances_in_si_are_the_inch_pound_ones(planted_preload,
+                                                          capsys):
+    """--units si reads --tolerance's bare numbers in SI, as it reads
+    every other option's: d uniform over 6.096-6.604 mm draws the designs
+    0.24-0.26 in draws, and the robust answer is the same, in N."""
+    argv = ["preload", "--n-modes", "4", "--workers", "1", "--progress",
+            "never", "--json", "--samples", "20", "--seed", "1",
+            "--p-target", "0.2"]
+    us = run_json([*argv, "--tolerance", "d=uniform(0.24,0.26)"], capsys)
+    si = run_json([*argv, "--units", "si", "--open-threshold",
+                   repr(1e-6 * M), "--tolerance",
+                   f"d=uniform({0.24 * M!r},{0.26 * M!r})"], capsys)
+    assert math.isfinite(us["robust"]["min_preload_lb"])
+    assert si["robust"]["min_preload_N"] == pytest.approx(
+        us["robust"]["min_preload_lb"] * N, rel=1e-14)
+    assert si["robust"]["n"] == us["robust"]["n"] > 0
+    assert si["robust"]["n_open"] == us["robust"]["n_open"]

@@ -19,6 +19,7 @@ from contactsep.cli.design_options import (
 from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
+from contactsep.model.names import shown, shown_text, units_shown
 from contactsep.studies.preload_answer import robust_check_text, spans_text
 
 #: simulate()'s keywords that are options of the command.
@@ -184,12 +185,15 @@ def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
     from contactsep.studies.preload import DEFAULT_MODES
     from contactsep.studies.preload_robust import parse_tolerances
+    from contactsep.studies.sweep_axes import sample_in_si
 
     p_target = _p_target(args.p_target)
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
     args.damping = damping_law(args, overrides, args.model)
+    if args.units == "si":  # bare numbers in SI, as every option's
+        args.tolerance = [sample_in_si(t) for t in args.tolerance]
     if args.tolerance:      # refused before any simulation
         parse_tolerances(args.tolerance, args.samples or 1, args.seed)
     elif args.samples is not None:
@@ -199,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
                          {"--design": args.design} if args.design else {})
     journals.check_resume(args.resume, args.csv)
     check_cluster(args)
-    with cluster(args) as client:
+    with cluster(args) as client, units_shown(args.units):
         return _run(args, design, p_target,
                     args.workers if client is None else client)
 
@@ -260,6 +264,11 @@ def _g(value, unit="") -> str:
     return f"{value:.5g}{unit}"
 
 
+def _force(value) -> str:
+    """A force (lb) in the unit system shown, 5 significant digits."""
+    return shown_text(value, "lb", 5)
+
+
 def _answer_line(answer) -> list:
     """The answer to use first, where a check says which: the converged
     one where it held (its N), none otherwise."""
@@ -267,7 +276,7 @@ def _answer_line(answer) -> list:
         return []
     if answer.converged:
         return [f"  answer (converged to 2 %) "
-                f"{_g(answer.converged_min_preload_lb, ' lb')} (N = "
+                f"{_force(answer.converged_min_preload_lb)} (N = "
                 f"{answer.converged_n_modes}, held at N = "
                 f"{answer.converged_check_n_modes})"]
     return [f"  answer                   not converged to 2 % by N = "
@@ -283,16 +292,18 @@ def _law(answer) -> str:
 
 
 def summary_text(answer) -> str:
-    """The answer, its change, the windows and the robust answer."""
+    """The answer, its change, the windows and the robust answer, its
+    forces in the unit system shown (lb; N under ``--units si``)."""
+    force = shown(1.0, "lb")[1]
     change = answer.min_preload_change
     at_n = f"min preload at N = {answer.n_modes}"
     lines = [f"model {answer.model}, N = {answer.n_modes}, dt = "
              f"{answer.dt_s:g} s; {answer.simulations} simulations"
              + _law(answer),
              *_answer_line(answer),
-             f"  {at_n:<24} {_g(answer.min_preload_lb, ' lb')}",
+             f"  {at_n:<24} {_force(answer.min_preload_lb)}",
              f"  at dt/2 and 2N           "
-             f"{_g(answer.verify_min_preload_lb, ' lb')} (change "
+             f"{_force(answer.verify_min_preload_lb)} (change "
              f"{'none' if change is None else f'{change:+.2%}'})",
              *([] if answer.converged is None else
                [f"  converged to 2 %         {answer.converged_text()}"]),
@@ -301,8 +312,10 @@ def summary_text(answer) -> str:
              f"  longest opening there    "
              f"{_g(answer.longest_open_at_answer_s, ' s')} (events: "
              f"openings >= min_open)",
-             f"  event windows (lb)       {spans_text(answer.event_windows)}",
-             f"  closed below it (lb)     {spans_text(answer.closed_windows)}"]
+             f"  {f'event windows ({force})':<24} "
+             f"{spans_text(answer.event_windows)}",
+             f"  {f'closed below it ({force})':<24} "
+             f"{spans_text(answer.closed_windows)}"]
     r = answer.robust
     if r is not None and not r.shown:
         lines.append(f"  robust min preload       not searched: "
@@ -312,7 +325,7 @@ def summary_text(answer) -> str:
     elif r is not None:
         ci = r.p_open_ci95
         lines.append(f"  robust min preload       "
-                     f"{_g(r.min_preload_lb, ' lb')}: p_open {_g(r.p_open)}"
+                     f"{_force(r.min_preload_lb)}: p_open {_g(r.p_open)}"
                      f" (95 % Wilson "
                      f"{'-' if ci is None else f'{ci[0]:.3g}-{ci[1]:.3g}'};"
                      f" {r.n_open} of {r.n} open, {r.n_failed} failed), "

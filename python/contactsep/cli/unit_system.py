@@ -5,11 +5,12 @@ system of the command line's bare numbers and of the ``--json`` output
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit
 suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
-the one table), and so does the text of ``model`` and ``chatter``.
-Only ``model``, ``chatter`` and ``preload`` take it, ``preload`` with
-``--json``: its text, and the CSV and PNG outputs, stay in inch-pound
-units, so ``si`` is refused there in one line rather than half done.
-With the default ``us`` nothing changes.
+the one table), and so does the text of ``model``, ``chatter`` and
+``preload`` and the CSV of ``preload`` (forces in N, its column
+``preload_N``: ``model.names.units_shown``).  Only these commands take
+it; ``chatter``'s CSV stays in inch-pound units, so ``si`` is refused
+there in one line rather than half done.  With the default ``us``
+nothing changes.
 """
 
 from __future__ import annotations
@@ -20,14 +21,14 @@ from contactsep.errors import InputError
 
 #: --units: the unit system of the command line's bare numbers.
 UNIT_SYSTEMS = ("us", "si")
-#: The commands whose outputs --units si converts (their --json).
+#: The commands whose outputs --units si converts (text and --json).
 SI_COMMANDS = ("model", "chatter", "preload")
 #: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
             "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",
             "in/s": "in_s"}
-#: The commands whose text --units si converts too (model's, chatter's).
-SI_TEXT = ("model", "chatter")
+#: The commands whose --csv file --units si converts too.
+SI_CSV = ("preload",)
 
 
 def si_shown(value, unit: str, si: bool):
@@ -54,12 +55,9 @@ def si_asked(args: argparse.Namespace) -> bool:
                          f"commands that take it are "
                          f"{', '.join(SI_COMMANDS)} (or give each value "
                          f"its unit: --L1 25mm)")
-    if command not in SI_TEXT and not getattr(args, "json", False):
-        raise InputError(f"--units si: only the --json output of "
-                         f"{command} is in SI (add --json); its text "
-                         f"stays in in, lb, s")
     for option in ("csv", "png"):
-        if getattr(args, option, None):
+        if getattr(args, option, None) and not (option == "csv"
+                                                and command in SI_CSV):
             raise InputError(f"--units si: --{option} stays in in, lb, s "
                              f"(leave it out, or drop --units si)")
     return True

@@ -11,6 +11,9 @@ quantity's name followed by its unit's suffix (``_in``, ``_s``,
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+from contextvars import ContextVar
+
 #: field -> (unit suffix of its column, unit as printed, meaning).
 FIELDS: dict[str, tuple[str, str, str]] = {}
 MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
@@ -205,3 +208,69 @@ def _suffix(key: str) -> str | None:
         if key.endswith("_" + suffix) and len(key) > len(suffix) + 1:
             return suffix
     return None
+
+
+#: The unit system that text and CSV outputs show their numbers in:
+#: "us" (the package's units) unless a caller asked for "si" with
+#: :func:`units_shown` (``--units si``).  Keys of a JSON are converted
+#: separately (``cli.unit_system.in_units``); this is for the numbers a
+#: sentence or a CSV row writes as it is made.
+_SHOWN: ContextVar[str] = ContextVar("contactsep_units_shown", default="us")
+
+
+@contextmanager
+def units_shown(system: str):
+    """Within the block, :func:`shown` and :func:`shown_key` give SI
+    values and names where ``system`` is "si"; "us" leaves them as they
+    are.
+
+    Examples
+    --------
+    >>> with units_shown("si"):
+    ...     shown(0.5, "lb"), shown_key("preload_lb")
+    ((2.22411080763025, 'N'), 'preload_N')
+    >>> shown(0.5, "lb")
+    (0.5, 'lb')
+    """
+    if system not in ("us", "si"):
+        raise ValueError(f"units_shown: {system!r} is neither 'us' nor 'si'")
+    token = _SHOWN.set(system)
+    try:
+        yield
+    finally:
+        _SHOWN.reset(token)
+
+
+def shown(value, suffix: str):
+    """A value in the package's unit of ``suffix`` ('lb', 'in', 'lb_s')
+    -> (value, unit as printed) in the unit system shown; None and
+    non-finite values pass through with the unit's name."""
+    si, printed, factor = SI_SUFFIXES[suffix]
+    if _SHOWN.get() != "si":
+        return value, _PACKAGE_PRINTED.get(suffix, suffix)
+    return (value * factor if isinstance(value, (int, float))
+            and not isinstance(value, bool) else value), printed
+
+
+def shown_text(value, suffix: str, digits: int = 6) -> str:
+    """A value as a sentence writes it in the unit system shown, with
+    ``digits`` significant digits ('0.226 lb', '1.00531 N'); 'none' for
+    None or NaN."""
+    if value is None or (isinstance(value, float) and value != value):
+        return "none"
+    number, unit = shown(value, suffix)
+    return f"{number:.{digits}g} {unit}"
+
+
+def shown_key(key: str) -> str:
+    """An output key in the unit system shown ('preload_lb' ->
+    'preload_N' in SI; unchanged in us or without a unit suffix)."""
+    twin = si_key(key) if _SHOWN.get() == "si" else None
+    return key if twin is None else twin[0]
+
+
+#: A suffix -> its unit as printed in the package's own units.
+_PACKAGE_PRINTED = {"lb_in3": "lb/in^3", "lb_s": "lb s", "in_s": "in/s",
+                    "rad_s": "rad/s", "lb_s2_in": "lb s^2/in",
+                    "lb_in_rad": "lb in/rad", "lb_per_in": "lb/in",
+                    "s_per_in": "s/in", "lbin": "lb in", "in_lb": "in lb"}

@@ -302,14 +302,16 @@ def limit_notes(where: str, result: PreloadSearch) -> list[str]:
     """A note where the simulation's preload limit cut the search short:
     no answer below it, or the answer's closed octave checked only up to
     it (the search's scan, module docstring)."""
-    top = max(p for p, _ in result.tested)
+    from contactsep.model.names import shown_text
+    top = shown_text(max(p for p, _ in result.tested), "lb", 4)
+    ceiling = shown_text(result.ceiling_lb, "lb", 4)
     if math.isnan(result.min_preload_lb):
-        return [f"no answer at {where}: an event at {top:.4g} lb, and the "
-                f"simulation takes at most {result.ceiling_lb:.4g} lb (it "
+        return [f"no answer at {where}: an event at {top}, and the "
+                f"simulation takes at most {ceiling} (it "
                 f"bends the lower contact or the separator by its length)"]
     if result.ceiling_lb < 2.0 * result.min_preload_lb:
-        return [f"{where}: closed checked up to {top:.4g} lb only, the "
-                f"simulation's limit being {result.ceiling_lb:.4g} lb"]
+        return [f"{where}: closed checked up to {top} only, the "
+                f"simulation's limit being {ceiling}"]
     return []
 
 

@@ -8,6 +8,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
+from contactsep.model.names import shown, shown_key, shown_text
 from contactsep.studies.preload_robust import RobustPreload
 
 
@@ -150,25 +151,32 @@ class PreloadAnswer:
         the search, in the order run, with the search it belongs to
         (:attr:`runs`), then one per preload the robust search tried
         ("robust"; "robust_check": its check at 2N), n the samples run
-        (without the n_failed that failed), event 1 where any opened."""
+        (without the n_failed that failed), event 1 where any opened.
+        Forces are in lb, or in N (``preload_N``) within
+        ``model.names.units_shown("si")``."""
+        force = shown(1.0, "lb")[1]
         lines = [f"# contactsep preload: the smallest lower-contact "
                  f"preload with no discontinuity event ({self.model}, "
                  f"N = {self.n_modes}, dt {self.dt_s:g} s)",
-                 f"# min_preload_lb = {_g(self.min_preload_lb)}",
-                 f"# ceiling_lb = {_g(self.ceiling_lb)}",
+                 f"# {shown_key('min_preload_lb')} = "
+                 f"{_g(shown(self.min_preload_lb, 'lb')[0])}",
+                 f"# {shown_key('ceiling_lb')} = "
+                 f"{_g(shown(self.ceiling_lb, 'lb')[0])}",
                  f"# min_preload_change = {_g(self.min_preload_change)} "
                  f"(at half the step and twice the modes: "
-                 f"{_g(self.verify_min_preload_lb)} lb)",
+                 f"{_force(self.verify_min_preload_lb)})",
                  *self._converged_lines(),
                  *self._perturbed_lines(),
-                 "# event windows (lb): " + spans_text(self.event_windows),
-                 "# closed windows below the answer (lb): "
+                 f"# event windows ({force}): "
+                 + spans_text(self.event_windows),
+                 f"# closed windows below the answer ({force}): "
                  + spans_text(self.closed_windows)]
         if self.robust is not None:
             r = self.robust
             ci = r.p_open_ci95
             lines.append(
-                f"# robust min_preload_lb = {_g(r.min_preload_lb)}: "
+                f"# robust {shown_key('min_preload_lb')} = "
+                f"{_g(shown(r.min_preload_lb, 'lb')[0])}: "
                 f"p_open {_g(r.p_open)} (95 % Wilson "
                 f"{'-' if ci is None else f'{ci[0]:.4g} to {ci[1]:.4g}'}"
                 f"; {r.n_open} of {r.n}, {r.n_failed} failed), its upper "
@@ -182,7 +190,7 @@ class PreloadAnswer:
         lines.append(f"# verdict: {self.verdict.text}")
         # a comment is one line whatever a note holds
         lines = [" ".join(line.splitlines()) for line in lines]
-        lines.append(",".join(CSV_COLUMNS))
+        lines.append(",".join(map(shown_key, CSV_COLUMNS)))
         lines += [run_line(name, p, n, e, dt, 1, int(e), 0)
                   for name, p, n, dt, e in self.runs]
         if self.robust is not None:
@@ -207,9 +215,9 @@ class PreloadAnswer:
         step, its check, every search's answer."""
         if self.converged is None:
             return None
-        steps = ", ".join(f"{_g(p)} lb at N = {n}"
+        steps = ", ".join(f"{_force(p)} at N = {n}"
                           for n, p in self.converge_history)
-        return (f"{_g(self.converged_min_preload_lb)} lb (N = "
+        return (f"{_force(self.converged_min_preload_lb)} (N = "
                 f"{self.converged_n_modes}, dt {_g(self.converged_dt_s)} s;"
                 f" {'held' if self.converged else 'NOT held'} at N = "
                 f"{self.converged_check_n_modes}; searches: {steps})")
@@ -221,8 +229,8 @@ class PreloadAnswer:
         up, down = self.perturbed_min_preload_lb
         spread = self.min_preload_spread
         return (f"{'none' if spread is None else f'{spread:.2%}'} (y_s "
-                f"(1 + {self.perturbation:g}): {_g(up)} lb, y_s (1 - "
-                f"{self.perturbation:g}): {_g(down)} lb)")
+                f"(1 + {self.perturbation:g}): {_force(up)}, y_s (1 - "
+                f"{self.perturbation:g}): {_force(down)})")
 
     def _perturbed_lines(self) -> list:
         text = self.perturbed_text()
@@ -231,7 +239,7 @@ class PreloadAnswer:
     def _converged_lines(self) -> list:
         text = self.converged_text()
         return [] if text is None else \
-            [f"# converged_min_preload_lb = {text}"]
+            [f"# {shown_key('converged_min_preload_lb')} = {text}"]
 
 
 #: The preload CSV's columns: the search a simulation belongs to, its
@@ -253,7 +261,8 @@ def run_line(search: str, preload_lb: float, n_modes, event, dt_s=None,
     opened = int(bool(event)) if n_open is None else int(n_open)
     # every float as repr writes it: read back, the very number run
     step = "" if dt_s is None else repr(float(dt_s))
-    return (f"{search},{float(preload_lb)!r},{int(n)},{opened},"
+    preload = float(shown(float(preload_lb), "lb")[0])
+    return (f"{search},{preload!r},{int(n)},{opened},"
             f"{int(n_failed)},{modes},{step},{int(bool(event))}")
 
 
@@ -280,6 +289,14 @@ def robust_check_text(robust) -> str:
 
 
 def spans_text(spans) -> str:
-    """Windows (lb) as text: '0.5; 0.7-0.9' ('none' for none)."""
+    """Windows (lb) as text in the unit system shown (lb, or N under
+    ``--units si``): '0.5; 0.7-0.9' ('none' for none)."""
+    spans = [(shown(lo, "lb")[0], shown(hi, "lb")[0]) for lo, hi in spans]
     return "; ".join(f"{lo:.5g}" if lo == hi else f"{lo:.5g}-{hi:.5g}"
                      for lo, hi in spans) or "none"
+
+
+def _force(value) -> str:
+    """A force in lb as text in the unit system shown: '0.226 lb' (or
+    '1.00531 N' under ``--units si``), 'none' for none."""
+    return shown_text(value, "lb")

@@ -12,6 +12,7 @@ import functools
 import math
 
 from contactsep.errors import InputError
+from contactsep.model.names import shown_text
 from contactsep.studies.preload import (
     BAND_HIGH,
     BAND_LOW,
@@ -216,7 +217,7 @@ def search_notes(found, probe) -> list:
     (``probe``: the run at no preload, for its settings)."""
     notes = [
         f"an event: the circuit open (both gaps above "
-        f"{probe.open_threshold_in:g} in) for at least "
+        f"{shown_text(probe.open_threshold_in, 'in')}) for at least "
         f"{probe.min_open_s:g} s in the window 0-{probe.t_end_s:g} s; "
         f"the answer depends on that min_open (docs/chatter.md)",
         f"search: the ceiling, scan 2^(k/4) lb, bisection to "

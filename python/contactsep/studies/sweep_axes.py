@@ -150,3 +150,31 @@ def parse_sample(text: str) -> tuple[str, str, float, float]:
         raise SweepError(f"--sample {text}: HI - LO overflows (more than "
                          f"the largest float); expected a narrower range")
     return field, kind, a, b
+
+
+def sample_in_si(text: str) -> str:
+    """A ``--sample``/``--tolerance`` text whose bare numbers are SI
+    (``--units si``) -> the same text with each bare number given its
+    SI unit ('d=normal(0.001,2e-05)' -> 'd=normal(0.001m,2e-05m)'), so
+    that :func:`parse_sample` reads it as every other option's SI
+    number is read.  A number typed with its unit, a field whose unit
+    SI shares (s) or that has none, and text that is not a distribution
+    (parse_sample refuses it in its own words) are left as they are."""
+    from contactsep.model.names import SI_SUFFIXES
+    name, _, spec = text.partition("=")
+    match = _SAMPLE.match(spec)
+    try:
+        field = _field(name, "--sample", _SAMPLED)
+    except SweepError:
+        return text
+    suffix = (design_fields.FIELDS.get(field)
+              or design_fields.SETTINGS[field])[0]
+    if match is None or SI_SUFFIXES.get(suffix, (0, 0, 1.0))[2] == 1.0:
+        return text
+    unit = SI_SUFFIXES[suffix][1]
+
+    def with_unit(number: str) -> str:
+        number = number.strip()
+        return number if units.split(number) is not None else number + unit
+    return (f"{name}={match.group(1)}({with_unit(match.group(2))},"
+            f"{with_unit(match.group(3))})")

@@ -70,8 +70,12 @@ def _percent(change: float) -> str:
 
 
 def _lb(value) -> str:
-    return "none" if value is None or not math.isfinite(value) else \
-        f"{value:.4g} lb"
+    """A force in lb, as the unit system shown writes it ('0.226 lb',
+    '1.005 N' under ``--units si``)."""
+    from contactsep.model.names import shown_text
+    if value is None or not math.isfinite(value):
+        return "none"
+    return shown_text(value, "lb", 4)
 
 
 def cost_ratio(answer) -> float:
