@@ -528,7 +528,7 @@ def test_the_separator_fit_prose_is_separator_fit_csv():
                          model="timoshenko-kr2-mass2", data="last-9000"))
     within, last, grams = quoted(
         "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
-        rf"% against the issue's −4.8 %, rms {rms} % against 2.3 %, "
+        rf"% against the analysis's −4.8 %, rms {rms} % against 2.3 %, "
         rf"{NUMBER} g\)")
     res = residuals(mass)
     check([within, last], [max(abs(r) for r in res[:4]), -res[4]])
