@@ -20,3 +20,29 @@ def test_no_heading_names_an_issue(page):
     assert headings, page.name
     named = [h for h in headings if re.search(r"\bissues? \d+", h, re.I)]
     assert not named, named
+
+
+ISSUE = re.compile(r"\bissues? #?\d+", re.I)
+TEST_FILE = re.compile(r"\btests/\S+\.py\b|\btest_\w+\.py\b")
+
+
+def body_lines(page):
+    """The page's lines outside fenced code blocks, with their numbers."""
+    fenced = False
+    for number, line in enumerate(page.read_text().splitlines(), 1):
+        if line.lstrip().startswith("```"):
+            fenced = not fenced
+            continue
+        if not fenced:
+            yield number, line
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_no_body_text_names_an_issue_or_a_test_file(page):
+    """A reader cannot look an issue number up and does not care which
+    test file holds a claim: the main pages name the check's subject.
+    Dated history, with its issue numbers, lives in docs/records/."""
+    named = [f"{page.name}:{number}: {line.strip()[:100]}"
+             for number, line in body_lines(page)
+             if ISSUE.search(line) or TEST_FILE.search(line)]
+    assert not named, "\n".join(named)

@@ -374,15 +374,16 @@ def test_the_convergence_table_beyond_n_50_and_its_limits():
 
 def test_the_energy_bound_numbers():
     """"0.026 in from a 0.02 in release of an identical spring (1.3-3.2
-    times the bound on four of the nine designs of
-    tests/design_family.py at N = 4)"."""
+    times the bound on four of the nine designs of the test suite's
+    design family at N = 4)": tests/design_family.py's FAMILY and UNSEEN."""
     from design_family import FAMILY, UNSEEN
 
     from contactsep.model.energy import y3_energy_bound
     gives, release, low, high, count, total = quoted(
         "model.md", rf"it gives {NUMBER} in from a {NUMBER} in release of "
         rf"an identical spring \({NUMBER}-{NUMBER} times the bound on "
-        rf"(\w+) of the (\w+) designs of tests/design_family.py at N = 4\)")
+        rf"(\w+) of the (\w+) designs of the test suite's design family "
+        rf"at N = 4\)")
     words = {"three": 3, "four": 4, "five": 5, "seven": 7, "nine": 9}
     designs = {**FAMILY, **UNSEEN}
     assert words[total] == len(designs)
@@ -528,7 +529,7 @@ def test_the_separator_fit_prose_is_separator_fit_csv():
                          model="timoshenko-kr2-mass2", data="last-9000"))
     within, last, grams = quoted(
         "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
-        rf"% against the issue's −4.8 %, rms {rms} % against 2.3 %, "
+        rf"% against the analysis's −4.8 %, rms {rms} % against 2.3 %, "
         rf"{NUMBER} g\)")
     res = residuals(mass)
     check([within, last], [max(abs(r) for r in res[:4]), -res[4]])
