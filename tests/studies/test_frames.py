@@ -46,6 +46,10 @@ def test_read_gives_every_committed_csv_with_its_comments(path):
     for k, name in enumerate(header):
         column = frame[name].tolist()
         for got, text in zip(column, (row[k] for row in rows)):
+            if text == "":  # an empty field (the preload CSV's dt_s:
+                # the design's own step) is a missing value to pandas
+                assert isinstance(got, float) and np.isnan(got)
+                continue
             try:
                 expected = float(text)
             except ValueError:
