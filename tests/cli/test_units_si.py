@@ -88,10 +88,9 @@ def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["sweep", "--units", "si"], "--units si: sweep writes in, lb, s; the "
-                                 "commands that take it are model, "
-                                 "chatter, preload"),
-    (["study", "fig5", "--units", "si"], "--units si: study writes"),
+    (["study", "fig5", "--units", "si"], "--units si: study writes in, lb, "
+                                         "s; the commands that take it are "
+                                         "model, chatter, preload, sweep"),
     (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
      "--units si: --csv stays in in, lb, s"),
 ])
@@ -347,3 +346,88 @@ def test_preload_tolerances_in_si_are_the_inch_pound_ones(planted_preload,
         us["robust"]["min_preload_lb"] * N, rel=1e-14)
     assert si["robust"]["n"] == us["robust"]["n"] > 0
     assert si["robust"]["n_open"] == us["robust"]["n_open"]
+
+
+def _table(path):
+    lines = path.read_text().splitlines()
+    rows = [line.split(",") for line in lines if not line.startswith("#")]
+    return [line for line in lines if line.startswith("#")], rows[0], rows[1:]
+
+
+#: Each column's SI twin and factor, written here from the definitions.
+SWEEP_TWINS = {"d_in": ("d_m", M), "y3_max_in": ("y3_max_m", M),
+               "t_max_s": ("t_max_s", 1.0), "psi_lb_s": ("psi_N_s", N),
+               "v0_in_s": ("v0_m_s", M), "status": ("status", None),
+               "first_impact_s": ("first_impact_s", 1.0),
+               "first_impulse_lb_s": ("first_impulse_N_s", N),
+               "max_lower_gap_in": ("max_lower_gap_m", M),
+               "circuit_open_s": ("circuit_open_s", 1.0),
+               "first_circuit_open_s": ("first_circuit_open_s", 1.0),
+               "n_events": ("n_events", None)}
+
+
+def _same_table_converted(us_path, si_path):
+    us_comments, us_header, us_rows = _table(us_path)
+    si_comments, si_header, si_rows = _table(si_path)
+    assert si_header == [SWEEP_TWINS[k][0] for k in us_header]
+    assert len(si_rows) == len(us_rows) > 0
+    for us, si in zip(us_rows, si_rows):
+        for key, a, b in zip(us_header, us, si):
+            factor = SWEEP_TWINS[key][1]
+            if factor is None or a == "nan":
+                assert a == b, key
+            else:   # each written to 12 digits: 5e-12 of it apiece
+                assert float(b) == pytest.approx(float(a) * factor,
+                                                 rel=1e-11), key
+    return us_comments, si_comments
+
+
+def test_an_eq23_sweep_in_si_is_its_inch_pound_sweep_converted(
+        tmp_path, capsys):
+    """--vary's bare ends in m: the CSV, the Parquet table and the JSON
+    summary are the inch-pound sweep's, under SI names, in SI; the
+    comments name SI units and no inch-pound one."""
+    import re
+    us = run_json(["sweep", "--vary", "h2=0.1:0.8:8", "--workers", "1",
+                   "--csv", str(tmp_path / "us.csv"), "--json"], capsys)
+    si = run_json(["sweep", "--units", "si", "--vary",
+                   f"h2={0.1 * M!r}:{0.8 * M!r}:8", "--workers", "1",
+                   "--csv", str(tmp_path / "si.csv"), "--parquet",
+                   str(tmp_path / "si.parquet"), "--json"], capsys)
+    _, si_comments = _same_table_converted(tmp_path / "us.csv",
+                                           tmp_path / "si.csv")
+    text = "\n".join(si_comments)
+    assert "vary d_m: 8 values from 0.00254 to 0.02032" in text
+    assert not re.findall(r"_in\b|_lb|_psi|inch", text), text
+    assert si["y3_max_mean_m"] == pytest.approx(us["y3_max_mean_in"] * M,
+                                                rel=1e-14)
+    assert si["inputs"]["vary"]["d_m"]["stop"] == pytest.approx(0.8 * M,
+                                                               rel=1e-14)
+    pq = pytest.importorskip("pyarrow.parquet")
+    table = pq.read_table(tmp_path / "si.parquet")
+    assert table.column_names == [SWEEP_TWINS[k][0] for k in
+                                  _table(tmp_path / "us.csv")[1]]
+    meta = json.loads(table.schema.metadata[b"contactsep"])
+    assert "d_m" in meta["inputs"]["vary"]
+
+
+def test_a_hertz_sweep_in_si_reads_its_preload_and_samples_in_si(
+        tmp_path, capsys):
+    """--preload in N and --sample's bare numbers in m draw the designs
+    the inch-pound options draw: the same rows, converted."""
+    common = ["sweep", "--model", "hertz", "--n-modes", "4", "--t-end",
+              "0.05", "--samples", "3", "--workers", "1"]
+    assert main([*common, "--preload", "0.2", "--sample",
+                 "d=normal(0.25,0.005)", "--csv",
+                 str(tmp_path / "us.csv")]) == 0
+    assert main([*common, "--units", "si", "--preload", repr(0.2 * N),
+                 "--sample", f"d=normal({0.25 * M!r},{0.005 * M!r})",
+                 "--csv", str(tmp_path / "si.csv")]) == 0
+    capsys.readouterr()
+    us_comments, si_comments = _same_table_converted(
+        tmp_path / "us.csv", tmp_path / "si.csv")
+    assert any(c.startswith("# fixed preload_N = 0.889644") for c in
+               si_comments)
+    assert "a contact is open above 2.54e-08 m" in "\n".join(si_comments)
+    events = [row[-2] for row in _table(tmp_path / "us.csv")[2]]
+    assert any(int(e) > 0 for e in events)     # a sweep that opens

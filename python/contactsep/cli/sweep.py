@@ -24,6 +24,7 @@ from contactsep.cli.guards import (
     drop_echoes,
 )
 from contactsep.cli.help import examples
+from contactsep.cli.unit_system import from_si
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError, printable
 from contactsep.output.pieces import PIECE_S
@@ -180,9 +181,10 @@ def _print_summary(summary: dict, spec) -> None:
         print(f"{'':>{width}}   {line}")
 
 
-def _settings(args: argparse.Namespace) -> dict:
-    """The chatter settings typed as options (setting -> value)."""
-    from contactsep.studies.fields import parse_value
+def _settings(args: argparse.Namespace, si: bool = False) -> dict:
+    """The chatter settings typed as options (setting -> value; a bare
+    number read in SI where ``si``)."""
+    from contactsep.studies.fields import SETTINGS, parse_value
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),
@@ -193,8 +195,12 @@ def _settings(args: argparse.Namespace) -> dict:
              "t_end": (args.t_end, "--t-end"),
              "static_correction": (args.static_correction,
                                    "--static-correction")}
-    return {name: parse_value(name, text, option)
-            for name, (text, option) in typed.items() if text is not None}
+    values = {name: parse_value(name, text, option)
+              for name, (text, option) in typed.items() if text is not None}
+    if si:
+        values = {name: from_si(SETTINGS[name][0], typed[name][0], value)
+                  for name, value in values.items()}
+    return values
 
 
 def _regular_or_new(path: str) -> bool:
@@ -218,12 +224,29 @@ def _say_unfinished(writers, store) -> None:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
+    """The sweep, its outputs in the unit system of --units (its bare
+    numbers read in it)."""
+    from contactsep.model.names import units_shown
+    with units_shown(getattr(args, "units", "us")):
+        return _run_sweep(args)
+
+
+def _run_sweep(args: argparse.Namespace) -> int:
+    from contactsep.model.names import shown_data
     from contactsep.studies import runner
     from contactsep.studies.sweep import make_spec
-    from contactsep.studies.sweep_axes import parse_sample, parse_vary
+    from contactsep.studies.sweep_axes import (
+        parse_sample,
+        parse_vary,
+        sample_in_si,
+        vary_in_si,
+    )
 
-    vary = [parse_vary(text) for text in args.vary]
-    sample = [parse_sample(text) for text in args.sample]
+    si = getattr(args, "units", "us") == "si"
+    vary = [parse_vary(vary_in_si(text) if si else text)
+            for text in args.vary]
+    sample = [parse_sample(sample_in_si(text) if si else text)
+              for text in args.sample]
     swept = {name for name, _ in vary} | {s[0] for s in sample}
     # a --design file's value of a swept field gives way to the sweep;
     # its echo of a default the chatter models do not read is dropped
@@ -234,7 +257,7 @@ def run_sweep(args: argparse.Namespace) -> int:
     spec = make_spec(vary=vary, sample=sample, samples=args.samples,
                      seed=args.seed, base=base,
                      backend=args.backend or "compiled", model=args.model,
-                     settings=_settings(args))
+                     settings=_settings(args, si))
     runner.check_run(chunk_size=args.chunk_size, workers=args.workers,
                      threshold=args.threshold)
     runner.check_threshold(spec, args.threshold)
@@ -291,9 +314,9 @@ def run_sweep(args: argparse.Namespace) -> int:
             with contextlib.suppress(Exception):
                 scheduler.close()
     if args.json:
-        output.write_json(sys.stdout, summary)
+        output.write_json(sys.stdout, shown_data(summary))
     else:
-        _print_summary(summary, spec)
+        _print_summary(shown_data(summary), spec)
     if summary["n_failed"]:
         if not summary["n"]:
             sys.stdout.flush()

@@ -22,13 +22,13 @@ from contactsep.errors import InputError
 #: --units: the unit system of the command line's bare numbers.
 UNIT_SYSTEMS = ("us", "si")
 #: The commands whose outputs --units si converts (text and --json).
-SI_COMMANDS = ("model", "chatter", "preload")
+SI_COMMANDS = ("model", "chatter", "preload", "sweep")
 #: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
             "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",
             "in/s": "in_s"}
 #: The commands whose --csv file --units si converts too.
-SI_CSV = ("preload",)
+SI_CSV = ("preload", "sweep")
 
 
 def si_shown(value, unit: str, si: bool):
@@ -91,59 +91,12 @@ def in_units(data, args: argparse.Namespace):
     """A command's JSON in the unit system of --units: unchanged for us;
     for si every key with a unit suffix renamed to its SI twin
     (model.names.SI_SUFFIXES: 'y3_max_in' -> 'y3_max_m') and its
-    numbers converted, at any depth, and the design's "units" "si"."""
+    numbers converted, at any depth, and the design's "units" "si"
+    (:func:`contactsep.model.names.si_data`)."""
     if getattr(args, "units", "us") != "si":
         return data
-    from contactsep.model.names import si_key
-
-    def convert(value, factor):
-        if isinstance(value, list):
-            return [convert(v, factor) for v in value]
-        if isinstance(value, float) or (isinstance(value, int) and
-                                        not isinstance(value, bool)):
-            return si_number(value, factor) if factor != 1.0 else value
-        return value
-
-    def walk(value, bare=None):
-        if isinstance(value, list):
-            return [walk(v) for v in value]
-        if not isinstance(value, dict):
-            return value
-        out = {}
-        for key, item in value.items():
-            twin = si_key(key) if isinstance(key, str) else None
-            if twin is None and bare and key in bare:
-                twin = si_key(bare[key])
-            if key == "units" and item == "us":
-                out[key] = "si"
-            elif twin is None or isinstance(item, dict):
-                out[key] = walk(item, _BARE_NAMES.get(key))
-            else:
-                out[twin[0]] = convert(item, twin[1])
-        return out
-    return walk(data)
-
-
-def si_number(value: float, factor: float) -> float:
-    """``value`` (in the package's units) times ``factor``, written with
-    the fewest significant digits that a design file's
-    reader (divide by ``factor``, round to 15 digits, as contactsep.units
-    rounds) turns back into ``value`` exactly: 5 mm typed is written
-    0.005, not 0.00499999999999999.  A value with more digits than the
-    reader keeps is written as the plain product, as before."""
-    product = value * factor
-
-    def reads_back(digits: int) -> float | None:
-        written = float(f"{product:.{digits}g}")
-        return written if float(f"{written / factor:.15g}") == value \
-            else None
-
-    if reads_back(15) is None:
-        # a computed value (a result, not a typed one): the plain
-        # product unless 16 or 17 digits read back
-        return reads_back(16) or reads_back(17) or product
-    return next(written for written in map(reads_back, range(1, 16))
-                if written is not None)
+    from contactsep.model.names import si_data
+    return si_data(data, _BARE_NAMES)
 
 
 def _bare_names() -> dict:

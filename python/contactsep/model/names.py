@@ -274,3 +274,111 @@ _PACKAGE_PRINTED = {"lb_in3": "lb/in^3", "lb_s": "lb s", "in_s": "in/s",
                     "rad_s": "rad/s", "lb_s2_in": "lb s^2/in",
                     "lb_in_rad": "lb in/rad", "lb_per_in": "lb/in",
                     "s_per_in": "s/in", "lbin": "lb in", "in_lb": "in lb"}
+
+
+#: Keys whose numbers carry the unit of the key that holds them: a
+#: sweep's grids and distributions ({"d_in": {"start": 0.1, ...}}).
+_SCALED_WITHIN = ("start", "stop", "values", "mean", "sd", "low", "high")
+
+
+def si_data(data, bare: dict | None = None):
+    """JSON-ready ``data`` in SI: every key with a unit suffix renamed to
+    its SI twin ('y3_max_in' -> 'y3_max_m') and its numbers converted,
+    at any depth (the numbers of a grid or distribution under such a key
+    with it), and a design's "units" "us" -> "si".  ``bare``: objects
+    whose keys are bare names of quantities ({"design": {"L1": "L1_in"}}),
+    converted as their suffixed names are."""
+    def convert(value, factor):
+        if isinstance(value, list):
+            return [convert(v, factor) for v in value]
+        if isinstance(value, float) or (isinstance(value, int) and
+                                        not isinstance(value, bool)):
+            return si_number(value, factor) if factor != 1.0 else value
+        return value
+
+    def walk(value, names=None, factor=1.0):
+        if isinstance(value, list):
+            return [walk(v) for v in value]
+        if not isinstance(value, dict):
+            return value
+        out = {}
+        for key, item in value.items():
+            twin = si_key(key) if isinstance(key, str) else None
+            if twin is None and names and key in names:
+                twin = si_key(names[key])
+            if key == "units" and item == "us":
+                out[key] = "si"
+            elif twin is not None and isinstance(item, dict):
+                out[twin[0]] = walk(item, None, twin[1])
+            elif twin is not None:
+                out[twin[0]] = convert(item, twin[1])
+            elif key in _SCALED_WITHIN and factor != 1.0:
+                out[key] = convert(item, factor)
+            else:
+                out[key] = walk(item, (bare or {}).get(key))
+        return out
+    return walk(data)
+
+
+def shown_data(data):
+    """``data`` in the unit system shown (:func:`units_shown`):
+    :func:`si_data` of it in SI, itself otherwise."""
+    return si_data(data) if _SHOWN.get() == "si" else data
+
+
+#: A unit suffix -> its name in a units note, in the package's units.
+_UNIT_NAMES = {"in": "inch", "s": "second", "lb_s": "lb s", "in_s": "in/s",
+               "lb_in3": "lb/in^3", "psi": "psi", "lb": "lb"}
+
+
+def units_note(suffixes) -> str:
+    """How a table's column names give their units, in the unit system
+    shown: "units in each column's name: _in inch, _s second" (SI:
+    "_m m, _s s")."""
+    names = []
+    for suffix in suffixes:
+        key = shown_key("x_" + suffix)[2:]
+        names.append(f"_{key} " + (_UNIT_NAMES.get(suffix, suffix)
+                                   if key == suffix
+                                   else shown(1.0, suffix)[1]))
+    return "units in each column's name: " + ", ".join(names)
+
+
+def shown_columns(columns: dict) -> dict:
+    """A table's columns ({name: array}) in the unit system shown: in SI
+    each column with a unit suffix renamed to its SI twin and its
+    numbers converted ('y3_max_in' -> 'y3_max_m', times 0.0254)."""
+    if _SHOWN.get() != "si":
+        return columns
+    import numpy as np
+    out = {}
+    for key, values in columns.items():
+        twin = si_key(key)
+        array = np.asarray(values)
+        if twin is None or array.dtype.kind != "f":
+            out[key] = values
+        else:
+            out[twin[0]] = array * twin[1] if twin[1] != 1.0 else values
+    return out
+
+
+def si_number(value: float, factor: float) -> float:
+    """``value`` (in the package's units) times ``factor``, written with
+    the fewest significant digits that a design file's
+    reader (divide by ``factor``, round to 15 digits, as contactsep.units
+    rounds) turns back into ``value`` exactly: 5 mm typed is written
+    0.005, not 0.00499999999999999.  A value with more digits than the
+    reader keeps is written as the plain product, as before."""
+    product = value * factor
+
+    def reads_back(digits: int) -> float | None:
+        written = float(f"{product:.{digits}g}")
+        return written if float(f"{written / factor:.15g}") == value \
+            else None
+
+    if reads_back(15) is None:
+        # a computed value (a result, not a typed one): the plain
+        # product unless 16 or 17 digits read back
+        return reads_back(16) or reads_back(17) or product
+    return next(written for written in map(reads_back, range(1, 16))
+                if written is not None)

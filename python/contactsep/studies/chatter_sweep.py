@@ -27,6 +27,7 @@ from contactsep.chatter.simulate import UnconvergedWarning
 from contactsep.chatter.stack import CoarseStepWarning
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
+from contactsep.model.names import shown_key, shown_text, units_note
 from contactsep.output import ComputationLost
 from contactsep.studies import fields as design_fields
 from contactsep.studies.stats import RunningMoments, wilson_interval
@@ -89,13 +90,14 @@ def notes(model: str, dt=None) -> list[str]:
         f"model {model}: the three beams, {law}; the adaptive stepper at "
         f"{step}; the window from the release each design's own unless "
         f"t_end_s is fixed (contactsep.chatter.numerics); a contact is "
-        f"open above {OPEN_THRESHOLD:g} in; the circuit is open while both "
-        f"are",
-        "settings unless fixed or varied: preload_lb = 0, min_open_s = "
-        f"{MIN_OPEN:g}" + (", damping = none" if model == "hertz" else ""),
-        "units in each column's name: _in inch, _s second, _lb_s lb s, "
-        "_lb lb; n_events = discontinuity events (openings >= min_open_s)"
-        "; first_circuit_open_s nan: never open",
+        f"open above {shown_text(OPEN_THRESHOLD, 'in')}; the circuit is "
+        f"open while both are",
+        f"settings unless fixed or varied: {shown_key('preload_lb')} = 0, "
+        f"min_open_s = {MIN_OPEN:g}"
+        + (", damping = none" if model == "hertz" else ""),
+        units_note(("in", "s", "lb_s", "lb")) + "; n_events = "
+        "discontinuity events (openings >= min_open_s); "
+        "first_circuit_open_s nan: never open",
         "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed, "
         "7 energy bound, 9 unconverged (energy check failed; results "
         "kept, left out of p_open) (contactsep.studies.chatter_sweep); "

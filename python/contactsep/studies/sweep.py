@@ -26,6 +26,7 @@ import numpy as np
 
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import Design
+from contactsep.model.names import shown_data
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
@@ -149,25 +150,27 @@ class SweepSpec:
         return out
 
     def describe(self) -> list[str]:
-        """The inputs in words, one line each (the CSV's comments)."""
+        """The inputs in words, one line each (the CSV's comments), in
+        the unit system shown (``model.names.units_shown``)."""
+        inputs = shown_data(self.inputs())
         lines = [f"designs: {self.size}"]
-        for name, values in self.vary:
-            if isinstance(values, LinearAxis):
-                lines.append(f"vary {column_name(name)}: {len(values)} "
-                             f"values from {values.start:.12g} to "
-                             f"{values.stop:.12g}")
+        for key, grid in inputs["vary"].items():
+            if "start" in grid:
+                lines.append(f"vary {key}: {grid['count']} values from "
+                             f"{grid['start']:.12g} to {grid['stop']:.12g}")
             else:
-                lines.append(f"vary {column_name(name)}: " + ", ".join(
-                    _text(v) for v in np.asarray(values).tolist()))
+                lines.append(f"vary {key}: " + ", ".join(
+                    _text(v) for v in grid["values"]))
         if self.sample:
             lines.append(f"samples: {self.samples} per grid point, seed "
                          f"{self.seed}")
-        for name, kind, a, b in self.sample:
+        for key, law in inputs["sample"].items():
+            kind = law["distribution"]
             p, q = _PARAMETERS[kind]
-            lines.append(f"sample {column_name(name)} ~ {kind}({p} "
-                         f"{a:.12g}, {q} {b:.12g})")
-        for key, value in design_fields.describe(
-                {**self.base, **self.settings}).items():
+            lines.append(f"sample {key} ~ {kind}({p} {law[p]:.12g}, {q} "
+                         f"{law[q]:.12g})")
+        for key, value in {**inputs["fixed"],
+                           **inputs.get("settings", {})}.items():
             lines.append(f"fixed {key} = {value}")
         return lines
 

@@ -178,3 +178,32 @@ def sample_in_si(text: str) -> str:
         return number if units.split(number) is not None else number + unit
     return (f"{name}={match.group(1)}({with_unit(match.group(2))},"
             f"{with_unit(match.group(3))})")
+
+
+def vary_in_si(text: str) -> str:
+    """A ``--vary`` text whose bare numbers are SI (``--units si``) ->
+    the same grid in the field's own unit: a START:STOP:COUNT axis with
+    its ends converted (rounded to 15 digits, as a value typed with its
+    unit is), a list with each bare item given its SI unit
+    ('d=0.001,0.002' -> 'd=0.001m,0.002m').  Anything else, and a field
+    whose unit SI shares or that has none, is left to parse_vary."""
+    from contactsep.model.names import SI_SUFFIXES
+    name, sep, values_text = text.partition("=")
+    try:
+        field = _field(name, "--vary", _VARIABLE)
+    except SweepError:
+        return text
+    entry = design_fields.FIELDS.get(field) or design_fields.SETTINGS[field]
+    _, unit, factor = SI_SUFFIXES.get(entry[0], (0, "", 1.0))
+    if not sep or factor == 1.0:
+        return text
+    parts = values_text.split(":")
+    if len(parts) == 3 and field in _LINEAR:
+        try:
+            ends = [float(f"{float(p) / factor:.15g}") for p in parts[:2]]
+        except ValueError:
+            return text
+        return f"{name}={ends[0]!r}:{ends[1]!r}:{parts[2]}"
+    items = [item if units.split(item.strip()) is not None
+             else item.strip() + unit for item in values_text.split(",")]
+    return f"{name}={','.join(items)}"

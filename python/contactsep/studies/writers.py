@@ -13,6 +13,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError, printable
+from contactsep.model.names import shown_columns, shown_data, units_note
 from contactsep.output import json_text
 from contactsep.studies import chatter_sweep
 from contactsep.studies.study import csv_comments
@@ -20,11 +21,12 @@ from contactsep.studies.sweep import SweepSpec
 
 #: The first comment line of a sweep's CSV and its Parquet metadata.
 TITLE = "contactsep sweep of the general model (eq. 23) on the thesis design"
-#: How to read the columns (a comment line of the CSV).
-COLUMNS_NOTE = ("units in each column's name: _in inch, _s second, _lb_s "
-                "lb s, _in_s in/s, _lb_in3 lb/in^3, _psi psi; status 0 = "
-                "ok, 1 no impact, 2 invalid input, 3 overflow "
+#: The suffixes of an eq. 23 sweep's columns, as its note lists them.
+EQ23_UNITS = ("in", "s", "lb_s", "in_s", "lb_in3", "psi")
+#: How to read the columns (a comment line of the CSV), after the units.
+COLUMNS_NOTE = ("status 0 = ok, 1 no impact, 2 invalid input, 3 overflow "
                 "(contactsep.model.status); failed designs have nan results")
+
 #: Significant digits of the CSV's numbers: the compiled kernel and its
 #: NumPy twin agree to 1e-12 relative (tests/model), so later digits are
 #: round-off; Parquet keeps every bit.
@@ -57,9 +59,10 @@ def title(spec: SweepSpec | None, design: str | None = None) -> str:
 
 
 def column_notes(spec: SweepSpec | None) -> list[str]:
-    """How to read the columns (CSV comments, Parquet metadata)."""
+    """How to read the columns (CSV comments, Parquet metadata), in the
+    unit system shown."""
     if spec is None or spec.model == "eq23":
-        return [COLUMNS_NOTE]
+        return [f"{units_note(EQ23_UNITS)}; {COLUMNS_NOTE}"]
     dt = "per row" if "dt" in spec.fields else spec.settings.get("dt")
     return chatter_sweep.notes(spec.model, dt)
 
@@ -100,6 +103,7 @@ class CsvWriter:
         self._line = None
 
     def write(self, columns: dict) -> None:
+        columns = shown_columns(columns)
         if self._line is None:
             self._writer.writerow(list(columns))
             self._line = _row_format(columns)
@@ -142,8 +146,8 @@ class ParquetWriter:
         self.path = path
         self._about = {"title": title(spec, design),
                        "notes": column_notes(spec),
-                       "inputs": spec.inputs() if spec is not None
-                       else None}
+                       "inputs": shown_data(spec.inputs())
+                       if spec is not None else None}
         self._metadata = {"contactsep": json_text(self._about, indent=None)}
         self._file = output.Replacement(path, binary=True, lock=True)
         self._writer = None
@@ -153,7 +157,7 @@ class ParquetWriter:
     def write(self, columns: dict) -> None:
         import pyarrow as pa
         table = pa.table({k: np.ascontiguousarray(v)
-                          for k, v in columns.items()})
+                          for k, v in shown_columns(columns).items()})
         self._pending.append(table)
         self._pending_rows += table.num_rows
         if self._pending_rows >= ROW_GROUP:
