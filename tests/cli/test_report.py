@@ -68,7 +68,7 @@ def page(tmp_path_factory):
         assert main(["report", *RELAY, "-o", str(paths[0])]) == 0
         assert main(["report", *RELAY, "--tolerance",
                      "h2=normal(0.05,0.001)", "--samples", "20",
-                     "-o", str(paths[1])]) == 0
+                     "--p-target", "0.2", "-o", str(paths[1])]) == 0
     finally:
         monkeypatch.undo()
     return [p.read_text() for p in paths], paths
@@ -127,9 +127,30 @@ def test_the_answer_and_the_command(page):
 
 
 def test_the_robust_page_has_its_p_open_curve(page):
+    """20 samples show p_target 0.2 (none open: Wilson's upper end 0.161):
+    the curve of the preloads tried, its answer marked."""
     text = page[0][1]
     assert "the robust preload" in text
+    assert "robust answer" in _parsed(text).cells
     assert len(_parsed(text).images) == len(_parsed(page[0][0]).images) + 1
+
+
+def test_a_robust_search_not_shown_draws_no_empty_curve(tmp_path,
+                                                        monkeypatch):
+    """20 samples cannot show the default p_target 0.01: the page says
+    how many it needs (381, Wilson's bound) instead of drawing axes with
+    nothing on them."""
+    from planted_preload import plant
+    plant(monkeypatch)
+    path = tmp_path / "not-shown.html"
+    assert main(["report", *RELAY, "--tolerance", "h2=normal(0.05,0.001)",
+                 "--samples", "20", "-o", str(path)]) == 0
+    text = path.read_text()
+    assert "Not searched: 20 samples cannot show p_open" in text
+    assert "it needs 381 or more" in text
+    plain = _parsed(text)
+    assert "robust answer" not in plain.cells
+    assert len(plain.images) == 2       # the two releases only
 
 
 @pytest.mark.skipif(chromium() is None, reason="needs Chromium (CI "
@@ -153,3 +174,42 @@ def test_the_page_opens_in_a_browser(page, tmp_path):
     pixels = matplotlib_image.imread(shot)[..., :3]
     ink = np.mean(np.any(pixels < 0.9, axis=-1))
     assert ink > 0.03, ink
+
+
+def test_the_page_in_si_is_the_inch_pound_page_converted(page, tmp_path,
+                                                        monkeypatch):
+    """--units si: the relay typed in SI (its bare numbers in m, Pa,
+    kg/m^3) gives the same planted answer, shown in N, its inputs in SI
+    units, the tolerance's bare numbers read in m; no force or length is
+    left in lb or in (the search's grid, "2^(k/4) lb", is its name)."""
+    import re
+
+    from planted_preload import plant
+    plant(monkeypatch)
+    metre, newton = 0.0254, 4.4482216152605
+    pascal, kg_m3 = newton / metre**2, 0.45359237 / metre**3
+    factors = {"L": metre, "b": metre, "h": metre, "y": metre,
+               "E": pascal, "g": kg_m3}
+    si = []
+    for option, value in zip(RELAY[0:-4:2], RELAY[1:-4:2]):
+        si += [option, repr(float(value) * factors[option[2]])]
+    path = tmp_path / "si.html"
+    assert main(["report", *si, *RELAY[-4:], "--units", "si", "--tolerance",
+                 f"h2=normal({0.05 * metre!r},{0.001 * metre!r})",
+                 "--samples", "20", "--p-target", "0.2", "-o",
+                 str(path)]) == 0
+    text = path.read_text()
+    us_cells, si_cells = (_parsed(t).cells for t in (page[0][1], text))
+    key = "smallest preload at N = 4"
+    us_answer = us_cells[us_cells.index(key) + 1]
+    si_answer = si_cells[si_cells.index(key) + 1]
+    assert us_answer.endswith(" lb") and si_answer.endswith(" N")
+    assert float(si_answer.split()[0]) == pytest.approx(
+        float(us_answer.split()[0]) * newton, rel=1e-5)
+    at = si_cells.index("L1_in" if "L1_in" in si_cells else "L1")
+    assert float(si_cells[at + 1]) == pytest.approx(1.2 * metre, rel=1e-12)
+    assert si_cells[at + 2] == "m"
+    assert "units: m, N, s, Pa, kg/m^3" in text
+    body = re.sub(r"<[^>]+>", " ", text.split("<footer>")[0])
+    left = re.findall(r"\d (?:lb|in|psi)\b", body)
+    assert not left, left

@@ -167,6 +167,16 @@ def add_robust_options(parser: argparse.ArgumentParser) -> None:
                              "designs as sweep --sample with that seed)")
 
 
+def tolerances_in_units(args) -> list:
+    """--tolerance's texts with their bare numbers in the unit system of
+    --units (SI: each given its SI unit, as every option's bare number
+    is read in SI)."""
+    from contactsep.studies.sweep_axes import sample_in_si
+    if getattr(args, "units", "us") != "si":
+        return list(args.tolerance)
+    return [sample_in_si(text) for text in args.tolerance]
+
+
 def _p_target(text):
     from contactsep.studies.preload_robust import (
         DEFAULT_P_TARGET,
@@ -185,15 +195,13 @@ def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
     from contactsep.studies.preload import DEFAULT_MODES
     from contactsep.studies.preload_robust import parse_tolerances
-    from contactsep.studies.sweep_axes import sample_in_si
 
     p_target = _p_target(args.p_target)
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
     args.damping = damping_law(args, overrides, args.model)
-    if args.units == "si":  # bare numbers in SI, as every option's
-        args.tolerance = [sample_in_si(t) for t in args.tolerance]
+    args.tolerance = tolerances_in_units(args)
     if args.tolerance:      # refused before any simulation
         parse_tolerances(args.tolerance, args.samples or 1, args.seed)
     elif args.samples is not None:

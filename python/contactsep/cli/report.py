@@ -15,7 +15,11 @@ from contactsep.cli.design_options import (
     design_overrides,
 )
 from contactsep.cli.help import examples
-from contactsep.cli.preload import _p_target, add_robust_options
+from contactsep.cli.preload import (
+    _p_target,
+    add_robust_options,
+    tolerances_in_units,
+)
 from contactsep.cli.values import integer
 
 
@@ -52,6 +56,13 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """The page, in the unit system of --units."""
+    from contactsep.model.names import units_shown
+    with units_shown(args.units):
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     from contactsep import __version__
     from contactsep.model import thesis_design
     from contactsep.studies.design_preload import preload
@@ -62,6 +73,7 @@ def run(args: argparse.Namespace) -> int:
     require_matplotlib()            # before any simulation
     p_target = _p_target(args.p_target)
     overrides = design_overrides(args)
+    args.tolerance = tolerances_in_units(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
     output.check_targets({"-o": args.output},

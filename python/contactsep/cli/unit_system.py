@@ -22,7 +22,7 @@ from contactsep.errors import InputError
 #: --units: the unit system of the command line's bare numbers.
 UNIT_SYSTEMS = ("us", "si")
 #: The commands whose outputs --units si converts (text and --json).
-SI_COMMANDS = ("model", "chatter", "preload", "sweep")
+SI_COMMANDS = ("model", "chatter", "preload", "sweep", "report")
 #: An option's unit as printed -> its suffix in names.SI_SUFFIXES.
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
             "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",

@@ -18,6 +18,7 @@ import textwrap
 
 from contactsep import output
 from contactsep.errors import InputError
+from contactsep.model.names import shown
 from contactsep.studies.plot_panels import (  # noqa: F401 - plots' API
     CHATTER_FIGSIZE,
     CHATTER_MODEL_LABELS,
@@ -175,7 +176,9 @@ def chatter_figure(result, dpi: int = 100):
     fig, (upper, lower) = plt.subplots(
         2, 1, sharex=True, figsize=(7.0, 5.0), dpi=dpi,
         gridspec_kw={"height_ratios": (1, 1)})
-    scale = 1e3
+    # gaps in thousandths of an inch, or in micrometres where SI is shown
+    si = shown(1.0, "in")[1] == "m"
+    scale, unit = (shown(1e6, "in")[0], "µm") if si else (1e3, "0.001 in")
     upper.plot(result.t, result.gap_upper * scale, lw=0.7, color="C0")
     lower.plot(result.t, result.gap_lower * scale, lw=0.7, color="C1")
     for ax in (upper, lower):
@@ -184,13 +187,13 @@ def chatter_figure(result, dpi: int = 100):
         ax.axhline(result.open_threshold_in * scale, color="0.5", lw=0.6,
                    ls="--")
         ax.grid(True, lw=0.3)
-    upper.set(ylabel="upper gap (0.001 in)",
+    upper.set(ylabel=f"upper gap ({unit})",
               title=f"{result.model}, N = {result.n_modes}: circuit open "
                     f"{result.circuit_open_s * 1e3:.3g} ms (shaded), "
                     f"{result.n_events} events >= "
                     f"{result.min_open_s * 1e6:.3g} us")
     lower.set(xlabel="time from release (s)",
-              ylabel="lower gap (0.001 in)")
+              ylabel=f"lower gap ({unit})")
     fig.tight_layout()
     return plt, fig
 

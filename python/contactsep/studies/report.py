@@ -17,10 +17,19 @@ import html
 import io
 import math
 
-from contactsep.model.names import FIELDS, OUTPUT_NAMES, SHOWN_WHEN_GIVEN
+from contactsep.model.names import (
+    FIELDS,
+    OUTPUT_NAMES,
+    SHOWN_WHEN_GIVEN,
+    shown,
+    shown_key,
+    shown_text,
+)
 from contactsep.studies.fields import GROUPS, OPTIONAL, PHYSICS_GROUPS
 from contactsep.studies.plots import _pyplot, chatter_figure
 
+#: The units the page names (in, lb, s, psi, lb/in^3; or SI).
+_UNITS = ("in", "lb", "s", "psi", "lb_in3")
 #: Samples of the release's gaps in the figures.
 SAMPLES = 4001
 #: The page's style: readable on a screen and printed, no outside fonts.
@@ -91,11 +100,15 @@ def input_rows(design) -> list:
             value = getattr(design, name, None)
             if value is None and name in SHOWN_WHEN_GIVEN:
                 continue
-            _, unit, meaning = FIELDS[name]
+            suffix, unit, meaning = FIELDS[name]
             if value is None:
                 value, unit = OPTIONAL.get(name, "none"), ""
             elif isinstance(value, tuple):
-                value = ",".join(str(v) for v in value)
+                value = ",".join(_number(shown(v, suffix)[0], 12)
+                                 if suffix else str(v) for v in value)
+                unit = shown(0.0, suffix)[1] if suffix else unit
+            elif suffix:
+                value, unit = shown(value, suffix)
             rows.append((title, OUTPUT_NAMES.get(name, name),
                          _number(value, 12), unit, meaning))
     return rows
@@ -121,7 +134,9 @@ def _p_open_figure(robust):
     the answer marked."""
     from contactsep.studies.stats import wilson_interval
     plt = _pyplot()
-    tested = [(p, n, k) for p, n, k, _ in robust.tested if n]
+    tested = [(shown(p, "lb")[0], n, k) for p, n, k, _ in robust.tested
+              if n]
+    force = shown(1.0, "lb")[1]
     fig, ax = plt.subplots(figsize=(7.0, 3.8))
     loads = [p for p, _, _ in tested]
     p_open = [k / n for _, n, k in tested]
@@ -133,9 +148,10 @@ def _p_open_figure(robust):
     ax.axhline(robust.p_target, color="C3", lw=0.8, ls="--",
                label=f"p_target {robust.p_target:g}")
     if math.isfinite(robust.min_preload_lb):
-        ax.axvline(robust.min_preload_lb, color="0.3", lw=0.8, ls=":",
-                   label=f"robust answer {robust.min_preload_lb:.4g} lb")
-    ax.set(xlabel="preload (lb)", ylabel="p_open", ylim=(-0.02, 1.02))
+        ax.axvline(shown(robust.min_preload_lb, "lb")[0], color="0.3",
+                   lw=0.8, ls=":", label=f"robust answer "
+                   f"{shown_text(robust.min_preload_lb, 'lb', 4)}")
+    ax.set(xlabel=f"preload ({force})", ylabel="p_open", ylim=(-0.02, 1.02))
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -150,17 +166,23 @@ def _verdict(answer) -> tuple[str, bool]:
     return text, text.startswith("answer:") and "not checked" not in text
 
 
+def _force(value, digits: int = 5) -> str:
+    """A force (lb) as the page shows it, in the unit system shown."""
+    return shown_text(value, "lb", digits)
+
+
 def _preload_section(answer) -> list:
     parts = ["<h2>The preload that keeps the circuit closed</h2>"]
-    rows = [("the answer to use", f"{_number(answer_to_use(answer))} lb"),
+    force = shown(1.0, "lb")[1]
+    rows = [("the answer to use", _force(answer_to_use(answer))),
             ("smallest preload at N = " + _number(answer.n_modes),
-             f"{_number(answer.min_preload_lb)} lb"),
+             _force(answer.min_preload_lb)),
             ("its change at twice the modes and half the step",
              "none" if answer.min_preload_change is None
              else f"{answer.min_preload_change:+.2%}"),
             ("step at no preload", f"{_number(answer.dt_s)} s"),
             ("largest preload the simulation takes",
-             f"{_number(answer.ceiling_lb)} lb"),
+             _force(answer.ceiling_lb)),
             ("longest opening at the answer",
              f"{_number(answer.longest_open_at_answer_s)} s"),
             ("simulations", str(answer.simulations))]
@@ -169,27 +191,29 @@ def _preload_section(answer) -> list:
         parts.append("<p>Convergence: the answer of each search, "
                      "coarsest first.</p>")
         parts.append(_table(
-            ("N", "answer (lb)"),
-            [(n, _number(p)) for n, p in answer.converge_history],
-            numeric=("N", "answer (lb)")))
-    windows = [(f"{_number(a)}-{_number(b)}",) for a, b in
-               answer.event_windows]
+            ("N", f"answer ({force})"),
+            [(n, _number(shown(p, "lb")[0]))
+             for n, p in answer.converge_history],
+            numeric=("N", f"answer ({force})")))
+    windows = [(f"{_number(shown(a, 'lb')[0])}-"
+                f"{_number(shown(b, 'lb')[0])}",)
+               for a, b in answer.event_windows]
     if windows:
-        parts.append("<p>Preloads with an event (runs of tested "
-                     "preloads, lb):</p>")
-        parts.append(_table(("event window (lb)",), windows))
+        parts.append(f"<p>Preloads with an event (runs of tested "
+                     f"preloads, {force}):</p>")
+        parts.append(_table((f"event window ({force})",), windows))
     parts.append("<details><summary>Every preload simulated</summary>"
-                 + _table(("preload (lb)", "event"),
-                          [(_number(p, 6), "yes" if e else "no")
+                 + _table((f"preload ({force})", "event"),
+                          [(_number(shown(p, "lb")[0], 6),
+                            "yes" if e else "no")
                            for p, e in answer.tested],
-                          numeric=("preload (lb)",)) + "</details>")
+                          numeric=(f"preload ({force})",)) + "</details>")
     return parts
 
 
 def _robust_section(robust) -> list:
-    plt, fig = _p_open_figure(robust)
     ci = robust.p_open_ci95
-    rows = [("robust answer", f"{_number(robust.min_preload_lb)} lb"),
+    rows = [("robust answer", _force(robust.min_preload_lb)),
             ("p_open there", f"{_number(robust.p_open)} ({robust.n_open} "
                              f"of {robust.n} open, {robust.n_failed} "
                              f"failed)"),
@@ -197,11 +221,25 @@ def _robust_section(robust) -> list:
              f"{ci[0]:.3g} - {ci[1]:.3g}"),
             ("p_target", f"{robust.p_target:g}"),
             ("samples, seed", f"{robust.samples}, {robust.seed}")]
-    tolerances = [(name, kind, _number(a), _number(b))
-                  for name, kind, a, b in robust.tolerances]
-    return ["<h2>Under tolerances: the robust preload</h2>",
-            _table(("field", "distribution", "a", "b"), tolerances),
-            _table(("quantity", "value"), rows), _png(fig, plt)]
+    tolerances = []
+    for name, kind, a, b in robust.tolerances:
+        suffix = FIELDS[name][0] if name in FIELDS else ""
+        unit = shown(0.0, suffix)[1] if suffix else ""
+        a, b = ((shown(a, suffix)[0], shown(b, suffix)[0]) if suffix
+                else (a, b))
+        tolerances.append((shown_key(f"{OUTPUT_NAMES.get(name, name)}_"
+                                     f"{suffix}") if suffix else name,
+                           kind, _number(a), _number(b), unit))
+    parts = ["<h2>Under tolerances: the robust preload</h2>",
+             _table(("field", "distribution", "a", "b", "unit"),
+                    tolerances)]
+    if not robust.shown:    # no preload tried: no curve to draw
+        return parts + [f"<p>Not searched: {robust.samples} samples cannot "
+                        f"show p_open &lt;= {robust.p_target:g} on its 95 % "
+                        f"upper bound; it needs {robust.samples_needed} or "
+                        f"more (--samples).</p>"]
+    plt, fig = _p_open_figure(robust)
+    return parts + [_table(("quantity", "value"), rows), _png(fig, plt)]
 
 
 def html_report(design, answer, releases, *, command: str,
@@ -217,8 +255,8 @@ def html_report(design, answer, releases, *, command: str,
              "<h1>Design report</h1>",
              f'<p class="verdict{"" if settled else " unsettled"}">'
              f"{_e(verdict)}</p>",
-             f"<p>Model {_e(answer.model)}; units: in, lb, s, psi, "
-             f"lb/in^3.</p>",
+             f"<p>Model {_e(answer.model)}; units: "
+             f"{_e(', '.join(shown(1.0, s)[1] for s in _UNITS))}.</p>",
              "<h2>Inputs</h2>",
              _inputs_table(input_rows(design))]
     for title, result in releases:
@@ -253,7 +291,8 @@ def releases(design, answer, model: str, settings: dict) -> list:
     runs = [(0.0, "One release, no preload")]
     load = answer_to_use(answer)
     if math.isfinite(load) and load > 0:
-        runs.append((load, f"The release at the answer, {load:.4g} lb"))
+        runs.append((load, f"The release at the answer, "
+                           f"{shown_text(load, 'lb', 4)}"))
     return [(title, simulate(design, model=model, preload=load,
                              samples=SAMPLES, single_impulse=False,
                              **settings)) for load, title in runs]
