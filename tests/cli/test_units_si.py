@@ -91,8 +91,6 @@ def test_chatter_in_si_reads_the_preload_in_newtons(capsys):
     (["study", "fig5", "--units", "si"], "--units si: study writes in, lb, "
                                          "s; the commands that take it are "
                                          "model, chatter, preload, sweep"),
-    (["chatter", "--units", "si", "--json", "--csv", "gaps.csv"],
-     "--units si: --csv stays in in, lb, s"),
 ])
 def test_units_si_is_refused_where_an_output_would_stay_inch_pound(
         argv, words, capsys, tmp_path, monkeypatch):
@@ -431,3 +429,30 @@ def test_a_hertz_sweep_in_si_reads_its_preload_and_samples_in_si(
     assert "a contact is open above 2.54e-08 m" in "\n".join(si_comments)
     events = [row[-2] for row in _table(tmp_path / "us.csv")[2]]
     assert any(int(e) > 0 for e in events)     # a sweep that opens
+
+
+def test_chatter_csv_in_si_is_its_inch_pound_csv_converted(tmp_path,
+                                                           capsys):
+    """--units si --csv: the gaps in m (the us run's times 0.0254, to the
+    9 digits written), the same times and openings, the inputs in SI."""
+    common = ["chatter", "--model", "hertz", "--n-modes", "4", "--t-end",
+              "0.03"]
+    assert main([*common, "--csv", str(tmp_path / "us.csv")]) == 0
+    assert main([*common, "--units", "si", "--csv",
+                 str(tmp_path / "si.csv")]) == 0
+    capsys.readouterr()
+    us_comments, us_header, us_rows = _table(tmp_path / "us.csv")
+    si_comments, si_header, si_rows = _table(tmp_path / "si.csv")
+    assert us_header == ["t_s", "gap_upper_in", "gap_lower_in",
+                         "circuit_open"]
+    assert si_header == ["t_s", "gap_upper_m", "gap_lower_m",
+                         "circuit_open"]
+    assert len(si_rows) == len(us_rows) > 100
+    for us, si in zip(us_rows, si_rows):
+        assert si[0] == us[0] and si[3] == us[3]
+        for a, b in zip(us[1:3], si[1:3]):     # 9 digits: 5e-9 apiece
+            assert float(b) == pytest.approx(float(a) * M, rel=1e-8,
+                                             abs=1e-300)
+    assert "gap histories (m)" in si_comments[0]
+    inputs = json.loads(si_comments[1].partition("# inputs: ")[2])
+    assert inputs["design"]["L1_m"] == pytest.approx(19 * M, rel=1e-14)

@@ -18,9 +18,10 @@ from contactsep.cli.design_options import (
     with_sources,
 )
 from contactsep.cli.guards import drop_echoes
-from contactsep.cli.unit_system import si_shown
+from contactsep.cli.unit_system import in_units, si_shown
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
+from contactsep.model.names import shown, shown_key, units_shown
 
 EPILOG = """examples:
   contactsep chatter --preload 0.2
@@ -210,11 +211,13 @@ def run(args: argparse.Namespace) -> int:
             result, args.events, si=getattr(args, "units", "us") == "si")
                           + ("" if verdict is None
                              else verdict.line() + "\n"))
-    if args.csv:
-        write_csv(result, args.csv)
-    if args.png:
-        from contactsep.studies.plots import save_chatter_png
-        save_chatter_png(result, args.png, dpi=args.dpi)
+    with units_shown(args.units):   # SI where --units si asks for it
+        if args.csv:
+            write_csv(result, args.csv,
+                      in_units(result.to_json_dict(), args)["inputs"])
+        if args.png:
+            from contactsep.studies.plots import save_chatter_png
+            save_chatter_png(result, args.png, dpi=args.dpi)
     if args.preload == 0.0 and args.model != "appE":
         # after the outputs: a failed write's error is the last line
         print("contactsep: note: preload 0: the lower contact rests on the "
@@ -378,19 +381,28 @@ def _design_parts(design, si: bool = False) -> list[str]:
     return parts
 
 
-def write_csv(result, path) -> None:
-    """The sampled gaps, one row a sample; replaced only when finished."""
+def write_csv(result, path, inputs=None) -> None:
+    """The sampled gaps, one row a sample, in the unit system shown
+    (model.names.units_shown; ``inputs`` the JSON's inputs as they are
+    to be written); replaced only when finished."""
     import numpy as np
 
     threshold = result.open_threshold_in
     is_open = (result.gap_upper > threshold) & (result.gap_lower > threshold)
-    inputs = output.json_text(result.to_json_dict()["inputs"], indent=None)
+    if inputs is None:
+        inputs = result.to_json_dict()["inputs"]
+    factor, unit = shown(1.0, "in")
     with output.open_output(path) as out:
-        out.write("# contactsep chatter: gap histories (in) at the samples; "
-                  "circuit_open = 1 where both gaps exceed the threshold\n")
-        out.write(f"# inputs: {inputs}\n")
-        out.write("t_s,gap_upper_in,gap_lower_in,circuit_open\n")
-        rows = np.column_stack([result.t, result.gap_upper,
+        out.write(f"# contactsep chatter: gap histories ({unit}) at the "
+                  f"samples; circuit_open = 1 where both gaps exceed the "
+                  f"threshold\n")
+        out.write(f"# inputs: {output.json_text(inputs, indent=None)}\n")
+        out.write(f"t_s,{shown_key('gap_upper_in')},"
+                  f"{shown_key('gap_lower_in')},circuit_open\n")
+        rows = np.column_stack([result.t, result.gap_upper * factor,
+                                result.gap_lower * factor]
+                               if factor != 1.0 else
+                               [result.t, result.gap_upper,
                                 result.gap_lower])
         for (t, upper, lower), flag in zip(rows, is_open):
             out.write(f"{t:.9g},{upper:.9g},{lower:.9g},{int(flag)}\n")

@@ -162,7 +162,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
                             "command line and of the output: us (in, lb, "
                             "s, psi, lb/in^3; default) or si (m, N, s, Pa, "
                             "kg/m^3; commands " + ", ".join(SI_COMMANDS)
-                            + "; chatter's --csv stays in in, lb, s)")
+                            + ")")
     group.add_argument("--design", metavar="FILE",
                        help="a JSON object of design fields (names as in "
                             "--set, or output names such as d_in), or the "

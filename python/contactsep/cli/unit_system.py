@@ -1,16 +1,14 @@
 """``--units us|si`` on the commands that take design options: the unit
-system of the command line's bare numbers and of the ``--json`` output
+system of the command line's bare numbers and of every output
 (docs/studies.md, "Names and units").
 
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit
 suffix becomes its SI twin (:data:`contactsep.model.names.SI_SUFFIXES`,
-the one table), and so does the text of ``model``, ``chatter`` and
-``preload`` and the CSV of ``preload`` (forces in N, its column
-``preload_N``: ``model.names.units_shown``).  Only these commands take
-it; ``chatter``'s CSV stays in inch-pound units, so ``si`` is refused
-there in one line rather than half done.  With the default ``us``
-nothing changes.
+the one table); the text, CSV, Parquet, PNG and HTML outputs of the
+commands that take it show SI too (``model.names.units_shown``).  The
+other commands (the thesis's studies, the restored program) refuse it
+in one line.  With the default ``us`` nothing changes.
 """
 
 from __future__ import annotations
@@ -27,8 +25,6 @@ SI_COMMANDS = ("model", "chatter", "preload", "sweep", "report")
 _PRINTED = {"in": "in", "s": "s", "lb": "lb", "psi": "psi",
             "lb/in^3": "lb_in3", "s/in": "s_per_in", "lb s": "lb_s",
             "in/s": "in_s"}
-#: The commands whose --csv file --units si converts too.
-SI_CSV = ("preload", "sweep")
 
 
 def si_shown(value, unit: str, si: bool):
@@ -55,11 +51,6 @@ def si_asked(args: argparse.Namespace) -> bool:
                          f"commands that take it are "
                          f"{', '.join(SI_COMMANDS)} (or give each value "
                          f"its unit: --L1 25mm)")
-    for option in ("csv", "png"):
-        if getattr(args, option, None) and not (option == "csv"
-                                                and command in SI_CSV):
-            raise InputError(f"--units si: --{option} stays in in, lb, s "
-                             f"(leave it out, or drop --units si)")
     return True
 
 
