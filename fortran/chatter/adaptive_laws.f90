@@ -175,22 +175,24 @@ contains
     integer :: j
 
     if (run%series .and. run%law%plastic) then
-      ! Thornton's elements in series: their own depths remembered
+      ! Thornton's elements in series: their own (undamped) depths
+      ! remembered, then the forces with Flores's factor
       if (all(run%gap >= 0.0_wp)) then
         run%force(:) = 0.0_wp
         return
       end if
       stiff(1:run%k) = 1.0_wp
-      if (run%chi /= 0.0_wp) then
-        do j = 1, run%k
-          stiff(j) = max(1.0_wp - run%chi * rate(run, j), 0.0_wp)
-        end do
-      end if
       call series_law_forces(run%k, run%law, stiff(1:run%k), run%cmat, &
           run%gap, run%force, depth(1:run%k))
       do j = 1, run%k
         if (depth(j) > 0.0_wp) call law_remember(run%law, j, depth(j))
       end do
+      if (run%chi == 0.0_wp) return
+      do j = 1, run%k
+        stiff(j) = max(1.0_wp - run%chi * rate(run, j), 0.0_wp)
+      end do
+      call series_law_forces(run%k, run%law, stiff(1:run%k), run%cmat, &
+          run%gap, run%force, depth(1:run%k))
       return
     end if
     if (run%series) then

@@ -206,14 +206,15 @@ contains
   contains
 
     !> The law's memory of the current penetrations (with the series
-    !> correction, Thornton's elements' own depths).
+    !> correction, Thornton's elements' own depths, undamped: those the
+    !> elastic energy reads).
     subroutine remember()
-      real(wp) :: f(k), depth(k)
+      real(wp) :: f(k), depth(k), factor(k)
       integer :: j
 
       if (series .and. law%plastic) then
-        call series_law_contact_forces(n, k, law, cmat, gap, ht, v, f, &
-            depth)
+        factor = 1.0_wp
+        call series_law_forces(k, law, factor, cmat, gap, f, depth)
         do j = 1, k
           if (depth(j) > 0.0_wp) call law_remember(law, j, depth(j))
         end do

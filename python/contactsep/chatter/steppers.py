@@ -113,11 +113,12 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
     impulses = np.zeros((samples, len(g0)))
     damped = [0.0]
 
-    def remember(q, v):
+    def remember(q):
         if series and law.plastic:
-            # Thornton's elements' own depths (hertz.f90's remember)
+            # Thornton's elements' own depths, undamped: those the
+            # elastic energy reads (hertz.f90's remember)
             gap = h_matrix @ q + g0
-            _, depth = series_law_forces(memory, factors(gap, v, law.chi),
+            _, depth = series_law_forces(memory, [1.0] * len(gap),
                                          c_matrix, gap)
             for j, d in enumerate(depth):
                 if d > 0.0:
@@ -182,7 +183,7 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
         gap = h_matrix @ q + g0
         return gap + np.asarray(c_matrix) @ force if series else gap
 
-    remember(q, v)
+    remember(q)
     t_out[0], e_out[0] = 0.0, energy(q, v)
     g_out[0] = sampled(q, forces(h_matrix @ q + g0, v, law.chi))
     first, episode = [-1.0, -1.0], 0
@@ -198,7 +199,7 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
             else:
                 episode = 2
         q, v = q * c + v / p * s, -q * p * s + v * c
-        remember(q, v)
+        remember(q)
         force, v = kick(q, v)
         if (step + 1) % stride == 0:
             k = (step + 1) // stride
