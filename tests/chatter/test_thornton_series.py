@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import sys
 
 import numpy as np
 import pytest
@@ -299,7 +298,3 @@ def test_the_command_runs_thornton_at_the_defaults(capsys):
     settings = capsys.readouterr().out.splitlines()[1]
     assert "contact thornton" in settings
     assert settings.endswith(", static correction")
-
-
-if __name__ == "__main__":
-    sys.exit(pytest.main([__file__, "-q"]))
