@@ -10,7 +10,8 @@ cases: every design of tests/design_family.py at N = 16, 32, 64, free
 and preloaded (half its largest preload, at most 5 lb), with the laws
 the adaptive stepper takes: elastic Hertz, Flores's and Hunt-Crossley's
 damping, with the static correction and without, Thornton's plastic law
-(without: it takes none), and the cylindrical button (elastic, both).
+(without it: trees before Thornton took the correction refused it), and
+the cylindrical button (elastic, both).
 Each run covers ``--window`` of the design's own window (0.1 by
 default, so that the whole set takes minutes) with 40 samples;
 ``--laws`` and ``--static-only`` narrow the set (a whole-window check).

@@ -71,7 +71,7 @@ module chatter_adaptive
   use chatter_adaptive_gap_max, only: search_waiting
   use chatter_adaptive_laws, only: hertz_step, newton_step
   use chatter_adaptive_event, only: event_start, event_watch
-  use chatter_hertz_series, only: series_forces
+  use chatter_hertz_series, only: series_forces, series_law_forces
   use chatter_contact_law, only: contact_law, law_setup, law_plastic_work
   implicit none
   private
@@ -372,14 +372,22 @@ contains
   subroutine correct(run, cmat)
     type(adaptive_run), intent(inout) :: run
     real(wp), intent(in) :: cmat(run%k, run%k)
-    real(wp) :: force(run%k), stiff(run%k)
+    real(wp) :: force(run%k), stiff(run%k), depth(run%k)
     integer :: c, d
 
     run%cmat(:, :) = cmat
     run%series = any(cmat /= 0.0_wp)
     if (.not. run%series) return
-    stiff = run%stiffness
-    call series_forces(run%k, stiff, cmat, run%gap, force, run%law%linear)
+    if (run%law%plastic) then
+      ! Thornton's elements (memory as at the start)
+      stiff = 1.0_wp
+      call series_law_forces(run%k, run%law, stiff, cmat, run%gap, force, &
+          depth)
+    else
+      stiff = run%stiffness
+      call series_forces(run%k, stiff, cmat, run%gap, force, &
+          run%law%linear)
+    end if
     ! the forces at the start (a preload's): sampled_gaps's, and the
     ! physical gaps are the largest so far
     run%force(:) = force

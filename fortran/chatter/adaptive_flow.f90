@@ -8,7 +8,7 @@
 module chatter_adaptive_flow
   use contactsep_kinds, only: wp
   use chatter_adaptive_state, only: adaptive_run
-  use chatter_hertz_series, only: series_energy
+  use chatter_hertz_series, only: series_energy, series_law_energy
   use chatter_contact_law, only: law_energy
   implicit none
   private
@@ -73,6 +73,10 @@ contains
         run%p, run%q, run%v)
     run%e_fresh = .true.
     total = run%e_modal
+    if (run%series .and. run%law%plastic) then
+      total = series_law_energy(run%k, run%law, run%cmat, run%gap, total)
+      return
+    end if
     if (run%series) then
       total = total + series_energy(run%k, run%stiffness, run%cmat, &
           run%gap, run%law%linear)

@@ -11,7 +11,7 @@ module chatter_adaptive_laws
   use chatter_adaptive_state, only: adaptive_run
   use chatter_adaptive_flow, only: flow
   use chatter_adaptive_crossings, only: watch_fixed, watch_grid
-  use chatter_hertz_series, only: series_forces
+  use chatter_hertz_series, only: series_forces, series_law_forces
   use chatter_contact_law, only: law_force, law_elastic_force, &
       law_remember, max_contacts
   implicit none
@@ -171,9 +171,30 @@ contains
   !> (chatter_contact_law).
   subroutine contact_forces(run)
     type(adaptive_run), intent(inout) :: run
-    real(wp) :: stiff(max_contacts)
+    real(wp) :: stiff(max_contacts), depth(max_contacts)
     integer :: j
 
+    if (run%series .and. run%law%plastic) then
+      ! Thornton's elements in series: their own (undamped) depths
+      ! remembered, then the forces with Flores's factor
+      if (all(run%gap >= 0.0_wp)) then
+        run%force(:) = 0.0_wp
+        return
+      end if
+      stiff(1:run%k) = 1.0_wp
+      call series_law_forces(run%k, run%law, stiff(1:run%k), run%cmat, &
+          run%gap, run%force, depth(1:run%k))
+      do j = 1, run%k
+        if (depth(j) > 0.0_wp) call law_remember(run%law, j, depth(j))
+      end do
+      if (run%chi == 0.0_wp) return
+      do j = 1, run%k
+        stiff(j) = max(1.0_wp - run%chi * rate(run, j), 0.0_wp)
+      end do
+      call series_law_forces(run%k, run%law, stiff(1:run%k), run%cmat, &
+          run%gap, run%force, depth(1:run%k))
+      return
+    end if
     if (run%series) then
       ! the static correction (chatter_hertz_series), Flores's factor
       ! on each element's stiffness, as chatter_hertz
@@ -208,10 +229,14 @@ contains
   subroutine elastic_forces(run, force)
     type(adaptive_run), intent(in) :: run
     real(wp), intent(out) :: force(run%k)
-    real(wp) :: stiff(max_contacts)
+    real(wp) :: stiff(max_contacts), depth(max_contacts)
     integer :: j
 
-    if (run%series) then
+    if (run%series .and. run%law%plastic) then
+      stiff(1:run%k) = 1.0_wp
+      call series_law_forces(run%k, run%law, stiff(1:run%k), run%cmat, &
+          run%gap, force, depth(1:run%k))
+    else if (run%series) then
       stiff(1:run%k) = run%stiffness
       call series_forces(run%k, stiff, run%cmat, run%gap, force, &
           run%law%linear)

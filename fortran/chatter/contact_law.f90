@@ -29,6 +29,7 @@ module chatter_contact_law
   implicit none
   private
   public :: contact_law, law_setup, law_elastic_force, law_force
+  public :: law_elastic_slope
   public :: law_energy, law_remember, law_plastic_work, max_contacts
 
   !> Contacts a law keeps memory for.
@@ -115,6 +116,31 @@ contains
     over = depth - law%offset(c)
     if (over > 0.0_wp) force = law%unload_k(c) * over * sqrt(over)
   end function law_elastic_force
+
+  !> dF_e/d delta (lb/in) of contact c at depth, on the branch
+  !> law_elastic_force takes there (the series solve's Newton steps).
+  pure function law_elastic_slope(law, c, depth) result(slope)
+    type(contact_law), intent(in) :: law
+    integer, intent(in) :: c
+    real(wp), intent(in) :: depth
+    real(wp) :: slope, over
+
+    slope = 0.0_wp
+    if (.not. depth > 0.0_wp) return
+    if (.not. law%plastic .or. depth >= law%depth_max(c) &
+        .or. law%depth_max(c) <= law%yield_depth) then
+      if (law%linear) then
+        slope = law%stiffness
+      else if (.not. law%plastic .or. depth <= law%yield_depth) then
+        slope = 1.5_wp * law%stiffness * sqrt(depth)
+      else
+        slope = law%slope
+      end if
+      return
+    end if
+    over = depth - law%offset(c)
+    if (over > 0.0_wp) slope = 1.5_wp * law%unload_k(c) * sqrt(over)
+  end function law_elastic_slope
 
   !> The force (lb) with the damping factor: max(F_e (1 + chi delta'),
   !> 0), delta' = -rate (in/s) the penetration's rate.

@@ -3,14 +3,16 @@
 !> With the static correction (cmat /= 0) the forces are those of the
 !> Hertz elements in series with the truncated modes' residual
 !> flexibility (chatter_hertz_series); cmat = 0 is the plain truncation,
-!> bit for bit.
+!> bit for bit.  Thornton's law takes the series solve of its own force
+!> (series_law_forces) and remembers the elements' depths.
 !> Twin: contactsep/chatter/steppers.py.
 module chatter_hertz
   use contactsep_kinds, only: wp
   use chatter_status, only: status_ok, status_energy_bound, &
       status_interrupted
   use chatter_stop, only: stop_requested, stop_check_every
-  use chatter_hertz_series, only: series_forces, series_energy
+  use chatter_hertz_series, only: series_forces, series_energy, &
+      series_law_forces, series_law_energy
   use chatter_contact_law, only: contact_law, law_force, law_energy, &
       law_elastic_force, law_remember, law_plastic_work
   implicit none
@@ -64,6 +66,28 @@ contains
     end if
     call series_forces(k, stiff, cmat, gap, force, linear)
   end subroutine series_contact_forces
+
+  !> series_contact_forces for Thornton's law (law%plastic): the
+  !> elements' forces and depths with Flores's factor max(1 - chi u, 0)
+  !> (chatter_hertz_series's series_law_forces).
+  pure subroutine series_law_contact_forces(n, k, law, cmat, gap, ht, v, &
+      force, depth)
+    integer, intent(in) :: n, k
+    type(contact_law), intent(in) :: law
+    real(wp), intent(in) :: cmat(k, k), gap(k), ht(n, k), v(n)
+    real(wp), intent(out) :: force(k), depth(k)
+    real(wp) :: factor(k)
+    integer :: i
+
+    factor = 1.0_wp
+    if (law%chi /= 0.0_wp .and. any(gap < 0.0_wp)) then
+      do i = 1, k
+        factor(i) = max(1.0_wp - law%chi * dot_product(ht(:, i), v), &
+            0.0_wp)
+      end do
+    end if
+    call series_law_forces(k, law, factor, cmat, gap, force, depth)
+  end subroutine series_law_contact_forces
 
   !> Integrate `steps` steps of dt; sample every `stride` steps.
   !>
@@ -181,10 +205,21 @@ contains
 
   contains
 
-    !> The law's memory of the current penetrations.
+    !> The law's memory of the current penetrations (with the series
+    !> correction, Thornton's elements' own depths, undamped: those the
+    !> elastic energy reads).
     subroutine remember()
+      real(wp) :: f(k), depth(k), factor(k)
       integer :: j
 
+      if (series .and. law%plastic) then
+        factor = 1.0_wp
+        call series_law_forces(k, law, factor, cmat, gap, f, depth)
+        do j = 1, k
+          if (depth(j) > 0.0_wp) call law_remember(law, j, depth(j))
+        end do
+        return
+      end if
       do j = 1, k
         if (gap(j) < 0.0_wp) call law_remember(law, j, -gap(j))
       end do
@@ -193,7 +228,12 @@ contains
     pure subroutine forces(f)
       real(wp), intent(out) :: f(k)
 
-      if (series) then
+      real(wp) :: depth(k)
+
+      if (series .and. law%plastic) then
+        call series_law_contact_forces(n, k, law, cmat, gap, ht, v, f, &
+            depth)
+      else if (series) then
         call series_contact_forces(n, k, law%stiffness, law%chi, cmat, &
             gap, ht, v, f, law%linear)
       else
@@ -205,10 +245,13 @@ contains
     !> force is the rest).
     pure subroutine elastic_forces(f)
       real(wp), intent(out) :: f(k)
-      real(wp) :: stiff(k)
+      real(wp) :: stiff(k), depth(k)
       integer :: j
 
-      if (series) then
+      if (series .and. law%plastic) then
+        stiff = 1.0_wp
+        call series_law_forces(k, law, stiff, cmat, gap, f, depth)
+      else if (series) then
         stiff = law%stiffness
         call series_forces(k, stiff, cmat, gap, f, law%linear)
       else
@@ -260,7 +303,10 @@ contains
       integer :: j
 
       g = gaps()
-      if (series) then
+      if (series .and. law%plastic) then
+        total = series_law_energy(k, law, cmat, g, &
+            0.5_wp * sum(m * (v**2 + (p * q)**2)))
+      else if (series) then
         total = 0.5_wp * sum(m * (v**2 + (p * q)**2)) &
             + series_energy(k, law%stiffness, cmat, g, law%linear)
       else

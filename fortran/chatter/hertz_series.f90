@@ -15,13 +15,24 @@
 !> with dV/dg = -lambda: the forces derive from V, so the splitting stays
 !> symplectic.  lambda = 0 exactly when every g_i >= 0 (the gradient of
 !> Phi at 0 is g), so no force acts while every modal gap is open.
-!> Twin: contactsep/chatter/contacts.py (series_forces, series_energy).
+!> Thornton's plastic law (law%plastic) takes the same series solve with
+!> its own force F_e(delta) of the element's depth and memory in place
+!> of k delta^{3/2} (series_law_forces): each element's root of
+!> delta + c_ii s F_e(delta) = a (F_e increasing on the loading and the
+!> unloading branch) by a bracketed Newton iteration (law_depth); the
+!> caller remembers the elements' depths (law_remember), and the elastic
+!> energy is sum_i law_energy(delta_i) + lambda^T C lambda / 2
+!> (series_law_energy).
+!> Twin: contactsep/chatter/contacts.py (series_forces, series_energy,
+!> series_law_forces, series_law_energy).
 module chatter_hertz_series
   use contactsep_kinds, only: wp
-  use chatter_contact_law, only: max_contacts
+  use chatter_contact_law, only: max_contacts, contact_law, &
+      law_elastic_force, law_elastic_slope, law_energy
   implicit none
   private
   public :: series_forces, series_energy, element_depth, max_sweeps
+  public :: law_depth, series_law_forces, series_law_energy
 
   !> Most sweeps of the coordinate descent (it contracts by about
   !> c2^2 / ((c1 + c2)(c2 + c3)) a sweep: a few sweeps in practice).
@@ -153,5 +164,112 @@ contains
       end if
     end do
   end function series_energy
+
+  !> The root delta in [0, a] of delta + b F_e(delta) = a (a > 0,
+  !> b >= 0), F_e the elastic force of contact c with the law's memory
+  !> (continuous and increasing): Newton's method from a, kept inside
+  !> the bracket [lo, hi] of the root (a bisection where a step leaves
+  !> it), until a step moves nothing or the bracket has no float left
+  !> inside.  A b F_e(a) below a's last bit leaves a itself.
+  pure function law_depth(law, c, a, b) result(depth)
+    type(contact_law), intent(in) :: law
+    integer, intent(in) :: c
+    real(wp), intent(in) :: a, b
+    real(wp) :: depth, lo, hi, f, next
+    integer :: it
+
+    depth = a
+    if (b <= 0.0_wp) return
+    lo = 0.0_wp
+    hi = a
+    do it = 1, 4 * max_newton
+      f = depth + b * law_elastic_force(law, c, depth) - a
+      if (f == 0.0_wp) exit
+      if (f > 0.0_wp) then
+        hi = depth
+      else
+        lo = depth
+      end if
+      next = depth - f / (1.0_wp + b * law_elastic_slope(law, c, depth))
+      if (next == depth) exit
+      if (.not. (next > lo .and. next < hi)) next = 0.5_wp * (lo + hi)
+      if (next == lo .or. next == hi) exit
+      depth = next
+    end do
+  end function law_depth
+
+  !> series_forces for Thornton's law: the elements' forces
+  !> factor_i F_e(delta_i) (factor: Flores's max(1 - chi u, 0), 1
+  !> undamped) and depths delta_i (in; 0 where no force acts), F_e of
+  !> each contact's memory as it stands (law_remember them after).
+  pure subroutine series_law_forces(k, law, factor, cmat, g, force, depth)
+    integer, intent(in) :: k
+    type(contact_law), intent(in) :: law
+    real(wp), intent(in) :: factor(k), cmat(k, k), g(k)
+    real(wp), intent(out) :: force(k), depth(k)
+    real(wp) :: a, old(max_contacts), solved(max_contacts)
+    integer :: sweep, i, j
+
+    force = 0.0_wp
+    depth = 0.0_wp
+    if (all(g >= 0.0_wp)) return
+    solved = 0.0_wp
+    do sweep = 1, max_sweeps
+      old(1:k) = force
+      do i = 1, k
+        a = -g(i)
+        do j = 1, k
+          if (j /= i) a = a - cmat(i, j) * force(j)
+        end do
+        if (a > 0.0_wp .and. factor(i) > 0.0_wp) then
+          if (a /= solved(i)) then
+            depth(i) = law_depth(law, i, a, cmat(i, i) * factor(i))
+            force(i) = factor(i) * law_elastic_force(law, i, depth(i))
+            solved(i) = a
+          end if
+        else
+          ! no force: the element takes the whole approach
+          force(i) = 0.0_wp
+          depth(i) = max(a, 0.0_wp)
+          solved(i) = 0.0_wp
+        end if
+      end do
+      if (k == 1) exit
+      if (all(abs(force - old(1:k)) <= 4.0_wp * epsilon(1.0_wp) * force)) &
+          exit
+    end do
+  end subroutine series_law_forces
+
+  !> base + series_energy for Thornton's law: base (the modal energy)
+  !> + sum_i law_energy(delta_i) (the work each element's unloading
+  !> curve gives back) + lambda^T C lambda / 2, summed in that order (as
+  !> the plain law sums base and its contacts'), with the undamped
+  !> forces of the gaps g and the memory as it stands.
+  pure function series_law_energy(k, law, cmat, g, base) result(total)
+    integer, intent(in) :: k
+    type(contact_law), intent(in) :: law
+    real(wp), intent(in) :: cmat(k, k), g(k), base
+    real(wp) :: total, force(max_contacts), depth(max_contacts)
+    real(wp) :: factor(max_contacts), row, springs
+    integer :: i, j
+
+    total = base
+    if (all(g >= 0.0_wp)) return
+    factor(1:k) = 1.0_wp
+    call series_law_forces(k, law, factor(1:k), cmat, g, force(1:k), &
+        depth(1:k))
+    springs = 0.0_wp
+    do i = 1, k
+      row = 0.0_wp
+      do j = 1, k
+        row = row + cmat(i, j) * force(j)
+      end do
+      springs = springs + force(i) * row
+    end do
+    do i = 1, k
+      total = total + law_energy(law, i, depth(i))
+    end do
+    total = total + 0.5_wp * springs
+  end function series_law_energy
 
 end module chatter_hertz_series

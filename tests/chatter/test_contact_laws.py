@@ -227,7 +227,6 @@ def test_the_fixed_and_adaptive_books_agree():
     ({"alpha": 0.05}, "alpha"),
     ({"contact": "thornton", "static_correction": False},
      "yield_pressure"),
-    ({"contact": "thornton", "yield_pressure": 4e4}, "static_correction"),
     ({"contact": "thornton", "yield_pressure": 0.0,
       "static_correction": False}, "yield_pressure"),
     ({"yield_pressure": 4e4}, "yield_pressure"),

@@ -187,6 +187,23 @@ class ContactMemory:
         over = depth - self.offset[c]
         return self.unload_k[c] * over**1.5 if over > 0.0 else 0.0
 
+    def elastic_slope(self, c: int, depth: float) -> float:
+        """dF_e/d delta (lb/in) of contact c at ``depth`` (in), on the
+        branch :meth:`elastic_force` takes there."""
+        law = self.law
+        if not depth > 0.0:
+            return 0.0
+        if not law.plastic or depth >= self.depth_max[c] or \
+                self.depth_max[c] <= law.yield_depth:
+            if law.linear:
+                return law.k
+            if depth <= law.yield_depth:
+                return 1.5 * law.k * math.sqrt(depth)
+            return math.pi * law.yield_pressure * law.radius
+        over = depth - self.offset[c]
+        return 1.5 * self.unload_k[c] * math.sqrt(over) if over > 0.0 \
+            else 0.0
+
     def force(self, c: int, depth: float, rate: float) -> float:
         """F = max(F_e (1 - chi rate), 0), rate the gap's (in/s)."""
         force = self.elastic_force(c, depth)
@@ -196,13 +213,20 @@ class ContactMemory:
 
     def energy(self, c: int, depth: float) -> float:
         """The elastic energy contact c stores (in lb), (2/5) F_e (delta
-        - delta_p) (remembered depths only)."""
+        - delta_p); past the memory, of the unloading curve from delta."""
         if not depth > 0.0:
             return 0.0
         if not self.law.plastic:
             return float(self.law.energy(-depth))
+        law = self.law
         offset = self.offset[c] if self.depth_max[c] > \
-            self.law.yield_depth else 0.0
+            law.yield_depth else 0.0
+        if depth > self.depth_max[c] and depth > law.yield_depth:
+            # ahead of the memory: the unloading curve from this depth
+            a2 = law.radius * depth
+            r_p = 4.0 * law.e_star * a2 * math.sqrt(a2) / (
+                3.0 * law.envelope(depth))
+            offset = depth - a2 / r_p
         return 0.4 * self.elastic_force(c, depth) * max(depth - offset,
                                                          0.0)
 
@@ -281,6 +305,75 @@ def series_energy(stiffness: float, c_matrix, gap, linear=False) -> float:
         if f > 0.0:
             total += 0.4 * f * (f / stiffness) ** (2.0 / 3.0)
     return total
+
+
+def law_depth(memory: ContactMemory, c: int, a: float, b: float) -> float:
+    """The root delta in [0, a] of delta + b F_e(delta) = a (a > 0, b >=
+    0), F_e contact c's elastic force with its memory (continuous and
+    increasing): Newton's method from a inside the root's bracket (a
+    bisection where a step leaves it), until a step moves nothing or the
+    bracket holds no float (twin of hertz_series.f90's law_depth)."""
+    depth = a
+    if b <= 0.0:
+        return depth
+    low, high = 0.0, a
+    for _ in range(4 * MAX_NEWTON):
+        f = depth + b * memory.elastic_force(c, depth) - a
+        if f == 0.0:
+            break
+        if f > 0.0:
+            high = depth
+        else:
+            low = depth
+        step = depth - f / (1.0 + b * memory.elastic_slope(c, depth))
+        if step == depth:
+            break
+        if not low < step < high:
+            step = 0.5 * (low + high)
+        if step in (low, high):
+            break
+        depth = step
+    return depth
+
+
+def series_law_forces(memory: ContactMemory, factor, c_matrix, gap):
+    """:func:`series_forces` for Thornton's law: the forces factor_i
+    F_e(delta_i) (factor Flores's max(1 - chi u, 0), 1 undamped) and the
+    elements' depths delta_i (in), F_e of each contact's memory as it
+    stands (remember the depths after; twin of series_law_forces)."""
+    k = len(gap)
+    force, depth = [0.0] * k, [0.0] * k
+    if all(float(g) >= 0.0 for g in gap):
+        return np.zeros(k), np.zeros(k)
+    eps4 = 4.0 * EPS
+    for _ in range(MAX_SWEEPS):
+        old = list(force)
+        for i in range(k):
+            a = -float(gap[i])
+            for j in range(k):
+                if j != i:
+                    a -= float(c_matrix[i][j]) * force[j]
+            if a > 0.0 and factor[i] > 0.0:
+                depth[i] = law_depth(memory, i, a, float(c_matrix[i][i])
+                                     * factor[i])
+                force[i] = factor[i] * memory.elastic_force(i, depth[i])
+            else:
+                force[i], depth[i] = 0.0, max(a, 0.0)
+        if k == 1 or all(abs(f - o) <= eps4 * f for f, o in zip(force,
+                                                                 old)):
+            break
+    return np.array(force), np.array(depth)
+
+
+def series_law_energy(memory: ContactMemory, c_matrix, gap) -> float:
+    """Thornton's elements' elastic energy (in lb) with the series
+    springs: sum of each element's recoverable energy at its depth +
+    lambda^T C lambda / 2, undamped forces, the memory as it stands."""
+    force, depth = series_law_forces(memory, [1.0] * len(gap), c_matrix,
+                                     gap)
+    springs = 0.5 * float(force @ (np.asarray(c_matrix) @ force))
+    return sum(memory.energy(c, float(d)) for c, d in enumerate(depth)) \
+        + springs
 
 
 def solve_lcp(matrix, vector):

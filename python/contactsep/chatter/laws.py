@@ -71,12 +71,6 @@ def check_law(model, damping, alpha, contact, yield_pressure,
     if not hertz and (damping != "none" or contact != "hertz"):
         raise ChatterError(f"damping/contact: {damping}/{contact} are Hertz "
                            f"laws; model {model} takes none/hertz")
-    if contact == "thornton" and static_correction:
-        raise ChatterError("static_correction: thornton's plastic contact "
-                           "takes no series correction (its memory and the "
-                           "series solve are not made consistent); give "
-                           "static_correction=False (--static-correction "
-                           "off)")
     return alpha, yield_pressure
 
 

@@ -15,7 +15,11 @@ import numpy as np
 from contactsep import output
 from contactsep.chatter import circuit
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import ContactMemory, series_energy
+from contactsep.chatter.contacts import (
+    ContactMemory,
+    series_energy,
+    series_law_energy,
+)
 from contactsep.errors import InputError
 
 #: First size of the crossing tables; a run that fills one is repeated
@@ -146,7 +150,10 @@ def _energy_bound(system, law=None) -> float:
     energy0 = 0.5 * np.sum(s.m * (s.v0**2 + (s.p * s.q0)**2))
     if law is not None:
         gap0 = s.h @ s.q0 + s.g0
-        if np.any(s.c != 0.0):
+        if np.any(s.c != 0.0) and law.plastic:
+            energy0 += series_law_energy(ContactMemory(law, len(gap0)),
+                                         s.c, gap0)
+        elif np.any(s.c != 0.0):
             energy0 += series_energy(law.k, s.c, gap0, law.linear)
         else:
             memory = ContactMemory(law, len(gap0))

@@ -157,7 +157,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     contact : {"hertz", "thornton"}
         The elastic part of the law: Hertz, or Thornton's (1997)
         elastic-perfectly-plastic sphere on a flat (needs
-        ``yield_pressure`` and ``static_correction=False``;
+        ``yield_pressure``; it takes the static correction too;
         docs/chatter.md, "Contact laws").
     yield_pressure : float, optional
         Thornton's limiting contact pressure p_y (psi).

@@ -16,6 +16,8 @@ from contactsep.chatter.contacts import (
     HertzLaw,
     series_energy,
     series_forces,
+    series_law_energy,
+    series_law_forces,
     solve_lcp,
 )
 
@@ -91,8 +93,9 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
     the exact modal flow over dt (every mode, however stiff), half kick.
     Symplectic for chi = 0; the step resolves the contact, not the modes.
     ``c_matrix`` (k x k, in/lb): the static correction's series
-    flexibilities (None or 0: the plain truncation; not with Thornton's
-    law).  Returns sampled (t, gaps, energy incl. the contact's) and the
+    flexibilities (None or 0: the plain truncation; Thornton's law
+    takes the series solve of its own force and remembers the elements'
+    depths).  Returns sampled (t, gaps, energy incl. the contact's) and the
     impulses (force at each step's start x dt) summed per sample; with
     ``book``, also the energy book: a dict of the final ``q``, ``v``,
     the ``dissipated`` energy (the damping's work, each kick's exact
@@ -101,8 +104,6 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
     q, v = q.astype(float).copy(), v.astype(float).copy()
     series = c_matrix is not None and bool(np.any(np.asarray(c_matrix)
                                                   != 0.0))
-    if series and law.plastic:
-        raise ValueError("Thornton's law takes no series correction")
     memory = ContactMemory(law, len(g0))
     c, s = np.cos(p * dt), np.sin(p * dt)
     samples = steps // stride + 1
@@ -113,12 +114,24 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
     damped = [0.0]
 
     def remember(q):
+        if series and law.plastic:
+            # Thornton's elements' own depths, undamped: those the
+            # elastic energy reads (hertz.f90's remember)
+            gap = h_matrix @ q + g0
+            _, depth = series_law_forces(memory, [1.0] * len(gap),
+                                         c_matrix, gap)
+            for j, d in enumerate(depth):
+                if d > 0.0:
+                    memory.remember(j, float(d))
+            return
         for j, gap in enumerate(h_matrix @ q + g0):
             if gap < 0.0:
                 memory.remember(j, -float(gap))
 
     def stored(q):
         gap = h_matrix @ q + g0
+        if series and law.plastic:
+            return series_law_energy(memory, c_matrix, gap)
         if series:
             return series_energy(law.k, c_matrix, gap, law.linear)
         return sum(memory.energy(j, -float(g)) for j, g in enumerate(gap))
@@ -134,7 +147,16 @@ def hertz(m, p, h_matrix, g0, q, v, *, law: HertzLaw, dt, steps, stride=1,
                      for r in h_matrix @ v]
         return series_forces(stiff, c_matrix, gap, law.linear)
 
+    def factors(gap, v, chi):
+        # Flores's factor max(1 - chi u, 0) of each Thornton element
+        if chi != 0.0 and np.any(gap < 0.0):
+            return [max(1.0 - chi * float(r), 0.0) for r in h_matrix @ v]
+        return [1.0] * len(gap)
+
     def forces(gap, v, chi):
+        if series and law.plastic:
+            return series_law_forces(memory, factors(gap, v, chi),
+                                     c_matrix, gap)[0]
         if series:
             return series_force(gap, v, chi)
         if not law.plastic and chi == law.chi:

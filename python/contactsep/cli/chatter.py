@@ -72,8 +72,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="hertz",
                            help="the law's elastic part: hertz (default) "
                                 "or thornton (elastic-perfectly-plastic; "
-                                "with --yield-pressure and "
-                                "--static-correction off)")
+                                "with --yield-pressure)")
     run_group.add_argument("--yield-pressure", type=finite("psi"),
                            default=None, metavar="PSI",
                            help="Thornton's yield pressure (psi)")
