@@ -1,7 +1,7 @@
 """Does the robust preload converge in N where the nominal one cannot?
 The robust answer (``contactsep preload --tolerance``) of the relays
 whose nominal threshold is ill-conditioned, searched at N and 2N on the
-same tolerance draws (docs/chatter.md, "How well-posed the answer is";
+same tolerance draws (docs/preload.md, "How well-posed the answer is";
 issue 25):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/robust_convergence.py \\
@@ -159,7 +159,7 @@ def main() -> None:
                     "same answer, fewer preloads tried below it); "
                     "nominal_events, above its answer the "
                     "nominal design's events only (rows searched before "
-                    "it; docs/chatter.md, The robust answer at N and 2N)"))
+                    "it; docs/preload.md, The robust answer at N and 2N)"))
             if args.tested_csv:
                 write(args.tested_csv, tested, TESTED_COLUMNS, (
                     "# one row a preload the robust search tried: n "

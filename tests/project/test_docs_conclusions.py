@@ -125,9 +125,12 @@ def test_the_committed_study_is_what_the_code_computes(name):
 # separator (issue 27)"
 
 def physical_section() -> str:
-    text = PAGE.read_text()
+    """The preload page's last section: the physical separator's chart
+    and conclusions."""
+    text = (ROOT / "docs" / "preload.md").read_text()
     start = text.index("### With the physical separator")
-    return text[start:text.index("## The thesis's conclusions", start)]
+    end = re.search(r"^## ", text[start:], flags=re.MULTILINE)
+    return text[start:start + end.start() if end else len(text)]
 
 
 def quoted_table(text: str, header: str) -> list[list[str]]:

@@ -24,13 +24,13 @@ NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/")
 SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
         "tolerance.csv", "study conclusion", "--preload 20",
         "contactsep preload", "study separator-fit", "contactsep report")
-#: A command's limit: the slowest example (chatter.md's robust preload
+#: A command's limit: the slowest example (preload.md's robust preload
 #: search, said there to take about 18 minutes on two cores) fits with
 #: room for a loaded machine; below pytest's own per-test limit (1800 s).
 COMMAND_TIMEOUT_S = 1700
 #: Pages whose commands belong to a layer that changes them often (the
 #: chatter layer's own page): run in the slow set.
-SLOW_PAGES = {"chatter.md"}
+SLOW_PAGES = {"chatter.md", "preload.md"}
 ACTIVATE = ". .venv/bin/activate"
 
 

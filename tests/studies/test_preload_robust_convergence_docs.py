@@ -1,4 +1,4 @@
-"""What docs/chatter.md says of the robust preload's convergence in N
+"""What docs/preload.md says of the robust preload's convergence in N
 (issue 25; "The robust answer at N and 2N") against the committed study
 docs/studies/preload_robust_convergence.csv and its _tested.csv, written
 by benchmarks/robust_convergence.py: the robust answer of the relays

@@ -53,7 +53,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "line is the verdict: the answer to use, or what "
                     "moved and the rerun that would settle it. "
                     f"N defaults to {DEFAULT_MODES} modes per member "
-                    "(--n-modes). docs/chatter.md, \"The preload "
+                    "(--n-modes). docs/preload.md, \"The preload "
                     "command\".",
         **examples("contactsep preload --n-modes 8 --d 0.75",
                    "contactsep preload --d 0.5 --json",

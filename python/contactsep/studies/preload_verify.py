@@ -1,6 +1,6 @@
 """The preload command's error estimate (``min_preload_change``): the
 answer at N checked at twice the modes and half the step around it, and
-searched again there only where that check fails (docs/chatter.md,
+searched again there only where that check fails (docs/preload.md,
 "The preload command").
 
 The check is the convergence check's (:func:`contactsep.studies.
