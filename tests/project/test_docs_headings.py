@@ -46,3 +46,15 @@ def test_no_body_text_names_an_issue_or_a_test_file(page):
              for number, line in body_lines(page)
              if ISSUE.search(line) or TEST_FILE.search(line)]
     assert not named, "\n".join(named)
+
+
+#: How the project's own work was organised ("this session", "the
+#: previous session"): history, not something a reader can use.
+SESSION = re.compile(r"\bsessions?\b", re.I)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_no_body_text_tells_the_projects_session_history(page):
+    told = [f"{page.name}:{number}: {line.strip()[:100]}"
+            for number, line in body_lines(page) if SESSION.search(line)]
+    assert not told, "\n".join(told)
