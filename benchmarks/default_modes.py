@@ -1,5 +1,5 @@
 """The default N of `contactsep chatter` from a measured convergence
-study (issue 25; docs/chatter.md, "The default N"):
+study (issue 25; docs/numerics.md, "The default N"):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/default_modes.py [--json F]
 

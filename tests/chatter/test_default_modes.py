@@ -1,6 +1,6 @@
 """The default N of `contactsep chatter` (issue 25, item 2): chosen by
 benchmarks/default_modes.py on tests/design_family.py's FAMILY (the
-table in docs/chatter.md, "The default N"), checked here on the UNSEEN
+table in docs/numerics.md, "The default N"), checked here on the UNSEEN
 designs the choice never saw.
 
 Independent path: a fine-step, high-N run (N = 128 at half its own

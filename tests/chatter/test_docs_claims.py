@@ -11,7 +11,8 @@ import pytest
 import contactsep
 from package_call import run
 
-DOCS = "docs/chatter.md"
+#: The pages of the claims: the models and their numerics.
+DOCS = ("docs/chatter.md", "docs/numerics.md")
 
 
 def _printed(value: float, claim: str) -> bool:
@@ -63,8 +64,9 @@ def test_the_printed_claims_are_on_the_page():
     """The sentences the tests above hold are the page's (an edit of the
     page must come with an edit here)."""
     from pathlib import Path
-    text = " ".join((Path(__file__).resolve().parents[2] / DOCS)
-                    .read_text().split())
+    root = Path(__file__).resolve().parents[2]
+    text = " ".join(" ".join((root / page).read_text() for page in DOCS)
+                    .split())
     assert ("first impulse 6.8e-7, largest lower gap 7.1e-7, open time "
             "4.2e-6 relative") in text
     assert "halves each time N doubles up to N = 32" in text

@@ -1,7 +1,7 @@
 """The Newton model's defaults converged in dt (issue 16, item 5).
 
 Error model.  One run's largest lower gap and first impulse are smooth
-in the step until a branch point (docs/chatter.md, "The Newton open
+in the step until a branch point (docs/numerics.md, "The Newton open
 time"): at the default 5e-8 s the gap lies within 0.25 % of the same
 stepper at 3.125e-9 s for N = 4 and 16 and within 0.22 % at N = 32 for
 d >= 0.35 in (a convergence study: the fine steps among themselves

@@ -1,6 +1,6 @@
 """The numerics of a chatter run, chosen from the design in one place:
 the time step, the window, the default number of modes, and the checks
-every run makes on itself (docs/chatter.md, "How the numerics are
+every run makes on itself (docs/numerics.md, "How the numerics are
 chosen and checked").
 
 * **Step.**  The Hertz and Newton steppers split each step into the
@@ -156,7 +156,7 @@ def alias_measure(dt, p, w, contact_frequency) -> float:
 
 def resonance_free(dt, p, w, stiffness, contact_frequency) -> bool:
     """Whether the step ``dt`` keeps every retained mode off the
-    splitting's resonances (docs/chatter.md, "How the numerics are
+    splitting's resonances (docs/numerics.md, "How the numerics are
     chosen and checked"), contacts of linear stiffness ``stiffness``
     (lb/in; both closed) and frequency ``contact_frequency`` (rad/s):
 

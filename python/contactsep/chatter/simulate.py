@@ -58,7 +58,7 @@ from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
 )
 from contactsep.chatter.stack import _system, checked_dt, design_window
 
-#: The thesis rig's converged steps (docs/chatter.md, "Convergence"):
+#: The thesis rig's converged steps (docs/numerics.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
 #: time within 1e-6 of the dt -> 0 limit); Newton 5e-8 s (max lower gap
 #: within 1 % for d <= 0.75 in, N <= 32).  The thesis studies pass them
@@ -146,7 +146,7 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
         ``first_impulse_change``, ...).
     static_correction : bool
         Hertz: the truncated modes' residual flexibility in series with
-        each contact and in the preload's static state (docs/chatter.md,
+        each contact and in the preload's static state (docs/numerics.md,
         "The static correction"); False is the plain N-mode truncation.
         Newton's rigid law cannot take a series compliance: for it (and
         appE) the option changes nothing.

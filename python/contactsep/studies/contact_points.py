@@ -42,7 +42,7 @@ from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 #: The positions of both contacts on the separator, as x / L2.
 RATIOS = (0.2, 0.35, 0.5, 0.65, 0.8)
 #: Modes per member and step (the thesis rig's converged Hertz step:
-#: docs/chatter.md, "Convergence"; N = 32 against 64: the gaps within
+#: docs/numerics.md, "Convergence"; N = 32 against 64: the gaps within
 #: 0.3 %, the open times without preload 0.05 %, with it 12 %).
 MODES = 32
 DT = 5e-8

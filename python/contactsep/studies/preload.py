@@ -64,7 +64,7 @@ HEIGHTS = (0.25, 0.5, 0.75)
 #: search runs at half of it and checks its answer at it (twice the
 #: modes, half the step), so that the answer it calls converged is held
 #: at the default N, for 1/3.7 to 1/1.6 of the cost of searching there
-#: (docs/chatter.md, "The default N").
+#: (docs/numerics.md, "The default N").
 MODELS = ("hertz", "newton")
 DEFAULT_MODES = CHATTER_DEFAULT_MODES // 2
 #: The fields the chart sets itself.

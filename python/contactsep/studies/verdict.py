@@ -29,7 +29,7 @@ COST_PER_DOUBLING = 4.0
 PRELOAD_TOLERANCE = 0.02
 CHATTER_TOLERANCE = 0.01
 #: The quantities of `chatter --verify` that converge (to 1 % at the
-#: default N: docs/chatter.md, "The default N"), and those documented
+#: default N: docs/numerics.md, "The default N"), and those documented
 #: as not converging (the largest lower gap over the window, the
 #: longest opening, the number of events: a chaotic rattle), which no
 #: verdict rests on.
