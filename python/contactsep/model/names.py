@@ -210,11 +210,11 @@ def _suffix(key: str) -> str | None:
     return None
 
 
-#: The unit system that text and CSV outputs show their numbers in:
-#: "us" (the package's units) unless a caller asked for "si" with
-#: :func:`units_shown` (``--units si``).  Keys of a JSON are converted
-#: separately (``cli.unit_system.in_units``); this is for the numbers a
-#: sentence or a CSV row writes as it is made.
+#: The unit system the outputs show their numbers in: "us" (the
+#: package's units) unless a caller asked for "si" with
+#: :func:`units_shown` (``--units si``): the numbers a sentence, a CSV
+#: row, a figure or a page writes as it is made (:func:`shown`,
+#: :func:`shown_key`, :func:`shown_columns`, :func:`shown_data`).
 _SHOWN: ContextVar[str] = ContextVar("contactsep_units_shown", default="us")
 
 
@@ -245,7 +245,7 @@ def shown(value, suffix: str):
     """A value in the package's unit of ``suffix`` ('lb', 'in', 'lb_s')
     -> (value, unit as printed) in the unit system shown; None and
     non-finite values pass through with the unit's name."""
-    si, printed, factor = SI_SUFFIXES[suffix]
+    _, printed, factor = SI_SUFFIXES[suffix]
     if _SHOWN.get() != "si":
         return value, _PACKAGE_PRINTED.get(suffix, suffix)
     return (value * factor if isinstance(value, (int, float))
