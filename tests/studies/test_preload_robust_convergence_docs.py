@@ -1,5 +1,5 @@
-"""What docs/preload.md says of the robust preload's convergence in N
-(issue 25; "The robust answer at N and 2N") against the committed study
+"""What the record docs/records/2026-11-robust-convergence.md says of
+the robust preload's convergence in N against the committed study
 docs/studies/preload_robust_convergence.csv and its _tested.csv, written
 by benchmarks/robust_convergence.py: the robust answer of the relays
 whose nominal threshold is ill-conditioned, searched at N and 2N on the
@@ -14,12 +14,14 @@ from pathlib import Path
 import pytest
 from design_family import FAMILY
 from test_preload_conditioning_docs import by_design, g4, pct, rows
-from test_preload_docs import section, table
+from test_preload_docs import table
 
 ROOT = Path(__file__).resolve().parents[2]
 STUDY = ROOT / "docs" / "studies" / "preload_robust_convergence.csv"
 TESTED = ROOT / "docs" / "studies" / "preload_robust_convergence_tested.csv"
-TITLE = "### The robust answer at N and 2N"
+#: The study's record (its tables), and the summary the preload page
+#: keeps of it.
+RECORD = ROOT / "docs" / "records" / "2026-11-robust-convergence.md"
 ANSWERS = "| design | band | samples | N | nominal min preload (lb) |"
 CURVE = "| preload (lb) | N = 32 | N = 64 |"
 RELAYS = ("steel_relay", "becu_light")
@@ -115,13 +117,13 @@ def test_the_study_is_the_ill_conditioned_relays_on_the_same_draws():
 
 
 def test_the_answers_table_is_the_study():
-    assert table(section(TITLE), ANSWERS) == answers_table()
+    assert table(RECORD.read_text(), ANSWERS) == answers_table()
 
 
 def test_the_steel_relays_curve_is_the_study():
     """Each preload every N's search tried, with the roles that show its
     count of open samples at N = 32 and 64."""
-    quoted = table(section(TITLE), CURVE)
+    quoted = table(RECORD.read_text(), CURVE)
 
     def role(p, n):
         return (f"{{datum}}`studies/{TESTED.name}:n_open@design=steel_relay,"
@@ -227,9 +229,9 @@ def test_the_check_ran_the_searches_samples():
 
 
 def test_becu_lights_table_is_the_study():
-    assert table(section(TITLE), BECU) == becu_table()
-    assert table(section(TITLE), WINDOW) == window_table()
-    assert table(section(TITLE), FINE_WINDOW) == fine_window_table()
+    assert table(RECORD.read_text(), BECU) == becu_table()
+    assert table(RECORD.read_text(), WINDOW) == window_table()
+    assert table(RECORD.read_text(), FINE_WINDOW) == fine_window_table()
 
 
 def test_the_fixed_bands_n64_window_is_not_there_at_n128():
@@ -374,7 +376,7 @@ def test_the_steel_relays_check_at_n64_is_the_study():
     within 2 % either side; none opens at 64 modes, where at 32 the
     window 1 % above the old answer opened 2 of 100."""
     from contactsep.studies.preload_search import fine_band
-    assert table(section(TITLE), STEEL_CHECK) == steel_check_table()
+    assert table(RECORD.read_text(), STEEL_CHECK) == steel_check_table()
     fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
     answer = float(fixed["robust_min_preload_lb"])
     ran = steel_answer_check()
@@ -449,8 +451,8 @@ def quantile_table() -> list[list[str]]:
 
 
 def test_the_steel_curve_and_its_answers_are_the_study():
-    assert table(section(TITLE), STEEL_CURVE) == steel_curve_table()
-    assert table(section(TITLE), QUANTILES) == quantile_table()
+    assert table(RECORD.read_text(), STEEL_CURVE) == steel_curve_table()
+    assert table(RECORD.read_text(), QUANTILES) == quantile_table()
 
 
 def test_the_steel_curve_reading():
