@@ -261,7 +261,7 @@ OTHER_RELAY = ("--units si "
 def test_the_route_ends_in_a_verdict_on_another_relay(tmp_path):
     """The tutorial's route on a relay it does not show: the design typed
     in SI into a design file with no numerics, then `contactsep preload`
-    on it (at N = 8 without the check at 4N: about a minute).  Its
+    on it (at N = 8 without the check at 4N: one to two minutes).  Its
     verdict is a verdict line, the same in the JSON and in the CSV of
     the run, and its answer is the one the CSV's rows give."""
     cli = str(Path(sys.executable).parent / "contactsep")
