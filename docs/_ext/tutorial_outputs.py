@@ -4,14 +4,18 @@ Each command block of the page (```sh, one command; or ```python) that is
 followed by a ```text block gets that block filled with what the command
 prints on standard output: the first ``SHOWN`` lines, then
 ``... (K more lines)``.  The commands run in order in one scratch
-directory (the first writes ``my_relay.json``, the others read it), the
-Python blocks in this interpreter.
+directory, the Python blocks in this interpreter.  The set-up is the
+command blocks before the first one with an output (the design file,
+``my_relay.json``, that the others read); a command block with no output
+after it further down (a command only shown, too long to run here) is
+not run.
 
 ``python docs/_ext/tutorial_outputs.py`` rewrites the page's output
-blocks and the two committed CSVs the slow steps produce
-(``docs/studies/tutorial_preload.csv``: every preload the search
-simulated; ``docs/studies/tutorial_tolerance.csv``: the tolerance study's
-builds); ``tests/project/test_tutorial.py`` holds them equal to the code.
+blocks and the two committed CSVs the slow steps write
+(``docs/studies/tutorial_preload.csv``: ``contactsep preload --csv``'s
+file, every simulation of the search; ``docs/studies/tutorial_tolerance.csv``:
+the tolerance study's builds); ``tests/project/test_tutorial.py`` holds
+them equal to the code.
 """
 
 from __future__ import annotations
@@ -34,8 +38,9 @@ PRELOAD_CSV = STUDIES / "tutorial_preload.csv"
 TOLERANCE_CSV = STUDIES / "tutorial_tolerance.csv"
 #: Lines of an output shown on the page; the rest are counted.
 SHOWN = 24
-#: Commands that take minutes (run by the slow tests only).
-SLOW_MARKERS = ("tolerance.csv", "min_preloads")
+#: Commands that take minutes (run by the slow tests only): the preload
+#: search and the tolerance sweep, by the files they write.
+SLOW_MARKERS = ("tutorial_preload.csv", "tolerance.csv")
 
 _PAIR = re.compile(r"^```(sh|python)\n([^`]*)^```\n\n```text\n([^`]*)^```\n",
                    flags=re.S | re.M)
@@ -97,31 +102,15 @@ def run(step: Step, where: Path, namespace: dict) -> str:
     return done.stdout
 
 
-def setup_steps() -> list[Step]:
-    """The page's command blocks with no output block after them (the
-    design file is written by one)."""
-    text = PAGE.read_text()
-    paired = {m.start() for m in _PAIR.finditer(text)}
+def setup_steps(text: str | None = None) -> list[Step]:
+    """The page's command blocks before the first one with an output
+    block after it (the design file is written by one); those further
+    down with no output are shown, not run."""
+    text = PAGE.read_text() if text is None else text
+    first = next(_PAIR.finditer(text)).start()
     blocks = re.finditer(r"^```sh\n([^`]*)^```\n", text, flags=re.M)
     return [Step("sh", b.group(1), "", (0, 0)) for b in blocks
-            if b.start() not in paired]
-
-
-def preload_csv_text(search, design) -> str:
-    """The preload search as the preload CSV (the columns of
-    ``contactsep preload --csv``): every preload simulated, in order of
-    preload, and whether it gave a discontinuity event."""
-    from contactsep.studies.fields import design_lines
-    from contactsep.studies.preload_answer import CSV_COLUMNS, run_line
-    lines = ["# Tutorial relay (docs/tutorial.md): the preload search of "
-             "contactsep.studies.preload.min_preloads, Hertz, N = 8",
-             *(f"# {line}" for line in design_lines(design)),
-             f"# min_preload_lb = {search.min_preload_lb!r}",
-             f"# ceiling_lb = {search.ceiling_lb!r}",
-             ",".join(CSV_COLUMNS)]
-    lines += [run_line("nominal", p, design.n_modes, event)
-              for p, event in sorted(search.tested)]
-    return "\n".join(lines) + "\n"
+            if b.start() < first]
 
 
 def main() -> None:
@@ -140,8 +129,7 @@ def main() -> None:
         pieces.append(text[last:])
         PAGE.write_text("".join(pieces))
         shutil.copyfile(where / "tolerance.csv", TOLERANCE_CSV)
-    PRELOAD_CSV.write_text(preload_csv_text(namespace["search"],
-                                            namespace["relay"]))
+        shutil.copyfile(where / PRELOAD_CSV.name, PRELOAD_CSV)
 
 
 if __name__ == "__main__":

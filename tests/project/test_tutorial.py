@@ -3,7 +3,9 @@ and 8): every command block followed by an output block is run, in
 order, in a scratch directory, and the output shown is compared with
 what it prints; the committed CSVs of its slow steps
 (docs/studies/tutorial_*.csv) are what the code computes, and the
-page's summary numbers are what those rows give.
+page's summary numbers (the preload's verdict, the tolerance study's
+p_open) are what those rows give.  The tutorial's route, followed on a
+relay the page does not show, ends in a verdict line too.
 
 Numbers are compared to 2e-5 of their value: the commands print six
 significant digits, so a platform's last-bit difference may move the
@@ -14,9 +16,12 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import math
 import re
+import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,6 +34,11 @@ import tutorial_outputs as tutorial  # noqa: E402
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?[,;:)]?$", re.I)
 #: Lines whose numbers are the machine's, not the model's.
 VOLATILE = ("elapsed_s",)
+#: The verdict's rerun time, measured on the run (the words before it
+#: are compared).
+RERUN_TIME = re.compile(r" \(about [^)]*\)$")
+#: The page's verdict line (contactsep preload's last line).
+VERDICT = re.compile(r"^(answer: |not converged: )")
 
 
 def numbers_agree(a: str, b: str) -> bool:
@@ -53,6 +63,8 @@ def assert_same_output(shown: str, printed: str, what: str) -> None:
         if any(word in old for word in VOLATILE):
             assert old.split("=")[0] == new.split("=")[0], (what, old, new)
             continue
+        if VERDICT.match(old):
+            old, new = RERUN_TIME.sub("", old), RERUN_TIME.sub("", new)
         old_words, new_words = old.split(), new.split()
         assert len(old_words) == len(new_words), (what, old, new)
         for a, b in zip(old_words, new_words):
@@ -64,10 +76,30 @@ def assert_same_output(shown: str, printed: str, what: str) -> None:
 
 def test_the_page_has_its_steps():
     steps = tutorial.steps()
-    assert len(steps) >= 6
+    assert [s.command.split()[1] for s in steps] == [
+        "model", "chatter", "preload", "chatter", "sweep"]
     assert all(step.shown.strip() for step in steps), "an empty output"
-    assert len(tutorial.setup_steps()) == 1
-    assert "my_relay.json" in tutorial.setup_steps()[0].code
+    assert [s.slow for s in steps] == [False, False, True, False, True]
+    setup, = tutorial.setup_steps()
+    assert "--json > my_relay.json" in setup.command
+    # the design as drawn, with units, and no numerics in its file
+    assert "--L1 25mm" in setup.command and "--E1 110GPa" in setup.command
+    assert "--n-modes" not in setup.command
+    assert not any("--n-modes" in s.code for s in steps[:4])
+    # the robust search is shown, not run: no output after it, and not
+    # a set-up step
+    text = tutorial.PAGE.read_text()
+    robust = text.index("--samples 381")
+    assert "```text" not in text[robust:text.index("## 7.")]
+    assert all("--samples 381" not in s.code
+               for s in steps + tutorial.setup_steps())
+
+
+def test_only_the_blocks_before_the_first_output_are_set_up():
+    page = ("```sh\na > f\n```\n\n```sh\nb\n```\n\n```text\nx\n```\n\n"
+            "```sh\nc\n```\n")
+    assert [s.code for s in tutorial.setup_steps(page)] == ["a > f\n"]
+    assert [s.code for s in tutorial.steps(page)] == ["b\n"]
 
 
 def test_quick_outputs_are_what_the_commands_print(tmp_path):
@@ -138,40 +170,66 @@ def test_the_pages_tolerance_numbers_are_the_committed_rows():
     assert numbers_agree(high, repr(centre + half))
 
 
+def comment_value(comments: list[str], name: str) -> str:
+    line, = [c for c in comments if c.startswith(f"# {name} = ")]
+    return line.split(" = ", 1)[1]
+
+
+def threshold(rows: list[dict], search: str) -> float:
+    """The smallest preload of a search's rows with no event above its
+    largest preload with one (counted here from the rows)."""
+    runs = [(float(r["preload_lb"]), r["event"] == "1") for r in rows
+            if r["search"] == search]
+    last_event = max(p for p, event in runs if event)
+    return min(p for p, event in runs if not event and p > last_event)
+
+
 def test_the_pages_preload_is_the_committed_search():
-    step, = [s for s in tutorial.steps() if "min_preloads" in s.code]
+    """The page's preload output ends in the verdict the committed CSV
+    (that command's --csv file) records, and its answer and change are
+    what the CSV's rows give, counted here."""
+    step, = [s for s in tutorial.steps() if "tutorial_preload.csv" in s.code]
     comments, header, rows = parse_csv(tutorial.PRELOAD_CSV.read_text())
-    # the columns of contactsep preload --csv: one layout for both
+    # the columns of contactsep preload --csv
     from contactsep.studies.preload_answer import CSV_COLUMNS
     assert header == list(CSV_COLUMNS)
     rows = [dict(zip(header, r)) for r in rows]
-    assert {(r["search"], r["n"], r["n_failed"], r["n_modes"], r["dt_s"])
-            for r in rows} == {("nominal", "1", "0", "8", "")}
+    verdict = step.shown.splitlines()[-1]
+    assert f"# verdict: {RERUN_TIME.sub('', verdict)}" in comments
+    match = re.fullmatch(r"answer: (\S+) lb \(converged: N = (\d+) within "
+                         r"(\S+) %\)", verdict)
+    assert match, verdict       # the page ends with a converged answer
+    answer, n, percent = match.groups()
+    nominal = [r for r in rows if r["search"] == "nominal"]
+    verify = [r for r in rows if r["search"] == "verify"]
+    assert {r["n_modes"] for r in nominal} == {n}
+    assert {r["n_modes"] for r in verify} == {str(2 * int(n))}
     assert all(r["n_open"] == r["event"] for r in rows)
-    smallest = float([c for c in comments if "min_preload_lb" in c][0]
-                     .split(" = ")[1])
-    printed = re.search(r"no event: (\S+) lb", step.shown).group(1)
-    assert numbers_agree(printed, f"{smallest:.4g}")
-    # the answer is a simulated preload with no event, and no preload
-    # above it gave one
-    preloads = np.array([float(r["preload_lb"]) for r in rows])
-    event = np.array([r["event"] == "1" for r in rows])
-    assert smallest in preloads and not event[preloads == smallest][0]
-    assert not np.any(event[preloads >= smallest])
-    assert np.any(event[preloads < smallest])
+    at_n, at_2n = threshold(rows, "nominal"), threshold(rows, "verify")
+    assert numbers_agree(answer, f"{at_n:.4g}")
+    assert numbers_agree(comment_value(comments, "min_preload_lb"),
+                         f"{at_n:.6g}")
+    change = (at_2n - at_n) / at_n
+    assert abs(change) <= 0.02
+    assert numbers_agree(percent, f"{abs(change) * 100:.2g}")
+    assert numbers_agree(comment_value(comments, "min_preload_change")
+                         .split()[0], f"{change:.6g}")
+    # the page's lines say the same: the answer at N, and at 2N
+    assert f"min preload at N = {n}" in step.shown
+    assert re.search(rf"at dt/2 and 2N +{at_2n:.5g} lb", step.shown)
 
 
 @pytest.mark.slow
 def test_the_preload_search_is_what_the_code_computes(tmp_path):
-    """The page's Python step (about 90 s): its output, and the
-    committed CSV of every preload it simulated."""
-    step, = [s for s in tutorial.steps() if "min_preloads" in s.code]
-    namespace: dict = {}
-    assert_same_output(step.shown, tutorial.run(step, tmp_path, namespace),
-                       "min_preloads")
+    """The page's preload command (about six minutes on two cores): its
+    output, and its CSV, the committed one."""
+    for step in tutorial.setup_steps():
+        tutorial.run(step, tmp_path, {})
+    step, = [s for s in tutorial.steps() if "tutorial_preload.csv" in s.code]
+    assert_same_output(step.shown, tutorial.run(step, tmp_path, {}),
+                       "preload")
     assert_same_csv(tutorial.PRELOAD_CSV.read_text(),
-                    tutorial.preload_csv_text(namespace["search"],
-                                              namespace["relay"]),
+                    (tmp_path / "tutorial_preload.csv").read_text(),
                     "tutorial_preload.csv")
 
 
@@ -187,3 +245,69 @@ def test_the_tolerance_study_is_what_the_code_computes(tmp_path):
     assert_same_csv(tutorial.TOLERANCE_CSV.read_text(),
                     (tmp_path / "tolerance.csv").read_text(),
                     "tutorial_tolerance.csv")
+
+
+#: A relay the page does not show, typed in SI (m, Pa, kg/m^3) with
+#: --units si: 25 x 5 x 0.25 mm steel contacts on a brass separator,
+#: 10 x 3 x 1.2 mm, released from 0.5 mm, e = 0.6.
+OTHER_RELAY = ("--units si "
+               "--L1 0.025 --b1 0.005 --h1 0.00025 --E1 2e11 --gamma1 7850 "
+               "--L3 0.025 --b3 0.005 --h3 0.00025 --E3 2e11 --gamma3 7850 "
+               "--L2 0.01 --b2 0.003 --d 0.0012 --E2 1e11 --gamma2 8500 "
+               "--ys 0.0005 --e 0.6")
+
+
+@pytest.mark.slow
+def test_the_route_ends_in_a_verdict_on_another_relay(tmp_path):
+    """The tutorial's route on a relay it does not show: the design typed
+    in SI into a design file with no numerics, then `contactsep preload`
+    on it (at N = 8 without the check at 4N: one to two minutes).  Its
+    verdict is a verdict line, the same in the JSON and in the CSV of
+    the run, and its answer is the one the CSV's rows give."""
+    cli = str(Path(sys.executable).parent / "contactsep")
+    model = subprocess.run([cli, "model", *OTHER_RELAY.split(), "--json"],
+                           capture_output=True, text=True, check=True)
+    design = json.loads(model.stdout)["design"]
+    assert design["units"] == "si" and "n_modes" not in design
+    assert design["L1_m"] == 0.025 and design["E2_Pa"] == 1e11
+    (tmp_path / "relay.json").write_text(model.stdout)
+    done = subprocess.run([cli, "preload", "--design", "relay.json",
+                           "--units", "si", "--n-modes", "8",
+                           "--no-converge", "--json", "--csv", "relay.csv"],
+                          cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    result = json.loads(done.stdout)
+    verdict = result["verdict"]
+    assert VERDICT.match(verdict), verdict
+    comments, header, rows = parse_csv((tmp_path / "relay.csv").read_text())
+    assert comments[-1] == f"# verdict: {verdict}"
+    # the forces in N, as --units si shows them
+    assert "preload_N" in header and "min_preload_N" in result
+    rows = [dict(zip(header, r)) for r in rows]
+    for r in rows:
+        r["preload_lb"] = r["preload_N"]
+    at_n = threshold(rows, "nominal")
+    assert numbers_agree(repr(result["min_preload_N"]), repr(at_n))
+    assert {r["n_modes"] for r in rows if r["search"] == "nominal"} == {"8"}
+    # the verdict's number is the answer in N, to its printed digits
+    if verdict.startswith("answer: "):
+        said = re.fullmatch(r"answer: (\S+) N \(converged: N = 8 within "
+                            r"(\S+) %\)", verdict)
+        assert said, verdict
+        assert numbers_agree(said.group(1), f"{at_n:.4g}")
+        change = result["min_preload_change"]
+        assert abs(change) <= 0.02
+        assert numbers_agree(said.group(2), f"{abs(change) * 100:.2g}")
+    else:
+        said = re.fullmatch(r"not converged: the answer moved (\S+)% from "
+                            r"N = 8 \((\S+) N\) to N = 16 \((\S+) N\); "
+                            r"rerun with --n-modes 16", verdict)
+        assert said, verdict
+        at_2n = threshold(rows, "verify")
+        assert numbers_agree(said.group(2), f"{at_n:.4g}")
+        assert numbers_agree(said.group(3), f"{at_2n:.4g}")
+        assert numbers_agree(repr(result["verify_min_preload_N"]),
+                             repr(at_2n))
+        assert abs(at_2n / at_n - 1) > 0.02
+        assert said.group(1) == f"{at_2n / at_n - 1:+.1%}"[:-1]
+    assert result["ceiling_N"] > at_n > 0
