@@ -59,11 +59,11 @@ def from_si(suffix: str, text, value):
     length is 0.025 m, 0.984... in), rounded as contactsep.units rounds
     a converted value; a value typed with its unit is already converted."""
     from contactsep import units
-    from contactsep.model.names import SI_SUFFIXES
+    from contactsep.model.names import SI_SUFFIXES, from_si_number
     if suffix not in SI_SUFFIXES or not isinstance(value, float) or \
             (isinstance(text, str) and units.split(text) is not None):
         return value
-    return float(f"{value / SI_SUFFIXES[suffix][2]:.15g}")
+    return from_si_number(value, suffix)
 
 
 def apply_units(args: argparse.Namespace, si: bool) -> None:

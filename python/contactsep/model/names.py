@@ -344,6 +344,13 @@ def units_note(suffixes) -> str:
     return "units in each column's name: " + ", ".join(names)
 
 
+def from_si_number(value: float, suffix: str) -> float:
+    """A bare SI number -> the package's unit of ``suffix`` ('0.025' m
+    for 'in': 0.984... in), rounded to 15 digits as contactsep.units
+    rounds a value typed with its unit."""
+    return float(f"{value / SI_SUFFIXES[suffix][2]:.15g}")
+
+
 def shown_columns(columns: dict) -> dict:
     """A table's columns ({name: array}) in the unit system shown: in SI
     each column with a unit suffix renamed to its SI twin and its

@@ -152,6 +152,23 @@ def parse_sample(text: str) -> tuple[str, str, float, float]:
     return field, kind, a, b
 
 
+def _si_unit(field: str) -> tuple[str, str] | None:
+    """(suffix, SI unit as printed) of a field whose SI unit differs
+    from the package's; None for one SI shares (s) or without a unit."""
+    from contactsep.model.names import SI_SUFFIXES
+    suffix = (design_fields.FIELDS.get(field)
+              or design_fields.SETTINGS[field])[0]
+    if SI_SUFFIXES.get(suffix, (0, 0, 1.0))[2] == 1.0:
+        return None
+    return suffix, SI_SUFFIXES[suffix][1]
+
+
+def _given(number: str, unit: str) -> str:
+    """A number of an option's text with ``unit`` where it has none."""
+    number = number.strip()
+    return number if units.split(number) is not None else number + unit
+
+
 def sample_in_si(text: str) -> str:
     """A ``--sample``/``--tolerance`` text whose bare numbers are SI
     (``--units si``) -> the same text with each bare number given its
@@ -160,24 +177,17 @@ def sample_in_si(text: str) -> str:
     number is read.  A number typed with its unit, a field whose unit
     SI shares (s) or that has none, and text that is not a distribution
     (parse_sample refuses it in its own words) are left as they are."""
-    from contactsep.model.names import SI_SUFFIXES
     name, _, spec = text.partition("=")
     match = _SAMPLE.match(spec)
     try:
         field = _field(name, "--sample", _SAMPLED)
     except SweepError:
         return text
-    suffix = (design_fields.FIELDS.get(field)
-              or design_fields.SETTINGS[field])[0]
-    if match is None or SI_SUFFIXES.get(suffix, (0, 0, 1.0))[2] == 1.0:
+    si = _si_unit(field)
+    if match is None or si is None:
         return text
-    unit = SI_SUFFIXES[suffix][1]
-
-    def with_unit(number: str) -> str:
-        number = number.strip()
-        return number if units.split(number) is not None else number + unit
-    return (f"{name}={match.group(1)}({with_unit(match.group(2))},"
-            f"{with_unit(match.group(3))})")
+    return (f"{name}={match.group(1)}({_given(match.group(2), si[1])},"
+            f"{_given(match.group(3), si[1])})")
 
 
 def vary_in_si(text: str) -> str:
@@ -187,23 +197,21 @@ def vary_in_si(text: str) -> str:
     unit is), a list with each bare item given its SI unit
     ('d=0.001,0.002' -> 'd=0.001m,0.002m').  Anything else, and a field
     whose unit SI shares or that has none, is left to parse_vary."""
-    from contactsep.model.names import SI_SUFFIXES
+    from contactsep.model.names import from_si_number
     name, sep, values_text = text.partition("=")
     try:
         field = _field(name, "--vary", _VARIABLE)
     except SweepError:
         return text
-    entry = design_fields.FIELDS.get(field) or design_fields.SETTINGS[field]
-    _, unit, factor = SI_SUFFIXES.get(entry[0], (0, "", 1.0))
-    if not sep or factor == 1.0:
+    si = _si_unit(field)
+    if not sep or si is None:
         return text
     parts = values_text.split(":")
     if len(parts) == 3 and field in _LINEAR:
         try:
-            ends = [float(f"{float(p) / factor:.15g}") for p in parts[:2]]
+            ends = [from_si_number(float(p), si[0]) for p in parts[:2]]
         except ValueError:
             return text
         return f"{name}={ends[0]!r}:{ends[1]!r}:{parts[2]}"
-    items = [item if units.split(item.strip()) is not None
-             else item.strip() + unit for item in values_text.split(",")]
-    return f"{name}={','.join(items)}"
+    return f"{name}=" + ",".join(_given(item, si[1])
+                                 for item in values_text.split(","))
