@@ -220,7 +220,8 @@ def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.studies.design_preload import journal_inputs, preload
-    from contactsep.studies.stops import progress_bar
+    from contactsep.studies.preload_search import expected_runs
+    from contactsep.studies.stops import search_progress
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
@@ -229,9 +230,8 @@ def _run(args, design, p_target, workers) -> int:
         p_target=p_target, samples=args.samples, seed=args.seed,
         converge=args.converge, perturbation=args.perturbation,
         band_below=args.band_below))
-    bar = progress_bar(None, enabled)
-    if bar is not None:
-        bar.unit = "run"
+    bar = search_progress(expected_runs(), enabled)
+    finished = False
     try:
         answer = preload(design, model=args.model, tolerance=args.tolerance,
                          p_target=p_target, samples=args.samples,
@@ -239,8 +239,8 @@ def _run(args, design, p_target, workers) -> int:
                          converge=args.converge,
                          perturbation=args.perturbation,
                          band_below=args.band_below,
-                         progress=None if bar is None else bar.update,
-                         journal=journal, **settings)
+                         progress=bar, journal=journal, **settings)
+        finished = True
     except BaseException as error:
         journals.stopped(journal, args.csv, error)
         if not isinstance(error, InputError):
@@ -253,7 +253,7 @@ def _run(args, design, p_target, workers) -> int:
         raise
     finally:
         if bar is not None:
-            bar.close()
+            bar.close(finished)
     if args.csv:
         answer.to_csv(args.csv)
         journals.finished(args.csv, journal)

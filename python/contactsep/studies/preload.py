@@ -116,7 +116,10 @@ class Simulations:
         self.workers = 1 if self.client is not None else \
             workers or usable_cores()
         #: Called with the number of simulations each time some finish
-        #: (a progress bar's update), or None.
+        #: (a progress bar's update), or None; where it has a
+        #: ``planned(phase, count)`` method
+        #: (:class:`~contactsep.studies.stops.SearchProgress`), that is
+        #: called before each batch runs.
         self.progress = progress
         #: A :class:`~contactsep.studies.run_journal.RunJournal` that
         #: keeps every finished simulation and answers those it holds,
@@ -130,6 +133,10 @@ class Simulations:
         #: The search the next runs belong to (a name, or a function of
         #: the run); every run of :meth:`events`, a row (preload_runs).
         self.search = "nominal"
+        #: What the progress bar names the next batches by (None: the
+        #: search's name), where they are not a search's rows (the
+        #: robust search's samples).
+        self.phase = None
         self.log = []
         self._pool = None
 
@@ -157,6 +164,10 @@ class Simulations:
         task's own cost, the preload; 0 for any other task)."""
         start = time.perf_counter()
         cost = cost or _preload_of
+        planned = getattr(self.progress, "planned", None)
+        if planned is not None and tasks:
+            planned(self.phase or (self.search if isinstance(
+                self.search, str) else "perturbed"), len(tasks))
         if self.journal is None:
             out = self._run(function, tasks, cost=cost)
         else:

@@ -318,6 +318,7 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     samples = tolerance_samples(design, settings, spec)
     counts = {}
     runs, seconds = simulations.runs, simulations.seconds
+    simulations.phase = "robust"
 
     def fails(tasks):
         preloads = [preload for _, preload in tasks]
@@ -371,6 +372,7 @@ def check_robust(robust: RobustPreload, design, model: str,
             and p != answer]
     preloads = sorted([answer, *near])
     runs, seconds = simulations.runs, simulations.seconds
+    simulations.phase = "robust check"
     decisions = sample_decisions(
         tolerance_samples(design, settings, spec), model, preloads,
         simulations, robust.p_target)

@@ -324,6 +324,19 @@ def _octave_above(tested: dict, top_k: int) -> list:
             if grid(k) not in tested]
 
 
+def expected_runs(verify: bool = True) -> int:
+    """About how many simulations one design's search takes (for a
+    progress bar's first total; the search itself is not bounded by it):
+    the ceiling, three octaves of scan, the bisection from one grid step
+    to TOLERANCE, the fine band from BAND_LOW (the larger of the two
+    bands) and, with ``verify``, the local check within 2 % at 2N."""
+    bisection = math.ceil(math.log2(math.log(grid(1)) /
+                                    math.log1p(TOLERANCE)))
+    band = len(fine_band(1.0))
+    check = len(fine_grid(0.98, 1.02)) if verify else 0
+    return 1 + 3 * PER_OCTAVE + bisection + band + check
+
+
 def fine_band(answer: float, low: float = BAND_LOW) -> list:
     """The preloads of the fine grid, FINE_RATIO^j lb, from ``low``
     (default BAND_LOW) to BAND_HIGH times ``answer`` (the fine check,

@@ -1,5 +1,7 @@
-"""A sweep's progress bar, and how it hears Ctrl-C and SIGTERM: noted
-by a handler, acted on between chunks and while it waits for one."""
+"""A long command's progress bar (a sweep's, whose total is known; a
+search's, whose total grows as it plans its batches), and how a sweep
+hears Ctrl-C and SIGTERM: noted by a handler, acted on between chunks and
+while it waits for one."""
 
 from __future__ import annotations
 
@@ -35,6 +37,50 @@ def progress_bar(total: int, enabled: bool | None):
     # shown only once the run has taken a second
     return tqdm(total=total, unit="design", unit_scale=True, delay=1.0,
                 file=sys.stderr)
+
+
+class SearchProgress:
+    """The progress of a search whose run count is known only batch by
+    batch (``contactsep preload``): a callable taking the number of runs
+    that finished, as any progress callback, and told of every batch
+    before it runs (:meth:`planned`).  The bar's total starts at an
+    estimate of the whole search (``expected``) and grows whenever the
+    runs planned so far pass it, so its ETA is for the work known at the
+    time: it lengthens where the search finds more to check (a window of
+    events, the robust search's preloads)."""
+
+    def __init__(self, bar, expected: int = 0) -> None:
+        self.bar = bar
+        #: Runs asked for so far (those a journal answers included).
+        self.asked = 0
+        bar.unit = "run"
+        bar.total = max(int(expected), 0) or None
+
+    def __call__(self, finished: int) -> None:
+        self.bar.update(finished)
+
+    def planned(self, phase: str, count: int) -> None:
+        """A batch of ``count`` runs of ``phase`` is about to run."""
+        self.asked += count
+        if self.bar.total is None or self.asked > self.bar.total:
+            self.bar.total = self.asked
+        # shown at the bar's next refresh (a forced one would show a bar
+        # the delay keeps hidden in a short command)
+        self.bar.set_description_str(phase, refresh=False)
+
+    def close(self, finished: bool = True) -> None:
+        """Closes the bar; ``finished``: the total is then what ran (an
+        estimate that was too high does not leave the bar short)."""
+        if finished:
+            self.bar.total = max(self.bar.n, 1)
+        self.bar.close()
+
+
+def search_progress(expected: int, enabled: bool | None):
+    """A :class:`SearchProgress` on a terminal (stderr), or None (as
+    :func:`progress_bar`)."""
+    bar = progress_bar(None, enabled)
+    return None if bar is None else SearchProgress(bar, expected)
 
 
 class StopRequests:
