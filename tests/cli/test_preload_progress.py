@@ -12,7 +12,7 @@ import pytest
 
 from contactsep.cli import main
 from contactsep.studies import stops
-from contactsep.studies.preload_search import expected_runs
+from contactsep.studies.preload_verify import expected_runs
 from contactsep.studies.stops import SearchProgress
 
 tqdm = pytest.importorskip("tqdm").tqdm

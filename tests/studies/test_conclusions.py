@@ -11,7 +11,7 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import conclusions, preload
+from contactsep.studies import conclusions, preload, preload_search
 
 # the thesis studies' design: eq. 23's lower response as printed
 from contactsep.studies.study import thesis_study_design
@@ -51,7 +51,7 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
             # no answer: an event at the highest grid preload the
             # simulation takes (at N = 4 the thin separators need more
             # than the lower contact's 27 lb)
-            top = preload.grid(preload.top_index(largest_preload(design)))
+            top = preload_search.grid(preload_search.top_index(largest_preload(design)))
             assert simulate(design, model="hertz", damping=damping,
                             preload=top, samples=1, single_impulse=False,
                             **THESIS).n_events > 0

@@ -232,6 +232,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                              f"{MARGIN:.0%} either side only, a window of "
                              f"the samples' events further above is not "
                              f"seen")
+        # runs made ahead for idle workers: (made, then asked for)
+        timing["ahead"] = (sims.ahead.made, sims.ahead.used)
     at_answer = None
     if math.isfinite(answer) and answer > 0:
         at_answer = simulate(design, model=model, preload=answer,

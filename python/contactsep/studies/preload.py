@@ -37,21 +37,14 @@ from contactsep.studies.pool import (
 )
 from contactsep.studies.preload_converge import chart_columns, largest_check
 from contactsep.studies.preload_runs import PreloadRun, run_row
-from contactsep.studies.preload_search import (  # noqa: F401 (re-exported)
+from contactsep.studies.runs_ahead import RunsAhead
+from contactsep.studies.preload_search import (
     BAND_HIGH,
     BAND_LOW,
     FINE_RATIO,
-    FIRST_K,
-    HIGHEST_K,
-    LOWEST_K,
-    PER_OCTAVE,
     TOLERANCE,
     PreloadSearch,
-    fine_band,
-    grid,
     search,
-    start_index,
-    top_index,
 )
 from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
@@ -113,47 +106,42 @@ class Simulations:
         from contactsep.studies.dask_run import is_client
         #: The Dask client the batches run on, or None (local).
         self.client = workers if is_client(workers) else None
-        self.workers = 1 if self.client is not None else \
-            workers or usable_cores()
-        #: Called with the number of simulations each time some finish
-        #: (a progress bar's update), or None; where it has a
-        #: ``planned(phase, count)`` method
-        #: (:class:`~contactsep.studies.stops.SearchProgress`), that is
-        #: called before each batch runs.
+        self.workers = 1 if self.client else workers or usable_cores()
+        #: Called with the number of simulations as some finish, or None;
+        #: a ``planned(phase, count)`` method of it, before each batch.
         self.progress = progress
-        #: A :class:`~contactsep.studies.run_journal.RunJournal` that
-        #: keeps every finished simulation and answers those it holds,
-        #: or None.
+        #: A run_journal.RunJournal keeping every finished run, or None.
         self.journal = journal
-        #: Simulations asked for (those the journal answered included,
-        #: so that a resumed search counts what an uninterrupted one
-        #: does), and the seconds this process spent on them.
+        #: Runs asked for (a journal's answers included: a resumed search
+        #: counts as an uninterrupted one), and this process's seconds.
         self.runs = 0
         self.seconds = 0.0
-        #: The search the next runs belong to (a name, or a function of
-        #: the run); every run of :meth:`events`, a row (preload_runs).
+        #: The search the next runs of :meth:`events` belong to (a name,
+        #: or a function of the run): each a row (preload_runs).
         self.search = "nominal"
-        #: What the progress bar names the next batches by (None: the
-        #: search's name), where they are not a search's rows (the
-        #: robust search's samples).
+        #: The progress bar's name of the next batches (None: search's).
         self.phase = None
         self.log = []
+        #: Runs made ahead for idle workers (capacity set on opening), and
+        #: the runs each batch put on the workers (asked and ahead).
+        self.ahead, self.batches = RunsAhead(), []
         self._pool = None
 
     def __enter__(self) -> "Simulations":
         if self.client is not None:
-            from contactsep.studies.dask_map import check_code
+            from contactsep.studies.dask_map import check_code, threads
             check_code(self.client)
+            self.ahead.capacity = threads(self.client)
         elif self.workers > 1:
             self._pool = worker_pool(self.workers)
+            self.ahead.capacity = self.workers
         return self
 
     def __exit__(self, kind, *exc) -> None:
         if self._pool is None:
             return
         # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
-        # going are dropped, so their workers are killed now rather than
-        # waited for (a run may take a minute at large N)
+        # going are killed now, not waited for (a minute each at large N)
         stop_pool(self._pool, finished=kind is None)
 
     def map(self, function, tasks: list, cost=None) -> list:
@@ -164,14 +152,20 @@ class Simulations:
         task's own cost, the preload; 0 for any other task)."""
         start = time.perf_counter()
         cost = cost or _preload_of
+        out, todo = self.ahead.answered(function, tasks)
+        batch = [tasks[i] for i in todo]
+        extra = self.ahead.take(function, batch)
+        batch += [task for _, task in extra]
         planned = getattr(self.progress, "planned", None)
-        if planned is not None and tasks:
+        if planned is not None and batch:
             planned(self.phase or (self.search if isinstance(
-                self.search, str) else "perturbed"), len(tasks))
-        if self.journal is None:
-            out = self._run(function, tasks, cost=cost)
-        else:
-            out = self._run_journaled(function, tasks, cost)
+                self.search, str) else "perturbed"), len(batch))
+        run = self._run if self.journal is None else self._run_journaled
+        results = run(function, batch, cost=cost)
+        for i, result in zip(todo, results):
+            out[i] = result
+        self.ahead.keep(extra, results[len(todo):])
+        self.batches.append(len(batch))
         self.runs += len(tasks)
         self.seconds += time.perf_counter() - start
         return out
@@ -235,6 +229,11 @@ class Simulations:
         found = self.map(_simulate_event, tasks)
         self.log += [run_row(self.search, t, e) for t, e in zip(tasks, found)]
         return found
+
+    def events_ahead(self, tasks: list, asked: int) -> None:
+        """:meth:`events`' ``tasks`` (most likely first) made beside its
+        next batch of ``asked`` runs on idle workers (:mod:`runs_ahead`)."""
+        self.ahead.queue(_simulate_event, tasks, asked, self.journal)
 
     def search_events(self, designs, model: str, settings: dict,
                       tasks) -> list:

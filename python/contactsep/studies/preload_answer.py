@@ -94,7 +94,8 @@ class PreloadAnswer:
     runs: tuple = ()
     #: (simulations, wall seconds) of the search at N ("search"), its
     #: repeat at 2N ("verify") and every nominal run ("nominal"): what
-    #: the verdict's rerun estimate scales (not in the JSON, nor in
+    #: the verdict's rerun estimate scales; "ahead": (runs made ahead
+    #: for idle workers, those then asked for) (not in the JSON, nor in
     #: comparisons: a resumed search's answer equals an uninterrupted
     #: one's, though its journal's runs took no time).
     timing: dict = dataclasses.field(default_factory=dict, compare=False)

@@ -50,7 +50,8 @@ like any other: an event there leaves no answer even where the scan
 alone would have stopped below it, an octave short of it.
 
 Every scan step, bisection step and band is one batch: ``has_event``
-is called with all the rows' preloads at once.
+is called with all the rows' preloads at once (and runs the next steps
+may need beside it on idle workers, ``speculate``).
 """
 
 from __future__ import annotations
@@ -162,7 +163,7 @@ def start_index(preload: float) -> int:
 
 def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
            ceilings=None, starts=None, band=True, band_batch=None,
-           band_below=False, ceiling_first=False
+           band_below=False, ceiling_first=False, speculate=None
            ) -> list[PreloadSearch]:
     """Run the scan, the bisection and the fine check around the answer
     for ``n_rows`` designs at once (module docstring).
@@ -192,6 +193,10 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     highest event (the same answer: module docstring).
     ``ceiling_first``: each row with a finite ceiling first tries the
     highest grid value at or below it (module docstring, step 0).
+    ``speculate(asked, tasks)`` before a scan or bisection batch of
+    ``asked`` runs: the (row, preload) the next steps may ask for, most
+    likely first (:mod:`~contactsep.studies.runs_ahead`); the same runs
+    are asked for with it as without.
     """
     if band_batch is not None and not (isinstance(band_batch, int)
                                        and band_batch >= 1):
@@ -207,9 +212,11 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     zeros = [None] * n_rows
     tested = [{} for _ in range(n_rows)]
 
-    def run(tasks, on_grid=False):
+    def run(tasks, on_grid=False, ahead=()):
         if not tasks:
             return
+        if speculate is not None and ahead:
+            speculate(len(tasks), ahead)
         for (row, preload), event in zip(tasks, has_event(tasks)):
             tested[row][preload] = bool(event)
             if on_grid and preload == 0.0:
@@ -218,22 +225,27 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                 k = round(PER_OCTAVE * math.log2(preload))
                 scans[row][k] = bool(event)
 
+    def first_octave():
+        return [(row, grid(k)) for row in range(n_rows)
+                if not scans[row].get(tops[row])
+                for k in range(firsts[row], firsts[row] + PER_OCTAVE)
+                if k <= tops[row] and k not in scans[row]]
+
     if ceiling_first:
         # the scan's last preload, tried first: an event there is the
         # row's answer (none), whatever lies below it
+        first = first_octave()
         run([(row, grid(tops[row])) for row in range(n_rows)
-             if math.isfinite(limits[row])], on_grid=True)
-    run([(row, grid(k)) for row in range(n_rows)
-         if not scans[row].get(tops[row])
-         for k in range(firsts[row], firsts[row] + PER_OCTAVE)
-         if k <= tops[row] and k not in scans[row]],
-        on_grid=True)
+             if math.isfinite(limits[row])], on_grid=True,
+            ahead=first + _scan_ahead(scans, zeros, tops, first))
+    tasks = first_octave()
     while True:
+        run(tasks, on_grid=True, ahead=_scan_ahead(scans, zeros, tops,
+                                                   tasks))
         tasks = [(row, p) for row in range(n_rows)
                  for p in _next_scan(scans[row], zeros[row], tops[row])]
         if not tasks:
             break
-        run(tasks, on_grid=True)
     brackets = [list(_bracket(scans[row], zeros[row]))
                 for row in range(n_rows)]
     # where the scan saw a closed grid value below its highest event,
@@ -241,8 +253,22 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     below = [band_below or _not_monotone(scans[row])
              for row in range(n_rows)]
     checked = [None] * n_rows
+
+    def band_ahead(row, lo, hi):
+        # the fine band's preloads for any answer in (lo, hi]
+        if band is not True:
+            return []
+        low = BAND_LOW * hi if below[row] else hi
+        return [(row, p) for p in fine_grid(low, BAND_HIGH * lo)
+                if p <= limits[row] and p not in tested[row]]
+
     while True:
-        _bisect(brackets, tested, has_event, tolerance)
+        _bisect(brackets, tested, has_event, tolerance,
+                None if speculate is None else
+                lambda asked, mids: speculate(asked, [
+                    task for row, (lo, hi), _ in mids
+                    for task in band_ahead(row, lo, hi)] +
+                    _midpoints_ahead(mids, tolerance)))
         if not band:
             break
         # the band around each new answer: an event above it moves the
@@ -324,17 +350,38 @@ def _octave_above(tested: dict, top_k: int) -> list:
             if grid(k) not in tested]
 
 
-def expected_runs(verify: bool = True) -> int:
-    """About how many simulations one design's search takes (for a
-    progress bar's first total; the search itself is not bounded by it):
-    the ceiling, three octaves of scan, the bisection from one grid step
-    to TOLERANCE, the fine band from BAND_LOW (the larger of the two
-    bands) and, with ``verify``, the local check within 2 % at 2N."""
-    bisection = math.ceil(math.log2(math.log(grid(1)) /
-                                    math.log1p(TOLERANCE)))
-    band = len(fine_band(1.0))
-    check = len(fine_grid(0.98, 1.02)) if verify else 0
-    return 1 + 3 * PER_OCTAVE + bisection + band + check
+def _scan_ahead(scans, zeros, tops, tasks) -> list:
+    """The scan's next octave after ``tasks`` if all closed, then if all
+    events."""
+    out = []
+    for event in (False, True):
+        for row in sorted({row for row, _ in tasks}):
+            scan, zero = dict(scans[row]), zeros[row]
+            for r, p in tasks:
+                if r != row:
+                    continue
+                if p == 0.0:
+                    zero = event
+                else:
+                    scan[round(PER_OCTAVE * math.log2(p))] = event
+            out += [(row, p) for p in _next_scan(scan, zero, tops[row])]
+    return out
+
+
+def _midpoints_ahead(brackets, tolerance: float, levels: int = 5) -> list:
+    """The bisection's next midpoints (``brackets``: (row, (lo, hi),
+    this step's midpoint)), level by level to ``levels`` steps ahead,
+    where a half is still wider than ``tolerance``."""
+    out, halves = [], [(row, lo, m) for row, (lo, _), m in brackets] + [
+        (row, m, hi) for row, (_, hi), m in brackets]
+    for _ in range(levels):
+        halves = [(row, lo, hi) for row, lo, hi in halves
+                  if lo > 0.0 and hi > lo * (1.0 + tolerance)]
+        mids = [(row, lo, math.sqrt(lo * hi), hi) for row, lo, hi in halves]
+        out += [(row, m) for row, _, m, _ in mids]
+        halves = [half for row, lo, m, hi in mids
+                  for half in ((row, lo, m), (row, m, hi))]
+    return out
 
 
 def fine_band(answer: float, low: float = BAND_LOW) -> list:
@@ -353,15 +400,20 @@ def fine_grid(lo: float, hi: float) -> list:
     return [FINE_RATIO ** j for j in range(first, last + 1)]
 
 
-def _bisect(brackets, tested, has_event, tolerance) -> None:
+def _bisect(brackets, tested, has_event, tolerance, speculate=None
+            ) -> None:
     """Geometric bisection of every bracket (event, closed) until its
-    ends are within ``tolerance``, one batch per step for all rows."""
+    ends are within ``tolerance``, one batch per step for all rows;
+    ``speculate(asked, [(row, (lo, hi), midpoint), ...])`` before each."""
     while True:
         tasks = [(row, math.sqrt(lo * hi))
                  for row, (lo, hi) in enumerate(brackets)
                  if lo > 0.0 and hi > lo * (1.0 + tolerance)]
         if not tasks:
             return
+        if speculate is not None:
+            speculate(len(tasks), [(row, tuple(brackets[row]), m)
+                                   for row, m in tasks])
         for (row, preload), event in zip(tasks, has_event(tasks)):
             tested[row][preload] = bool(event)
             brackets[row][0 if event else 1] = preload

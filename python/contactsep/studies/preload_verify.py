@@ -28,8 +28,12 @@ from contactsep.chatter.stack import largest_preload
 from contactsep.studies.preload_converge import MARGIN, window_answer
 from contactsep.studies.preload_runs import PreloadRun
 from contactsep.studies.preload_search import (
+    PER_OCTAVE,
+    TOLERANCE,
     PreloadSearch,
+    fine_band,
     fine_grid,
+    grid,
     search,
 )
 
@@ -38,6 +42,18 @@ def window_preloads(answer: float) -> list:
     """The fine grid's preloads within MARGIN either side of ``answer``
     lb."""
     return fine_grid(answer * (1.0 - MARGIN), answer * (1.0 + MARGIN))
+
+
+def expected_runs(verify: bool = True) -> int:
+    """About how many simulations one design's search takes (a progress
+    bar's first total): the ceiling, three octaves of scan, bisection
+    from a grid step to TOLERANCE, the fine band from BAND_LOW and, with
+    ``verify``, the check within 2 % at 2N."""
+    bisection = math.ceil(math.log2(math.log(grid(1)) /
+                                    math.log1p(TOLERANCE)))
+    band = len(fine_band(1.0))
+    check = len(window_preloads(1.0)) if verify else 0
+    return 1 + 3 * PER_OCTAVE + bisection + band + check
 
 
 def verify_search(has_event, answer: float, ceiling: float,
@@ -81,10 +97,16 @@ def search_design(design, model, settings, sims, ceiling, start=None,
         return [known[load] if load in known else found[load]
                 for _, load in tasks]
 
+    def speculate(asked, tasks):
+        sims.events_ahead([PreloadRun(design, model, settings, load)
+                           for _, load in tasks if load not in known],
+                          asked)
+
     found, = search(1, has_event, ceilings=[ceiling],
                     starts=[start if start is not None and
                             math.isfinite(start) else None],
-                    band_below=band_below, ceiling_first=True)
+                    band_below=band_below, ceiling_first=True,
+                    speculate=speculate)
     return found
 
 
