@@ -1,5 +1,5 @@
 """The how-to "Run the preload search on a batch cluster (SLURM)"
-(docs/howto.md): its script builds the worker jobs' batch script with
+(docs/howto/batch-cluster.md): its script builds the worker jobs' batch script with
 dask-jobqueue, run here as far as that print and no further (nothing is
 submitted: there is no queue here), and the command it gives the
 scheduler file to takes every option it names."""
@@ -16,11 +16,11 @@ import pytest
 
 from conftest import ROOT
 
-TITLE = "## Run the preload search on a batch cluster (SLURM)"
+TITLE = "# Run the preload search on a batch cluster (SLURM)"
 
 
 def section() -> str:
-    text = (ROOT / "docs" / "howto.md").read_text()
+    text = (ROOT / "docs" / "howto" / "batch-cluster.md").read_text()
     start = text.index(TITLE)
     end = text.find("\n## ", start + len(TITLE))
     return text[start:end if end > 0 else None]
@@ -47,7 +47,7 @@ def test_the_script_builds_one_core_worker_jobs_of_this_environment():
                         "job_extra_directives=", 1)
     try:
         with contextlib.redirect_stdout(out):
-            exec(compile(code, "howto.md", "exec"), namespace)
+            exec(compile(code, "batch-cluster.md", "exec"), namespace)
     finally:
         if "cluster" in namespace:
             namespace["cluster"].close()
