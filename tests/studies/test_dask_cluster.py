@@ -145,8 +145,8 @@ def test_a_lost_scheduler_is_one_line_and_a_new_one_continues(
     command's exit 2: an InputError), the finished simulations in the
     journal; the same search on a new deployment takes them and ends
     with the uninterrupted answer, simulating only the rest."""
-    from contactsep.studies import dask_run
-    from contactsep.studies.dask_run import SchedulerLost
+    from contactsep.runs import dask_run
+    from contactsep.runs.dask_run import SchedulerLost
     from contactsep.studies.run_journal import RunJournal
     uninterrupted = _robust(1)
     inputs = {"test": "lost scheduler"}
@@ -194,7 +194,7 @@ def _kill_after(journal, count, process):
 def test_workers_running_other_code_are_refused(deployment, monkeypatch):
     """This process made to report another code digest: the workers'
     real one then differs, and the search is refused before any run."""
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     # the workers import their own, unpatched
     monkeypatch.setattr(code_digest, "code_digest", lambda: "0" * 64)
     with distributed.Client(scheduler_file=str(deployment.path)) as client, \
@@ -247,7 +247,7 @@ def test_a_batch_runs_costliest_first_and_returns_in_the_tasks_order():
     the ``order`` given (the costliest first), whatever the tasks' own
     order; the results come back in the tasks' order, each handed to
     ``finished`` once."""
-    from contactsep.studies.dask_map import run_tasks
+    from contactsep.runs.dask_map import run_tasks
     tasks = [f"task {i}" for i in range(12)]
     order = [5, 11, 0, 7, 3, 9, 1, 10, 2, 8, 4, 6]
     seen, counted = {}, []

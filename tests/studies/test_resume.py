@@ -147,7 +147,7 @@ def test_chunks_made_by_other_code_are_refused(tmp_path, capsys,
                                                monkeypatch):
     command = _outputs(tmp_path, [*EQ23, "--resume"])
     _killed_at(command, "write", 2)
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     original = code_digest.code_digest
     monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
     status, _, err = _run(capsys, command)

@@ -321,7 +321,7 @@ def test_a_journal_made_by_other_code_is_refused(planted_preload, tmp_path,
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path), "--resume"]
     _killed_at(command, 30)
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     original = code_digest.code_digest
     monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
     status, _, err = _run(capsys, command)

@@ -23,7 +23,8 @@ from sweep_collect import Collect
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import chunk_runs, runner, stops, sweep
+from contactsep.runs import stops
+from contactsep.studies import chunk_runs, runner, sweep
 
 # the thesis studies' design: eq. 23's lower response as printed
 from contactsep.studies.study import thesis_study_design
@@ -229,7 +230,7 @@ def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
     and a stall on a loaded machine (a CI run: y3_max_sd_in one unit in
     the last place apart) would change the partition, not the order."""
     distributed = pytest.importorskip("distributed")
-    from contactsep.studies.chunks import Chunks
+    from contactsep.runs.chunks import Chunks
     monkeypatch.setattr(Chunks, "record", lambda self, designs, seconds:
                         None)
     local = runner.run_sweep(spec(), threshold=0.1, chunk_size=7,
@@ -247,7 +248,7 @@ def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
 
 def test_gather_finished_takes_only_finished_chunks():
     distributed = pytest.importorskip("distributed")
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
 
     def fail():
         raise ValueError("a chunk that fails")

@@ -220,7 +220,7 @@ def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.studies.design_preload import journal_inputs, preload
-    from contactsep.studies.stops import progress_bar
+    from contactsep.runs.stops import progress_bar
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]

@@ -122,7 +122,7 @@ def recommendation_study(name: str, args, overrides: dict, journal=None):
 def study_bar(args, total):
     """A progress bar's update (or None) for a study of simulations:
     --progress auto (on a terminal), always, never; closed after."""
-    from contactsep.studies.stops import progress_bar
+    from contactsep.runs.stops import progress_bar
     enabled = {"auto": None, "always": True,
                "never": False}[getattr(args, "progress", "auto")]
     bar = progress_bar(total, enabled)

@@ -29,7 +29,7 @@ from contactsep.chatter.stack import largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
-from contactsep.studies.pool import (
+from contactsep.runs.pool import (
     map_longest_first,
     stop_pool,
     usable_cores,
@@ -110,7 +110,7 @@ class Simulations:
     caller's notes."""
 
     def __init__(self, workers=None, progress=None, journal=None):
-        from contactsep.studies.dask_run import is_client
+        from contactsep.runs.dask_run import is_client
         #: The Dask client the batches run on, or None (local).
         self.client = workers if is_client(workers) else None
         self.workers = 1 if self.client is not None else \
@@ -135,7 +135,7 @@ class Simulations:
 
     def __enter__(self) -> "Simulations":
         if self.client is not None:
-            from contactsep.studies.dask_map import check_code
+            from contactsep.runs.dask_map import check_code
             check_code(self.client)
         elif self.workers > 1:
             self._pool = worker_pool(self.workers)
@@ -168,7 +168,7 @@ class Simulations:
     def _run(self, function, tasks: list, finished=None,
              cost=_preload_of) -> list:
         if self.client is not None:
-            from contactsep.studies.dask_map import run_tasks
+            from contactsep.runs.dask_map import run_tasks
             order = sorted(range(len(tasks)), key=lambda i: -cost(tasks[i]))
             return run_tasks(self.client, function, tasks, order=order,
                              finished=finished, progress=self.progress,

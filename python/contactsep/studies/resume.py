@@ -52,7 +52,7 @@ def manifest(spec: SweepSpec) -> dict:
     other digits) and the digest of the code that computes them (an
     edited development install too: :mod:`.code_digest`)."""
     from contactsep import __version__
-    from contactsep.studies.code_digest import STUDIES, code_digest
+    from contactsep.runs.code_digest import STUDIES, code_digest
     return {"contactsep": __version__, "code_sha256": code_digest(STUDIES),
             "model": spec.model, "inputs": spec.inputs()}
 

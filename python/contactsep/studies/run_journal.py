@@ -10,7 +10,7 @@ simulation gives the same result whatever process runs it.  The journal,
 a directory (``.NAME.resume/`` beside the --csv file), holds
 ``manifest.json`` (what made the search: its inputs, the package version
 and the digest of the simulation code,
-:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per
+:mod:`~contactsep.runs.code_digest`) and ``runs.jsonl``, one line per
 finished simulation: a digest of its task (the function, the design, the
 model, every setting, the preload) and its result; a named task
 (:mod:`~contactsep.studies.preload_runs`) is digested as the plain tuple
@@ -115,7 +115,7 @@ class RunJournal:
     def __init__(self, path: str | os.PathLike, inputs: dict,
                  label: str | None = None) -> None:
         from contactsep import __version__
-        from contactsep.studies.code_digest import code_digest
+        from contactsep.runs.code_digest import code_digest
         self.path = os.fspath(path)
         self.label = label or self.path
         self.results: dict = {}

@@ -23,13 +23,13 @@ from contactsep.studies.chunk_runs import (  # noqa: F401 - the runner's API
     results_dask,
     results_local,
 )
-from contactsep.studies.chunks import Chunks
-from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
+from contactsep.runs.chunks import Chunks
+from contactsep.runs.dask_run import (  # noqa: F401 - the runner's API
     SCHEDULER_TIMEOUT_S,
     SchedulerLost,
     connect,
 )
-from contactsep.studies.pool import (  # noqa: F401 - the runner's API
+from contactsep.runs.pool import (  # noqa: F401 - the runner's API
     WORKERS_PER_CORE,
     max_workers,
     quiet_worker,
@@ -43,7 +43,7 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     load_columns,
     save_columns,
 )
-from contactsep.studies.stops import StopRequests, progress_bar
+from contactsep.runs.stops import StopRequests, progress_bar
 from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
 from contactsep.studies.writers import (  # noqa: F401 - the runner's API
     COLUMNS_NOTE,
@@ -119,7 +119,7 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
 
     ``chunk_size``: the most designs a chunk has (default
     :func:`default_chunk_size`; chunks are sized by cost below it:
-    :class:`~contactsep.studies.chunks.Chunks`); ``threshold`` (in, eq23
+    :class:`~contactsep.runs.chunks.Chunks`); ``threshold`` (in, eq23
     only): also report P(max y3 > threshold);
     ``workers``: local processes (default: the usable cores; 1 runs in
     this process; at most WORKERS_PER_CORE a core); ``scheduler``: a Dask
