@@ -49,9 +49,9 @@ import time
 
 import numpy as np
 
-from contactsep.studies import runner, sweep
+from contactsep.studies.sweep import run as runner
 
-#: Shares of --minutes: the eq. 23 sweep, the Hertz sweep (the robust
+from contactsep.studies.sweep import spec as sweep
 #: search takes the rest).
 SHARES = {"eq23": 0.4, "hertz": 0.4}
 #: Designs of the calibration sweeps (eq. 23, Hertz N = 16).

@@ -35,10 +35,10 @@ from contactsep.restored.result import Result
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 #: Names of the studies layer, imported on first use.
-_STUDIES_NAMES = {"read": "contactsep.studies.frames",
+_STUDIES_NAMES = {"read": "contactsep.studies.sweep.frames",
                   "load_design": "contactsep.studies.design_file",
                   "preload": "contactsep.studies.design_preload",
-                  "sweep": "contactsep.studies.sweep_result"}
+                  "sweep": "contactsep.studies.sweep.result"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 

@@ -220,7 +220,8 @@ def test_the_preload_search_runs_stop_at_their_first_event(monkeypatch):
 
 
 def test_the_robust_search_samples_stop_at_their_first_event(monkeypatch):
-    from contactsep.studies import chatter_sweep, preload_robust
+    from contactsep.studies import preload_robust
+    from contactsep.studies.sweep import chatter as chatter_sweep
     from contactsep.studies.preload_runs import SampleRun
     seen = _spy(monkeypatch, chatter_sweep)
     design = FAMILY["steel_relay"].replace(n_modes=8)

@@ -24,7 +24,9 @@ from kept_chunks import kept_designs
 from contactsep import output
 from contactsep.cli import main as cli_main
 from contactsep.errors import InputError
-from contactsep.studies import chatter_sweep, runner, sweep
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 from contactsep.runs.pool import stop_pool, worker_pool
 
 

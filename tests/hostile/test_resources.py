@@ -15,8 +15,8 @@ from hostile_cli import main, refusal
 from contactsep.chatter import simulate
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
-from contactsep.studies import runner, sweep
-
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 simulate_module = importlib.import_module("contactsep.chatter.simulate")
 
 

@@ -431,15 +431,12 @@ def test_the_searchs_limits_give_status_4(field, value, claim):
 def test_the_sweep_limits_are_the_codes():
     """The limits docs/studies.md states in words are the constants the
     code uses (a changed constant fails here until the page says it)."""
-    from contactsep.studies import (
-        chatter_sweep,
-        dask_run,
-        pool,
-        runner,
-        stats,
-        sweep,
-        writers,
-    )
+    from contactsep.runs import dask_run, pool
+    from contactsep.studies import stats
+    from contactsep.studies.sweep import chatter as chatter_sweep
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep import spec as sweep
+    from contactsep.studies.sweep import writers
     default, most = quoted("studies.md", r"`--chunk-size` \(default "
                            r"([\d,]+), at most ([\d,]+)\)")
     assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",

@@ -58,7 +58,7 @@ def test_the_failed_designs_message_is_the_commands(capsys):
 
 def test_the_dask_chunking_is_the_codes():
     from contactsep.runs import chunks
-    from contactsep.studies import chunk_runs
+    from contactsep.studies.sweep import chunk_runs
     a_worker, smallest = quoted(
         "studies.md", r"every worker gets at least (\d+) of what is left "
         r"\(down to ([\d.]+) s of work a chunk\)")

@@ -22,8 +22,8 @@ import pytest
 
 from conftest import DECK_DIR, ROOT
 from contactsep import studies
-from contactsep.studies import runner, sweep
-
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 COMMITTED = ROOT / "docs" / "studies"
 
 

@@ -26,7 +26,7 @@ from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies import design_preload, preload, preload_robust
 from contactsep.studies.stats import wilson_interval
-from contactsep.studies.sweep import chunk_inputs
+from contactsep.studies.sweep.spec import chunk_inputs
 
 # a planted physics: the search sees only whether a run has an event
 # (the threshold: tests/planted_preload.py)

@@ -24,9 +24,9 @@ from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
 from contactsep.runs import stops
-from contactsep.studies import chunk_runs, runner, sweep
-
-# the thesis studies' design: eq. 23's lower response as printed
+from contactsep.studies.sweep import chunk_runs
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 from contactsep.studies.study import thesis_study_design
 
 
@@ -447,7 +447,7 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
 
 
 def test_a_linear_axis_is_numpys_linspace():
-    from contactsep.studies.sweep import LinearAxis
+    from contactsep.studies.sweep.spec import LinearAxis
     for start, stop, count in [(0.1, 0.5, 19), (0.1, 0.5, 1),
                                (0.3, 0.3, 5), (-2.0, 7.5, 1000),
                                (1e-3, 1.0, 99_991)]:

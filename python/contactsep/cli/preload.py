@@ -30,7 +30,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep preload``."""
     from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies.preload import DEFAULT_MODES, MODELS
-    from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
 
     parser = commands.add_parser(
         "preload", help="the smallest preload that keeps the circuit "
@@ -171,7 +171,7 @@ def tolerances_in_units(args) -> list:
     """--tolerance's texts with their bare numbers in the unit system of
     --units (SI: each given its SI unit, as every option's bare number
     is read in SI)."""
-    from contactsep.studies.sweep_axes import sample_in_si
+    from contactsep.studies.sweep.axes import sample_in_si
     if getattr(args, "units", "us") != "si":
         return list(args.tolerance)
     return [sample_in_si(text) for text in args.tolerance]

@@ -36,8 +36,8 @@ from contactsep.cli.study_runs import (
 )
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
-from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
-from contactsep.studies.sweep_checks import CHATTER_UNUSED
+from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+from contactsep.studies.sweep.checks import CHATTER_UNUSED
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100

@@ -7,11 +7,11 @@ threshold in a phase-sensitive system: a part made to its drawing's
 tolerances may open at a preload the nominal design keeps closed.  Here
 the tolerances are distributions of design fields, written as a sweep's
 ``--sample`` (``'d=normal(0.25,0.005)'``, ``'ys=uniform(0.45,0.55)'``;
-:func:`contactsep.studies.sweep_axes.parse_sample`), and the samples are
-the sweep's own draws (:func:`contactsep.studies.sweep.chunk_inputs`: the
+:func:`contactsep.studies.sweep.axes.parse_sample`), and the samples are
+the sweep's own draws (:func:`contactsep.studies.sweep.spec.chunk_inputs`: the
 same seed gives the same designs as ``contactsep sweep``).  The same
 samples are simulated at every preload tried (common random numbers),
-each through :func:`contactsep.studies.chatter_sweep.simulate_design`:
+each through :func:`contactsep.studies.sweep.chatter.simulate_design`:
 a sample the simulation refuses or cannot finish is counted as failed
 and left out of ``p_open``, as in a chatter sweep.
 
@@ -48,7 +48,7 @@ import numpy as np
 
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies import fields as design_fields
-from contactsep.studies.chatter_sweep import simulate_design
+from contactsep.studies.sweep.chatter import simulate_design
 from contactsep.studies.preload_converge import MARGIN
 from contactsep.studies.preload_runs import SampleRun
 from contactsep.studies.preload_search import fine_band, search
@@ -60,7 +60,7 @@ from contactsep.studies.robust_rule import (
     settled,
 )
 from contactsep.studies.stats import wilson_interval
-from contactsep.studies.sweep import chunk_inputs, make_spec
+from contactsep.studies.sweep.spec import chunk_inputs, make_spec
 
 #: Samples of the tolerances unless asked: enough to show p_open <= 0.05
 #: (73 are), not 0.01 (381 are; --samples raises it).

@@ -69,7 +69,7 @@ class SampleRun(PreloadRun):
     @property
     def sample_settings(self) -> dict:
         """The sample's settings with the preload, as
-        :func:`contactsep.studies.chatter_sweep.simulate_design` takes
+        :func:`contactsep.studies.sweep.chatter.simulate_design` takes
         them."""
         return {**self.settings, "preload": self.preload_lb}
 

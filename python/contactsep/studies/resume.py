@@ -29,7 +29,7 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.output import json_text
-from contactsep.studies.sweep import SweepSpec
+from contactsep.studies.sweep.spec import SweepSpec
 
 _CHUNK_FILE = re.compile(r"^(\d+)-(\d+)\.npz$")
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.errors import InputError, shown
-from contactsep.studies.sweep_checks import CHATTER_UNUSED
+from contactsep.studies.sweep.checks import CHATTER_UNUSED
 
 
 class SearchError(InputError):

@@ -1,5 +1,5 @@
 """Running a sweep: its options checked, its chunks' results (computed
-locally or on a Dask cluster: :mod:`contactsep.studies.chunk_runs`)
+locally or on a Dask cluster: :mod:`contactsep.studies.sweep.chunk_runs`)
 streamed in order to writers, with a progress bar on a terminal, and its
 writers closed however it ends."""
 
@@ -11,8 +11,8 @@ import time
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
-from contactsep.studies import chatter_sweep
-from contactsep.studies.chunk_runs import (  # noqa: F401 - the runner's API
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep.chunk_runs import (  # noqa: F401 - the runner's API
     DASK_WINDOW_PER_WORKER,
     MAX_POOL_RESTARTS,
     chunk_result,
@@ -44,8 +44,8 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     save_columns,
 )
 from contactsep.runs.stops import StopRequests, progress_bar
-from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
-from contactsep.studies.writers import (  # noqa: F401 - the runner's API
+from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
+from contactsep.studies.sweep.writers import (  # noqa: F401 - the runner's API
     COLUMNS_NOTE,
     TITLE,
     CsvWriter,
@@ -113,7 +113,7 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     chunk goes to every writer as it arrives (without writers each
     worker sends back its chunk's summary only).  Returns the summary
     (:meth:`Summary.as_dict`, or :meth:`ChatterSummary.as_dict
-    <contactsep.studies.chatter_sweep.ChatterSummary.as_dict>` for a
+    <contactsep.studies.sweep.chatter.ChatterSummary.as_dict>` for a
     chatter model; ``elapsed_s``; and ``inputs``: what made the sweep,
     :meth:`SweepSpec.inputs`).
 

@@ -1,6 +1,6 @@
 """Where a sweep's chunks are computed and how they come back, in order:
 in this process, on a local worker pool (restarted where a worker
-dies), or on a Dask cluster; :func:`contactsep.studies.runner.run_sweep`
+dies), or on a Dask cluster; :func:`contactsep.studies.sweep.run.run_sweep`
 drives them and streams the results to its writers.
 """
 
@@ -15,13 +15,13 @@ from concurrent.futures.process import BrokenProcessPool
 
 from contactsep.errors import InputError
 from contactsep.runs import dask_run
-from contactsep.studies import chatter_sweep
+from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
 from contactsep.runs.pool import stop_pool, worker_pool
 from contactsep.studies.resume import load_columns, save_columns
 from contactsep.runs.stops import wait_for
-from contactsep.studies.sweep import Summary, SweepSpec, evaluate_chunk
+from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
 
 def evaluate(spec: SweepSpec, first: int, last: int) -> dict:
