@@ -34,7 +34,7 @@ from results import Report
 
 from contactsep.chatter import simulate
 from contactsep.model import thesis_design
-from contactsep.studies import preload
+from contactsep.studies.preload import chart as preload
 from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep

@@ -278,7 +278,7 @@ def main() -> None:
                 print(f"{'robust':>6} {engine:>6} {k:3d} {seconds:8.2f} "
                       f"{ratio} {share} {same}", flush=True)
     if args.preload:
-        from contactsep.studies.preload import preload_chart
+        from contactsep.studies.preload.chart import preload_chart
         at = (1, cores) if args.preload_at is None else \
             tuple(int(k) for k in args.preload_at.split(","))
         charts = [("N = 4", {"n_modes": 4})]

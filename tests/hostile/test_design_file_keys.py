@@ -71,7 +71,7 @@ def test_study_preload_takes_a_model_json_file(capsys, monkeypatch,
                                                model_json):
     """Its echo of tau (the default, which preload does not read) is
     dropped; tau = 1 from the command line is refused."""
-    import contactsep.studies.preload as preload_module
+    import contactsep.studies.preload.chart as preload_module
     seen = {}
 
     def reached(**kwargs):

@@ -85,7 +85,7 @@ def test_the_preload_command_runs_on_the_scheduler_the_file_names(
     """The command hands the search a Client of the file's scheduler
     (the search itself: the test above)."""
     from contactsep.cli import main
-    from contactsep.studies import design_preload
+    from contactsep.studies.preload import command as design_preload
     seen = []
 
     def reached(design, **kwargs):
@@ -102,7 +102,7 @@ def test_the_study_command_runs_on_the_scheduler_it_is_given(
         deployment, monkeypatch, capsys):
     """study preload hands the chart a Client of --scheduler's."""
     from contactsep.cli import main
-    from contactsep.studies import preload
+    from contactsep.studies.preload import chart as preload
     seen = []
 
     def reached(**kwargs):

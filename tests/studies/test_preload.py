@@ -14,8 +14,7 @@ import pytest
 from contactsep.chatter import simulate
 from contactsep.cli import main
 from contactsep.model import thesis_design
-from contactsep.studies import preload
-
+from contactsep.studies.preload import chart as preload
 ROOT = Path(__file__).resolve().parents[2]
 COLUMNS = ["model", "n_modes", "d_in", "ys_in", "min_preload_lb"]
 

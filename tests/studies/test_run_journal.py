@@ -27,8 +27,8 @@ from planted_preload import CALLS, fake_event, fake_sample
 
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies import design_preload
-from contactsep.studies.preload import Simulations
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload.chart import Simulations
 from contactsep.studies.resume import ResumeError
 from contactsep.studies.run_journal import RunJournal, task_key
 

@@ -266,7 +266,7 @@ def fields_from_file(args: argparse.Namespace) -> set:
 
 #: The command whose default N is not the Design's -> where it is kept.
 _COMMAND_MODES = {"chatter": "contactsep.chatter.numerics",
-                  "preload": "contactsep.studies.preload"}
+                  "preload": "contactsep.studies.preload.chart"}
 
 
 def _default_modes(command):

@@ -47,8 +47,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep study``, then ``contactsep sweep``."""
     from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies import STUDIES
-    from contactsep.studies.preload import DEFAULT_MODES as PRELOAD_MODES
-    from contactsep.studies.preload import MODELS as PRELOAD_MODELS
+    from contactsep.studies.preload.chart import DEFAULT_MODES as PRELOAD_MODES
+    from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
 
     study = commands.add_parser(
         "study", help="regenerate a thesis figure or table",
@@ -167,7 +167,7 @@ def _need_matplotlib() -> None:
 def _compute(name: str, args, overrides: dict, journal=None):
     from contactsep.studies import OWN_FIELDS, STUDIES
     from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
-    from contactsep.studies.preload import FIXED as PRELOAD_FIXED
+    from contactsep.studies.preload.chart import FIXED as PRELOAD_FIXED
 
     # a --design file's value of a study's own field gives way to it (a
     # file from model --json lists every field: issue 31)

@@ -73,7 +73,7 @@ def search_study(name: str, args, overrides: dict, journal=None):
     """study preload and conclusion3|5|6|7: three-beam simulations with
     the preload search; their own model, N (default 32) and workers."""
     from contactsep.studies.conclusions import conclusion
-    from contactsep.studies.preload import DEFAULT_MODES, preload_chart
+    from contactsep.studies.preload.chart import DEFAULT_MODES, preload_chart
     if args.backend:
         raise InputError(f"study {name} runs the chatter simulation (no "
                          f"--backend)")
@@ -81,7 +81,7 @@ def search_study(name: str, args, overrides: dict, journal=None):
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
                "workers": study_workers(args), "journal": journal}
-    from contactsep.studies.search_checks import SearchError
+    from contactsep.studies.preload.search_checks import SearchError
     try:
         with study_bar(args, None) as bar:
             if name == "preload":

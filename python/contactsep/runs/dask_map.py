@@ -1,5 +1,5 @@
 """A batch of simulations on a Dask cluster (``contactsep preload
---scheduler``, the studies of :class:`~contactsep.studies.preload.
+--scheduler``, the studies of :class:`~contactsep.studies.preload.chart.
 Simulations`): the sweep's machinery of :mod:`dask_run` (the connection,
 the probe, the wait that tells a lost scheduler from a lost worker)
 applied to a list of tasks instead of a sweep's chunks.

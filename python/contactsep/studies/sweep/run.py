@@ -62,7 +62,7 @@ class SweepInterrupted(InputError):
     interrupted = True
 
 
-#: The pool workers' set-up (the name studies.preload imports).
+#: The pool workers' set-up (the name studies.preload.chart imports).
 _quiet_worker = quiet_worker
 
 

@@ -1,7 +1,7 @@
 """The preload search itself: the smallest preload with no discontinuity
 event, from a function that says which preloads have one (the chart,
-:mod:`contactsep.studies.preload`, and ``contactsep preload``,
-:mod:`contactsep.studies.design_preload`, run it on simulations).
+:mod:`contactsep.studies.preload.chart`, and ``contactsep preload``,
+:mod:`contactsep.studies.preload.command`, run it on simulations).
 
 For each design (the chart: the thesis rig for d = 0.125 ... 0.75 in and
 y_s = 0.25, 0.5, 0.75 in) the search
