@@ -11,7 +11,7 @@ import json
 import pytest
 from hostile_cli import main, refusal
 
-import contactsep.studies.conclusions as conclusions_module
+import contactsep.studies.thesis.conclusions as conclusions_module
 
 
 class _Reached(Exception):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from contactsep.model import evaluate, thesis_design
-from contactsep.studies import conclusions
+from contactsep.studies.thesis import conclusions
 from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload.runs import PreloadRun
 from package_call import run

@@ -11,7 +11,7 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import conclusions
+from contactsep.studies.thesis import conclusions
 from contactsep.studies.preload import chart as preload
 from contactsep.studies.study import thesis_study_design
 

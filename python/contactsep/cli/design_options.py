@@ -210,7 +210,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
         labels[field] = option
     apply_units(args, si)
     if getattr(args, "separator", "thesis") == "physical":
-        from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+        from contactsep.studies.thesis.separator_fit import PHYSICAL_SEPARATOR
         for field, value in PHYSICAL_SEPARATOR.items():
             if field not in values:
                 values[field] = value

@@ -166,7 +166,7 @@ def _need_matplotlib() -> None:
 
 def _compute(name: str, args, overrides: dict, journal=None):
     from contactsep.studies import OWN_FIELDS, STUDIES
-    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
     from contactsep.studies.preload.chart import FIXED as PRELOAD_FIXED
 
     # a --design file's value of a study's own field gives way to it (a
@@ -177,7 +177,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
         k in fields_from_file(args) and k in own.get(name, ()))}
     if name == "preload":
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     if name in ADVICE:
         return recommendation_study(name, args, overrides, journal)
     searches = ("preload", *CONCLUSIONS)
@@ -214,7 +214,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
         if args.backend:
             raise InputError("study separator-fit computes the beams' "
                              "modes itself (no --backend)")
-        from contactsep.studies.separator_fit import separator_fit
+        from contactsep.studies.thesis.separator_fit import separator_fit
         return separator_fit(**overrides)
     if name == "chatter":
         if overrides or args.backend:
@@ -222,7 +222,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
                              "runs the thesis rig for its five separators "
                              "and N = 4, 16, 32 (contactsep chatter runs "
                              "any design)")
-        from contactsep.studies.chatter import (
+        from contactsep.studies.thesis.chatter_table import (
             MODES,
             THICKNESSES,
             chatter_table,
@@ -257,8 +257,8 @@ def _study_targets(args, names) -> dict:
 
 def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
-    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
 
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS, *ADVICE)

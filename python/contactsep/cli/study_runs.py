@@ -20,7 +20,7 @@ RESUMABLE = ("preload", "conclusion3", "conclusion5", "conclusion6",
 
 def conclusion4_study(args, overrides: dict):
     """study conclusion4: e_apparent of three contact laws."""
-    from contactsep.studies import restitution
+    from contactsep.studies.thesis import restitution
     overrides = dict(overrides)
     n_modes = overrides.pop("n_modes", restitution.MODES)
     if overrides or args.backend:
@@ -42,7 +42,7 @@ def conclusion4_study(args, overrides: dict):
 def buttons_study(args, overrides: dict, journal=None):
     """study buttons: open time and smallest preload against the
     button's shape and radius."""
-    from contactsep.studies import buttons
+    from contactsep.studies.thesis import buttons
     overrides = dict(overrides)
     n_modes = overrides.pop("n_modes", buttons.MODES)
     if overrides or args.backend or args.model:
@@ -72,7 +72,7 @@ def study_workers(args):
 def search_study(name: str, args, overrides: dict, journal=None):
     """study preload and conclusion3|5|6|7: three-beam simulations with
     the preload search; their own model, N (default 32) and workers."""
-    from contactsep.studies.conclusions import conclusion
+    from contactsep.studies.thesis.conclusions import conclusion
     from contactsep.studies.preload.chart import DEFAULT_MODES, preload_chart
     if args.backend:
         raise InputError(f"study {name} runs the chatter simulation (no "
@@ -105,7 +105,7 @@ def search_study(name: str, args, overrides: dict, journal=None):
 def recommendation_study(name: str, args, overrides: dict, journal=None):
     """study contact-points and materials (the thesis's recommendations
     3 and 4): three-beam simulations, Hertz contact; N and workers."""
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     if args.backend or args.model or args.damping:
         raise InputError(f"study {name} runs the chatter simulation with "
                          f"Hertz contact (no --backend, --model or "
