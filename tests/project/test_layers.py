@@ -162,3 +162,9 @@ def test_run_machinery_left_studies():
              "code_digest"}
     assert not studies & moved
     assert moved <= {p.stem for p in (PACKAGE / "runs").glob("*.py")}
+
+
+def test_studies_has_its_three_subpackages():
+    subpackages = {p.name for p in (PACKAGE / "studies").iterdir()
+                   if (p / "__init__.py").is_file()}
+    assert subpackages == {"thesis", "preload", "sweep"}
