@@ -34,9 +34,10 @@ from results import Report
 
 from contactsep.chatter import simulate
 from contactsep.model import thesis_design
-from contactsep.studies import chatter_sweep, preload, runner, sweep
-
-
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 def spec(preload_lb=None, designs=1000):
     settings = {} if preload_lb is None else {"preload": preload_lb}
     return sweep.make_spec(sample=["d=normal(0.25,0.01)",

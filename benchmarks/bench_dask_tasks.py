@@ -30,7 +30,7 @@ import os
 import sys
 import time
 
-from contactsep.studies import dask_map, dask_run
+from contactsep.runs import dask_map, dask_run
 
 
 def noop(task):

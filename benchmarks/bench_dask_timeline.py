@@ -22,9 +22,9 @@ import collections
 import statistics
 import time
 
-from contactsep.studies import runner, sweep
+from contactsep.studies.sweep import run as runner
 
-
+from contactsep.studies.sweep import spec as sweep
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--workers", type=int, default=2)

@@ -49,9 +49,9 @@ import time
 
 import numpy as np
 
-from contactsep.studies import runner, sweep
+from contactsep.studies.sweep import run as runner
 
-#: Shares of --minutes: the eq. 23 sweep, the Hertz sweep (the robust
+from contactsep.studies.sweep import spec as sweep
 #: search takes the rest).
 SHARES = {"eq23": 0.4, "hertz": 0.4}
 #: Designs of the calibration sweeps (eq. 23, Hertz N = 16).
@@ -278,7 +278,7 @@ def main() -> None:
                 print(f"{'robust':>6} {engine:>6} {k:3d} {seconds:8.2f} "
                       f"{ratio} {share} {same}", flush=True)
     if args.preload:
-        from contactsep.studies.preload import preload_chart
+        from contactsep.studies.preload.chart import preload_chart
         at = (1, cores) if args.preload_at is None else \
             tuple(int(k) for k in args.preload_at.split(","))
         charts = [("N = 4", {"n_modes": 4})]

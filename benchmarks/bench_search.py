@@ -42,7 +42,7 @@ def _rows(designs: str, settings=None) -> list:
     sys.path.insert(0, str(HERE.parents[1] / "tests"))
     from design_family import FAMILY
 
-    from contactsep.studies.design_preload import preload
+    from contactsep.studies.preload.command import preload
     rows = []
     for item in designs.split(","):
         name, n = item.split(":")

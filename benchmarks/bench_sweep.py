@@ -21,9 +21,9 @@ import time
 
 from results import Report  # this folder: run as a script
 
-from contactsep.studies import runner, sweep
+from contactsep.studies.sweep import run as runner
 
-
+from contactsep.studies.sweep import spec as sweep
 def main(save: bool = False, cpu: bool = False) -> None:
     say = Report()
     spec = sweep.make_spec(sample=["h2=normal(0.25,0.01)",

@@ -321,7 +321,7 @@ BAND_STEPS = (5e-8, 2.5e-8, 1.25e-8, 6.25e-9, 3.125e-9)
 def band_spec(n, d, dt, samples=BAND_SAMPLES, width=BAND, seed=0):
     """The sweep of the band: ``contactsep sweep --model newton --n-modes
     n --d d --sample 'L2=uniform(...)' --samples 256 --dt dt``."""
-    from contactsep.studies import sweep
+    from contactsep.studies.sweep import spec as sweep
     length = contactsep.thesis_design().L2
     # as typed: 'L2=uniform(2.4875,2.5125)', the same bits as the docs
     low, high = (f"{length * (1 + s * width / 2):.6g}" for s in (-1, 1))
@@ -333,7 +333,7 @@ def band_spec(n, d, dt, samples=BAND_SAMPLES, width=BAND, seed=0):
 
 def band_means(n, d, dt, **band):
     """(open-time mean, sd, largest-lower-gap mean) of the band."""
-    from contactsep.studies import runner
+    from contactsep.studies.sweep import run as runner
     summary = runner.run_sweep(band_spec(n, d, dt, **band), progress=False)
     assert summary["n_failed"] == 0, summary
     return (summary["circuit_open_mean_s"], summary["circuit_open_sd_s"],
@@ -354,7 +354,7 @@ def band_moreau_jean(n, d, dt):
     the fixed-step trapezoidal stepper), on the sweep's own samples."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from contactsep.studies import sweep
+    from contactsep.studies.sweep import spec as sweep
     lengths = sweep.chunk_inputs(band_spec(n, d, dt), 0, BAND_SAMPLES)["L2"]
     with ProcessPoolExecutor() as pool:
         open_s = np.array(list(pool.map(

@@ -37,8 +37,8 @@ from design_family import FAMILY  # noqa: E402
 from preload_family import csv_rows  # noqa: E402
 
 from contactsep import output  # noqa: E402
-from contactsep.studies.design_preload import preload  # noqa: E402
-from contactsep.studies.preload import DEFAULT_MODES  # noqa: E402
+from contactsep.studies.preload.command import preload  # noqa: E402
+from contactsep.studies.preload.chart import DEFAULT_MODES  # noqa: E402
 
 PERTURBATIONS = (0.0, 1e-9, -1e-9, 1e-6, -1e-6)
 COLUMNS = ("design", "n_modes", "dt_s", "ys_in", "ys_change",

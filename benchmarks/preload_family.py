@@ -38,8 +38,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from design_family import FAMILY  # noqa: E402
 
 from contactsep import output  # noqa: E402
-from contactsep.studies.design_preload import preload  # noqa: E402
-from contactsep.studies.preload import DEFAULT_MODES  # noqa: E402
+from contactsep.studies.preload.command import preload  # noqa: E402
+from contactsep.studies.preload.chart import DEFAULT_MODES  # noqa: E402
 
 RELAYS = [name for name in FAMILY if not name.startswith("thesis")]
 

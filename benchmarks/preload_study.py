@@ -21,7 +21,7 @@ Parts (default: convergence, check, monotone):
 
 (The chart's convergence in N, each row checked at twice its N and half
 its step and searched again where it moves: ``contactsep study preload
---converge``, contactsep.studies.preload_converge, which replaced this
+--converge``, contactsep.studies.preload.converge, which replaced this
 script's chart-bracket, chart-rows and chart-convergence parts.)
 """
 
@@ -34,8 +34,8 @@ import time
 import numpy as np
 
 import contactsep
-from contactsep.studies import preload
-from contactsep.studies.preload_runs import PreloadRun
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload.runs import PreloadRun
 
 CHART = "docs/studies/preload.csv"
 #: The chart's numerics (preload_chart gives them explicitly: the thesis

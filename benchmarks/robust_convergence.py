@@ -53,9 +53,9 @@ from design_family import FAMILY  # noqa: E402
 from preload_family import csv_rows  # noqa: E402
 
 from contactsep import output  # noqa: E402
-from contactsep.studies.design_preload import preload  # noqa: E402
-from contactsep.studies.preload import Simulations  # noqa: E402
-from contactsep.studies.preload_robust import (  # noqa: E402
+from contactsep.studies.preload.command import preload  # noqa: E402
+from contactsep.studies.preload.chart import Simulations  # noqa: E402
+from contactsep.studies.preload.robust import (  # noqa: E402
     parse_tolerances, sample_counts, tolerance_samples)
 from contactsep.studies.run_journal import RunJournal  # noqa: E402
 

@@ -20,7 +20,7 @@ The two workloads of the issue:
 1. **A Hertz tolerance sweep of 1e5 designs at N = 16**: each design
    44 ms free (benchmarks/results/bench_chatter_sweep.md: 44.2 ms a
    design, CPU), cut into chunks by the sweep's own rule
-   (:class:`contactsep.studies.chunks.Chunks`, fed the simulated chunk
+   (:class:`contactsep.runs.chunks.Chunks`, fed the simulated chunk
    times), with and without a 20 lb preload (1.81 s a design);
 2. **A 1,000-sample robust preload search**: a sequence of batches, each
    every sample at one to four preloads (the ceiling, the scan's batches
@@ -49,7 +49,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
-from contactsep.studies.chunks import Chunks
+from contactsep.runs.chunks import Chunks
 
 WORKERS = (16, 64, 256)
 #: Measured a design (s): Hertz N = 16, free and at 20 lb.

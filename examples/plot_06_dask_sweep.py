@@ -16,8 +16,9 @@ import matplotlib.pyplot as plt
 import pandas as pd
 from dask.distributed import Client, LocalCluster
 
-from contactsep.studies import runner, sweep
+from contactsep.studies.sweep import run as runner
 
+from contactsep.studies.sweep import spec as sweep
 spec = sweep.make_spec(vary=["d=0.125:0.75:11"],
                        sample=["ys=uniform(0.45,0.55)"], samples=40,
                        seed=0, base={"n_modes": 8})

@@ -11,9 +11,9 @@ import types
 import pytest
 
 from contactsep.chatter.simulate import largest_preload
-from contactsep.studies import design_preload, preload, preload_robust
-
-#: Every planted run in this process: (kind, preload).
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import robust as preload_robust
 CALLS: list = []
 
 

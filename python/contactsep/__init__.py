@@ -16,7 +16,7 @@ below it):
 * :mod:`contactsep.studies`: the thesis's figures and tables, sweeps
   (``sweep(vary=..., sample=...)``: rows and summary, ``to_pandas()``);
   ``preload(design)``, the smallest preload that keeps a design's
-  circuit closed (:mod:`contactsep.studies.design_preload`).
+  circuit closed (:mod:`contactsep.studies.preload.command`).
 * :mod:`contactsep.cli`: the ``contactsep`` command.
 
 Shared by all: :mod:`contactsep.beams`, :mod:`contactsep.constants`,
@@ -35,10 +35,10 @@ from contactsep.restored.result import Result
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
 #: Names of the studies layer, imported on first use.
-_STUDIES_NAMES = {"read": "contactsep.studies.frames",
+_STUDIES_NAMES = {"read": "contactsep.studies.sweep.frames",
                   "load_design": "contactsep.studies.design_file",
-                  "preload": "contactsep.studies.design_preload",
-                  "sweep": "contactsep.studies.sweep_result"}
+                  "preload": "contactsep.studies.preload.command",
+                  "sweep": "contactsep.studies.sweep.result"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 

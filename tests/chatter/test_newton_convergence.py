@@ -36,8 +36,8 @@ import pytest
 
 import contactsep
 from contactsep import chatter
-from contactsep.studies import runner, sweep
-
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 DEFAULT = 5e-8
 FINE = 3.125e-9
 

@@ -201,8 +201,8 @@ def _spy(monkeypatch, module):
 
 
 def test_the_preload_search_runs_stop_at_their_first_event(monkeypatch):
-    from contactsep.studies import preload
-    from contactsep.studies.preload_runs import PreloadRun
+    from contactsep.studies.preload import chart as preload
+    from contactsep.studies.preload.runs import PreloadRun
     seen = _spy(monkeypatch, preload)
     design = FAMILY["steel_relay"].replace(n_modes=8)
     for load, t_end in ((0.1, None), (0.3907, 0.005)):
@@ -220,8 +220,9 @@ def test_the_preload_search_runs_stop_at_their_first_event(monkeypatch):
 
 
 def test_the_robust_search_samples_stop_at_their_first_event(monkeypatch):
-    from contactsep.studies import chatter_sweep, preload_robust
-    from contactsep.studies.preload_runs import SampleRun
+    from contactsep.studies.preload import robust as preload_robust
+    from contactsep.studies.sweep import chatter as chatter_sweep
+    from contactsep.studies.preload.runs import SampleRun
     seen = _spy(monkeypatch, chatter_sweep)
     design = FAMILY["steel_relay"].replace(n_modes=8)
     fields = {name: getattr(design, name)

@@ -16,7 +16,7 @@ from design_family import FAMILY
 
 from contactsep.chatter import simulate
 from contactsep.cli import main
-from contactsep.studies.verdict import chatter_verdict
+from contactsep.studies.preload.verdict import chatter_verdict
 
 QUANTITIES = {"first impact": "first_impact_s",
               "first impulse": "first_impulse_lb_s",

@@ -15,8 +15,8 @@ import types
 import pytest
 
 from contactsep.cli import main
-from contactsep.studies import design_preload, preload
-
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload import chart as preload
 CHATTER = ["chatter", "--n-modes", "2", "--t-end", "0.03", "--preload",
            "0.05", "--json"]
 

@@ -190,7 +190,7 @@ def seen(monkeypatch):
     """Stops chatter and preload at their simulation, keeping the design
     they were given."""
     import contactsep.chatter
-    import contactsep.studies.design_preload as design_preload
+    import contactsep.studies.preload.command as design_preload
     got = {}
 
     def reached(design, **kwargs):
@@ -257,7 +257,7 @@ def test_chatter_json_says_where_n_came_from(capsys, tmp_path, argv,
 
 
 def test_preload_json_says_where_n_came_from(capsys, monkeypatch):
-    import contactsep.studies.design_preload as design_preload
+    import contactsep.studies.preload.command as design_preload
 
     class Answer:
         def __init__(self, design):

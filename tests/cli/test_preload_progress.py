@@ -11,9 +11,9 @@ import sys
 import pytest
 
 from contactsep.cli import main
-from contactsep.studies import stops
-from contactsep.studies.preload_verify import expected_runs
-from contactsep.studies.stops import SearchProgress
+from contactsep.runs import stops
+from contactsep.studies.preload.verify import expected_runs
+from contactsep.runs.stops import SearchProgress
 
 tqdm = pytest.importorskip("tqdm").tqdm
 

@@ -14,8 +14,8 @@ import pytest
 
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies.preload_robust import parse_tolerances
-from contactsep.studies.sweep import parse_sample
+from contactsep.studies.preload.robust import parse_tolerances
+from contactsep.studies.sweep.spec import parse_sample
 
 pytest.importorskip("pint")
 

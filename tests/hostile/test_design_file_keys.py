@@ -11,7 +11,7 @@ import json
 import pytest
 from hostile_cli import main, refusal
 
-import contactsep.studies.conclusions as conclusions_module
+import contactsep.studies.thesis.conclusions as conclusions_module
 
 
 class _Reached(Exception):
@@ -71,7 +71,7 @@ def test_study_preload_takes_a_model_json_file(capsys, monkeypatch,
                                                model_json):
     """Its echo of tau (the default, which preload does not read) is
     dropped; tau = 1 from the command line is refused."""
-    import contactsep.studies.preload as preload_module
+    import contactsep.studies.preload.chart as preload_module
     seen = {}
 
     def reached(**kwargs):

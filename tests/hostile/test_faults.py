@@ -24,8 +24,10 @@ from kept_chunks import kept_designs
 from contactsep import output
 from contactsep.cli import main as cli_main
 from contactsep.errors import InputError
-from contactsep.studies import chatter_sweep, runner, sweep
-from contactsep.studies.pool import stop_pool, worker_pool
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
+from contactsep.runs.pool import stop_pool, worker_pool
 
 
 def _gone(pid: int) -> bool:
@@ -327,7 +329,7 @@ def test_a_scheduler_that_does_not_speak_dask_is_refused(capsys, make,
     HTTP server: a 3.07 EiB allocation traceback.  (The probe's 5 s
     made 1 s here: the test's time.)"""
     pytest.importorskip("distributed")
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
     # the promise: refused within 10 s, start-up included
     assert dask_run.PROBE_TIMEOUT_S <= 5
     monkeypatch.setattr(dask_run, "PROBE_TIMEOUT_S", 1)
@@ -361,7 +363,7 @@ def test_a_scheduler_that_answers_another_protocol_is_refused():
     greeter = threading.Thread(target=greet, daemon=True)
     greeter.start()
     port = server.getsockname()[1]
-    from contactsep.studies.dask_run import probe
+    from contactsep.runs.dask_run import probe
     try:
         with pytest.raises(InputError, match="answers another protocol"):
             probe(f"tcp://127.0.0.1:{port}")

@@ -20,8 +20,7 @@ from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.model import Design, DesignError, evaluate
 from contactsep.model.design import REAL_COLUMNS
-from contactsep.studies import sweep
-
+from contactsep.studies.sweep import spec as sweep
 FIELDS = [f.name for f in dataclasses.fields(Design)]
 SETTINGS = settings(max_examples=150, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -15,9 +15,9 @@ from hostile_cli import main, refusal
 from contactsep.chatter import simulate
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model import thesis_design
-from contactsep.studies.conclusions import conclusion
-from contactsep.studies.preload import min_preloads, preload_chart
-from contactsep.studies.sweep import make_spec, parse_vary
+from contactsep.studies.thesis.conclusions import conclusion
+from contactsep.studies.preload.chart import min_preloads, preload_chart
+from contactsep.studies.sweep.spec import make_spec, parse_vary
 
 
 @pytest.mark.parametrize("args, start", [

@@ -123,7 +123,8 @@ def test_sweep_sizes_and_thresholds_are_refused(capsys, args, message):
 
 
 def test_the_api_refuses_what_the_command_does():
-    from contactsep.studies import runner, sweep
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep import spec as sweep
     spec = sweep.make_spec(vary=["h2=0.1:0.2:2"])
     for kwargs, name in ((dict(threshold=math.nan), "--threshold"),
                          (dict(chunk_size=0), "--chunk-size"),

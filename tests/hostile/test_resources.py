@@ -15,8 +15,8 @@ from hostile_cli import main, refusal
 from contactsep.chatter import simulate
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
-from contactsep.studies import runner, sweep
-
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 simulate_module = importlib.import_module("contactsep.chatter.simulate")
 
 
@@ -62,7 +62,7 @@ def test_chunks_are_sized_by_cost_and_memory():
     100,000 designs, four per-mode arrays each); after Ctrl-C a sweep
     waited minutes for whole chunks."""
     from contactsep.output.pieces import FIRST_PIECE_COST, PIECE_S
-    from contactsep.studies.chunks import CHUNK_MEMORY, Chunks
+    from contactsep.runs.chunks import CHUNK_MEMORY, Chunks
     big = Chunks(10**6, sweep.CHUNK_SIZE, 100_000)
     assert big.limit * 8 * (4 * 100_000 + 64) <= CHUNK_MEMORY
     assert big.next == 1

@@ -116,7 +116,7 @@ def test_every_study_has_the_thesis_rig_s_row_of_the_chart():
 @pytest.mark.parametrize("name", sorted(LEADING))
 def test_the_committed_study_is_what_the_code_computes(name):
     """`contactsep study conclusionN --csv`, 6-18 min on one core."""
-    from contactsep.studies.conclusions import conclusion
+    from contactsep.studies.thesis.conclusions import conclusion
     committed = (STUDIES / f"{name}.csv").read_text()
     assert conclusion(name, workers=2).csv_text() == committed
 

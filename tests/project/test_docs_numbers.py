@@ -33,7 +33,8 @@ def test_the_page_quotes_the_draw():
 
 @pytest.mark.slow
 def test_performance_p_open_is_what_the_sweep_gives():
-    from contactsep.studies import runner, sweep
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep import spec as sweep
     designs, p_open, low, high = quoted()
     spec = sweep.make_spec(sample=["d=normal(0.25,0.01)",
                                    "ys=uniform(0.45,0.55)"],

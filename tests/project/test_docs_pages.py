@@ -118,7 +118,7 @@ def test_figure_7_coefficients_and_the_node():
                     rf"x/L = {NUMBER}\)")
     c3 = evaluate(thesis_design(x3=np.array([0.98, 0.78]) * 19.0,
                                 lower_response="as-printed")).c3
-    from contactsep.studies.mode_share import second_mode_node
+    from contactsep.studies.thesis.mode_share import second_mode_node
     weaker = c3[0, 1] / c3[1, 1]
     check(claims[:8], c3.ravel())
     assert f"{round(weaker, -2):,.0f}" == claims[8]
@@ -168,7 +168,7 @@ def test_conclusion_8_numbers_are_conclusion8_csv():
         rf"{low} to {high} swings once, and the share peaks at "
         rf"{peak} at x3/L3 = {NUMBER} \(it is {tip} at the tip, with "
         rf"two swings, and {mid} at mid-length, with six\)")
-    from contactsep.studies.mode_share import MODES, second_mode_node
+    from contactsep.studies.thesis.mode_share import MODES, second_mode_node
     check([node], [second_mode_node()])
     assert abs(float(blevins) - second_mode_node()) < 5e-4
     c3 = evaluate(thesis_design(n_modes=MODES,
@@ -431,15 +431,12 @@ def test_the_searchs_limits_give_status_4(field, value, claim):
 def test_the_sweep_limits_are_the_codes():
     """The limits docs/studies.md states in words are the constants the
     code uses (a changed constant fails here until the page says it)."""
-    from contactsep.studies import (
-        chatter_sweep,
-        dask_run,
-        pool,
-        runner,
-        stats,
-        sweep,
-        writers,
-    )
+    from contactsep.runs import dask_run, pool
+    from contactsep.studies import stats
+    from contactsep.studies.sweep import chatter as chatter_sweep
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep import spec as sweep
+    from contactsep.studies.sweep import writers
     default, most = quoted("studies.md", r"`--chunk-size` \(default "
                            r"([\d,]+), at most ([\d,]+)\)")
     assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
@@ -605,7 +602,7 @@ def test_the_bare_separator_of_the_9000_fit_and_its_clamp():
     fitted = float(re.search(r"kr2 = ([\d.e+]+)", bare).group(1))
     check([kr2], [fitted])
     # --separator physical is that clamp
-    from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+    from contactsep.studies.thesis.separator_fit import PHYSICAL_SEPARATOR
     (physical,) = quoted("studies.md", rf"`beam2 = timoshenko`, "
                          rf"`kr2 = {NUMBER}`")
     check([physical], [PHYSICAL_SEPARATOR["kr2"]])
@@ -783,8 +780,7 @@ def test_the_kappa_five_sixths_and_per_row_clamps():
 
     from scipy.optimize import brentq
 
-    from contactsep.studies import separator_fit as sf
-
+    from contactsep.studies.thesis import separator_fit as sf
     def first(d, kappa=None, kr2=None):
         beam = sf.separator(d, "timoshenko-clamped",
                             {} if kr2 is None else {"kr2": kr2})

@@ -57,7 +57,8 @@ def test_the_failed_designs_message_is_the_commands(capsys):
 
 
 def test_the_dask_chunking_is_the_codes():
-    from contactsep.studies import chunk_runs, chunks
+    from contactsep.runs import chunks
+    from contactsep.studies.sweep import chunk_runs
     a_worker, smallest = quoted(
         "studies.md", r"every worker gets at least (\d+) of what is left "
         r"\(down to ([\d.]+) s of work a chunk\)")
@@ -96,7 +97,7 @@ def _first_mode_share(n_modes):
     import numpy as np
 
     from contactsep.model import evaluate, thesis_design
-    from contactsep.studies import mode_share
+    from contactsep.studies.thesis import mode_share
     base = thesis_design(n_modes=n_modes)
     c3 = np.nan_to_num(evaluate(base.replace(
         x3=mode_share.RATIOS * float(base.L3))).c3)
@@ -125,7 +126,7 @@ def test_conclusion_8s_counts_at_one_and_twenty_percent(monkeypatch):
     and 64 (the study itself at each N; N = 64 takes minutes)."""
     import numpy as np
 
-    from contactsep.studies import mode_share
+    from contactsep.studies.thesis import mode_share
     claims = quoted("studies.md", r"at 1 % prominence the count at x3/L3 = "
                     r"0.5 grows (\d+), (\d+), (\d+), (\d+) at N = 8, 16, 32, "
                     r"64\); at 20 % prominence")

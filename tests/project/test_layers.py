@@ -17,8 +17,8 @@ PACKAGE = ROOT / "python" / "contactsep"
 SHARED = {"beams", "constants", "errors", "output", "units"}
 #: Rank of each layer: a module imports only its own layer, the shared
 #: modules and layers of lower rank.
-RANK = {"shared": 0, "restored": 1, "model": 1, "chatter": 2, "studies": 3,
-        "cli": 4}
+RANK = {"shared": 0, "restored": 1, "model": 1, "chatter": 2, "runs": 3,
+        "studies": 4, "cli": 5}
 #: The one door from the model into the restoration (issue 20).
 MODEL_TO_RESTORED = {("contactsep.restored.dataset", "computed_data_set")}
 
@@ -77,8 +77,8 @@ def test_the_root_holds_at_most_six_modules():
                 if (p / "__init__.py").is_file()}
     # the beam physics is a shared package (one module per concern)
     assert root | (packages & SHARED) == SHARED and len(root) <= 6
-    assert packages - SHARED == {"restored", "model", "chatter", "studies",
-                                 "cli"}
+    assert packages - SHARED == {"restored", "model", "chatter", "runs",
+                                 "studies", "cli"}
 
 
 @pytest.mark.parametrize("name", sorted(MODULES), ids=str)
@@ -140,3 +140,31 @@ def test_the_checker_sees_a_cycle_and_an_upward_import(tmp_path,
         test_imports_run_downwards("contactsep.model.a")
     with pytest.raises(AssertionError):
         test_no_import_cycles()
+
+
+#: What the run machinery may import besides its own package: the
+#: shared root modules and the outputs, nothing of a simulation or study.
+RUNS_MAY_IMPORT = {"shared", "runs"}
+
+
+@pytest.mark.parametrize(
+    "name", sorted(n for n in MODULES if layer(n) == "runs"), ids=str)
+def test_runs_import_only_shared_modules(name):
+    bad = [target for target, _ in imports(name)
+           if layer(target) is not None
+           and layer(target) not in RUNS_MAY_IMPORT]
+    assert not bad
+
+
+def test_run_machinery_left_studies():
+    studies = {p.stem for p in (PACKAGE / "studies").glob("*.py")}
+    moved = {"pool", "dask_run", "dask_map", "chunks", "stops",
+             "code_digest"}
+    assert not studies & moved
+    assert moved <= {p.stem for p in (PACKAGE / "runs").glob("*.py")}
+
+
+def test_studies_has_its_three_subpackages():
+    subpackages = {p.name for p in (PACKAGE / "studies").iterdir()
+                   if (p / "__init__.py").is_file()}
+    assert subpackages == {"thesis", "preload", "sweep"}

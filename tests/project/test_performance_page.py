@@ -196,7 +196,10 @@ def test_the_constants_the_page_states_are_the_codes():
 
     from contactsep.model import design
     from contactsep.output import pieces
-    from contactsep.studies import chunk_runs, chunks, runner, sweep
+    from contactsep.runs import chunks
+    from contactsep.studies.sweep import chunk_runs
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep import spec as sweep
     target, first, growth, piece = quoted(
         r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
         r"of work each, the first ([\d,]+) designs at N = 4, growing at "

@@ -191,7 +191,7 @@ def test_the_pages_preload_is_the_committed_search():
     step, = [s for s in tutorial.steps() if "tutorial_preload.csv" in s.code]
     comments, header, rows = parse_csv(tutorial.PRELOAD_CSV.read_text())
     # the columns of contactsep preload --csv
-    from contactsep.studies.preload_answer import CSV_COLUMNS
+    from contactsep.studies.preload.answer import CSV_COLUMNS
     assert header == list(CSV_COLUMNS)
     rows = [dict(zip(header, r)) for r in rows]
     verdict = step.shown.splitlines()[-1]

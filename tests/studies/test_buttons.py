@@ -7,9 +7,7 @@ import numpy as np
 import pytest
 
 from contactsep.cli import main
-from contactsep.studies import buttons
-
-
+from contactsep.studies.thesis import buttons
 @pytest.mark.slow
 def test_the_study_has_a_row_per_shape_and_radius():
     study = buttons.buttons(n_modes=4, radii=(0.125,), workers=1)

@@ -22,7 +22,9 @@ from contactsep.chatter.runners import StepperError
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import thesis_design
-from contactsep.studies import chatter_sweep, runner, sweep
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 from contactsep.studies.stats import wilson_interval
 
 RESULTS = ("first_impact_s", "first_impulse_lb_s", "max_lower_gap_in",

@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from contactsep.model import evaluate, thesis_design
-from contactsep.studies import conclusions, preload
-from contactsep.studies.preload_runs import PreloadRun
+from contactsep.studies.thesis import conclusions
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload.runs import PreloadRun
 from package_call import run
 
 N = 2

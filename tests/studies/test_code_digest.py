@@ -1,5 +1,5 @@
 """The digest of the code in a resume's manifest
-(contactsep.studies.code_digest): it reads every module of the layers a
+(contactsep.runs.code_digest): it reads every module of the layers a
 result depends on (sources and compiled extensions, found by the import
 system) and nothing else, so that an edited development install refuses
 to resume results made by other code, and an edited message does not."""
@@ -14,7 +14,7 @@ import sys
 import pytest
 
 import contactsep
-from contactsep.studies import code_digest as digests
+from contactsep.runs import code_digest as digests
 
 
 @pytest.fixture
@@ -90,7 +90,7 @@ def test_the_digest_reads_the_packages_sources_and_compiled_modules():
 
 
 def test_the_digest_is_the_same_in_another_process():
-    code = ("from contactsep.studies.code_digest import code_digest, "
+    code = ("from contactsep.runs.code_digest import code_digest, "
             "STUDIES; print(code_digest(), code_digest(STUDIES))")
     out = subprocess.run([sys.executable, "-c", code], check=True,
                          capture_output=True, text=True).stdout.split()

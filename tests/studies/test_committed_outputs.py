@@ -22,8 +22,8 @@ import pytest
 
 from conftest import DECK_DIR, ROOT
 from contactsep import studies
-from contactsep.studies import runner, sweep
-
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 COMMITTED = ROOT / "docs" / "studies"
 
 
@@ -135,7 +135,7 @@ def test_committed_chatter_table_is_what_the_code_computes():
     """45 three-beam simulations (20 s or more).  The chatter layer's
     own changes move these numbers: regenerate with `contactsep study
     chatter --out docs/studies`."""
-    from contactsep.studies.chatter import chatter_table
+    from contactsep.studies.thesis.chatter_table import chatter_table
     committed = (COMMITTED / "chatter.csv").read_text()
     compare(committed, chatter_table().csv_text(), "chatter")
     assert (COMMITTED / "chatter.png").read_bytes()[:8] == \

@@ -10,7 +10,7 @@ import pytest
 
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import restitution
+from contactsep.studies.thesis import restitution
 from contactsep.studies.study import thesis_study_design
 
 

@@ -13,9 +13,7 @@ import pytest
 
 import contactsep
 from contactsep.cli import main
-from contactsep.studies import mode_share as c8
-
-#: Blevins (1979), Table 8-1: the cantilever's second mode has its node
+from contactsep.studies.thesis import mode_share as c8
 #: at x/L = 0.783.
 PUBLISHED_NODE = 0.783
 

@@ -11,9 +11,9 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import conclusions, preload, preload_search
-
-# the thesis studies' design: eq. 23's lower response as printed
+from contactsep.studies.thesis import conclusions
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import search as preload_search
 from contactsep.studies.study import thesis_study_design
 
 #: The design each study's rows change, and how.

@@ -87,7 +87,7 @@ def test_the_preload_command_runs_on_the_scheduler_the_file_names(
     """The command hands the search a Client of the file's scheduler
     (the search itself: the test above)."""
     from contactsep.cli import main
-    from contactsep.studies import design_preload
+    from contactsep.studies.preload import command as design_preload
     seen = []
 
     def reached(design, **kwargs):
@@ -104,7 +104,7 @@ def test_the_study_command_runs_on_the_scheduler_it_is_given(
         deployment, monkeypatch, capsys):
     """study preload hands the chart a Client of --scheduler's."""
     from contactsep.cli import main
-    from contactsep.studies import preload
+    from contactsep.studies.preload import chart as preload
     seen = []
 
     def reached(**kwargs):
@@ -147,8 +147,8 @@ def test_a_lost_scheduler_is_one_line_and_a_new_one_continues(
     command's exit 2: an InputError), the finished simulations in the
     journal; the same search on a new deployment takes them and ends
     with the uninterrupted answer, simulating only the rest."""
-    from contactsep.studies import dask_run
-    from contactsep.studies.dask_run import SchedulerLost
+    from contactsep.runs import dask_run
+    from contactsep.runs.dask_run import SchedulerLost
     from contactsep.studies.run_journal import RunJournal
     uninterrupted = _robust(1)
     # the runs a search on two workers makes ahead and never asks for
@@ -202,7 +202,7 @@ def _kill_after(journal, count, process):
 def test_workers_running_other_code_are_refused(deployment, monkeypatch):
     """This process made to report another code digest: the workers'
     real one then differs, and the search is refused before any run."""
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     # the workers import their own, unpatched
     monkeypatch.setattr(code_digest, "code_digest", lambda: "0" * 64)
     with distributed.Client(scheduler_file=str(deployment.path)) as client, \
@@ -255,7 +255,7 @@ def test_a_batch_runs_costliest_first_and_returns_in_the_tasks_order():
     the ``order`` given (the costliest first), whatever the tasks' own
     order; the results come back in the tasks' order, each handed to
     ``finished`` once."""
-    from contactsep.studies.dask_map import run_tasks
+    from contactsep.runs.dask_map import run_tasks
     tasks = [f"task {i}" for i in range(12)]
     order = [5, 11, 0, 7, 3, 9, 1, 10, 2, 8, 4, 6]
     seen, counted = {}, []

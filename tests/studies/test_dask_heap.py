@@ -14,7 +14,7 @@ import pytest
 _PROBE = textwrap.dedent("""
     import resource
     import numpy as np
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
 
     def faults():
         before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
@@ -64,7 +64,7 @@ def test_plain_process_keeps_its_malloc():
 def test_only_a_static_heap_is_changed(monkeypatch):
     """mallopt is called only where a MALLOC_*_ variable turned the
     dynamic threshold off, with glibc's own largest thresholds, once."""
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
     calls = []
 
     class Libc:

@@ -24,9 +24,11 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies import design_preload, preload, preload_robust
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import robust as preload_robust
 from contactsep.studies.stats import wilson_interval
-from contactsep.studies.sweep import chunk_inputs
+from contactsep.studies.sweep.spec import chunk_inputs
 
 # a planted physics: the search sees only whether a run has an event
 # (the threshold: tests/planted_preload.py)
@@ -221,7 +223,7 @@ def test_the_robust_answer_is_above_a_window_only_the_samples_have(
     0.0415 lb): a band of the nominal design's events would not look
     there; the robust answer is above the window, and the search tried
     every preload of the fine grid from its answer to 1.5 times it."""
-    from contactsep.studies.preload_search import FINE_RATIO, fine_band, grid
+    from contactsep.studies.preload.search import FINE_RATIO, fine_band, grid
     design = FAMILY["thesis"].replace(n_modes=8)
     t = _threshold(design, {})
     planted()

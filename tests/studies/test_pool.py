@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from contactsep.studies.pool import map_longest_first, stop_pool, worker_pool
+from contactsep.runs.pool import map_longest_first, stop_pool, worker_pool
 
 
 def _started(task):
@@ -38,7 +38,7 @@ def test_every_worker_gets_twenty_chunks_of_at_least_a_fifth_of_a_second():
     """Chunks from the measured cost (issue 29): about 0.5 s each while
     the work left is large; then each of the workers gets 20 of what is
     left, down to 0.2 s a chunk."""
-    from contactsep.studies.chunks import Chunks
+    from contactsep.runs.chunks import Chunks
     # 1 ms a design measured; 1e6 designs left: 1000 s, 0.5 s chunks
     big = Chunks(10**6, 10**6, 4, workers=4)
     big.record(100, 0.1)

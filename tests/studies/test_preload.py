@@ -14,7 +14,8 @@ import pytest
 from contactsep.chatter import simulate
 from contactsep.cli import main
 from contactsep.model import thesis_design
-from contactsep.studies import preload, preload_search
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import search as preload_search
 
 ROOT = Path(__file__).resolve().parents[2]
 COLUMNS = ["model", "n_modes", "d_in", "ys_in", "min_preload_lb"]

@@ -13,9 +13,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from contactsep.studies import preload_search
-from contactsep.studies.preload_robust import ROBUST_BAND_HIGH
-from contactsep.studies.preload_search import fine_band, search
+from contactsep.studies.preload import search as preload_search
+from contactsep.studies.preload.robust import ROBUST_BAND_HIGH
+from contactsep.studies.preload.search import fine_band, search
 
 
 def _robust_band(row, answer):

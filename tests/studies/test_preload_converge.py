@@ -1,5 +1,5 @@
 """The preload chart converged row by row (issue 25 item 5,
-contactsep.studies.preload_converge): the check at 2N, dt/2 and the
+contactsep.studies.preload.converge): the check at 2N, dt/2 and the
 search again where it fails, against simulators whose threshold at each
 N is known (a preload has an event below it, none at or above it), so
 every answer and verdict below follows from the thresholds alone."""
@@ -11,8 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from contactsep.studies import preload_converge as pc
-from contactsep.studies.preload import min_preloads
+from contactsep.studies.preload import converge as pc
+from contactsep.studies.preload.chart import min_preloads
 from contactsep.studies.study import thesis_study_design
 
 DT = 5e-8
@@ -196,7 +196,7 @@ def test_no_check_above_max_modes(max_modes):
 
 
 def test_the_chart_columns_say_each_row_s_n_and_verdict():
-    from contactsep.studies.preload import PreloadSearch
+    from contactsep.studies.preload.chart import PreloadSearch
     sims = Thresholds({64: {0.25: 9.0, 0.5: 4.0},
                        128: {0.25: 9.05, 0.5: 4.0}})
     found = [PreloadSearch(10.0, ((9.9, True), (10.0, False))),
@@ -217,7 +217,7 @@ def test_the_chart_columns_say_each_row_s_n_and_verdict():
 @pytest.mark.parametrize("bad", ["yes", 3, 1.5, 2048, np.bool_(True)])
 def test_a_bad_converge_is_one_line_before_any_work(bad):
     from contactsep.errors import InputError
-    from contactsep.studies.preload import preload_chart
+    from contactsep.studies.preload.chart import preload_chart
     with pytest.raises(InputError, match=r"^converge: found .*, expected "
                        r"True, False or the largest N of a check") as info:
         preload_chart(n_modes=2, converge=bad, thicknesses=(0.5,),

@@ -20,8 +20,7 @@ from planted_preload import CALLS, threshold
 import contactsep
 from contactsep.cli import main
 from contactsep.model import thesis_design
-from contactsep.studies import preload
-
+from contactsep.studies.preload import chart as preload
 ROOT = Path(__file__).resolve().parents[2]
 GALLERY = ROOT / "examples" / "plot_02_preload.py"
 #: The columns, written out here (not imported from the code under test).

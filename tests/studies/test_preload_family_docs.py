@@ -168,7 +168,7 @@ def test_the_cheapest_row_is_what_the_library_computes_now():
     from design_family import FAMILY
 
     import contactsep
-    from contactsep.studies.preload import DEFAULT_MODES
+    from contactsep.studies.preload.chart import DEFAULT_MODES
     committed = next(r for r in rows() if r["design"] == "steel_thick")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -20,7 +20,7 @@ from planted_preload import CALLS, plant_threshold
 import contactsep
 from contactsep.chatter.simulate import largest_preload
 from contactsep.errors import ContactsepWarning
-from contactsep.studies.preload_search import grid, search, top_index
+from contactsep.studies.preload.search import grid, search, top_index
 
 
 def _runs(n_modes=None):
@@ -163,7 +163,7 @@ def test_the_band_below_runs_where_the_scan_saw_a_closed_preload(
     def where(d, s):
         return t
     plant_threshold(monkeypatch, where)
-    from contactsep.studies import preload as chart
+    from contactsep.studies.preload import chart
     plain = chart._simulate_event
 
     def with_window(task):
@@ -251,7 +251,7 @@ def test_the_command_runs_the_band_below_on_request(monkeypatch, capsys):
 
 
 def test_a_journal_names_band_below_only_when_asked():
-    from contactsep.studies.design_preload import journal_inputs
+    from contactsep.studies.preload.command import journal_inputs
     design = FAMILY["thesis"]
     assert "band_below" not in journal_inputs(design, "hertz", {})
     assert journal_inputs(design, "hertz", {}, band_below=True)[
@@ -264,7 +264,7 @@ def test_with_tolerances_the_nominal_band_below_runs(monkeypatch):
     runs whenever tolerances are given."""
     from planted_preload import fake_sample
 
-    from contactsep.studies import preload_robust
+    from contactsep.studies.preload import robust as preload_robust
     design = FAMILY["thesis"].replace(n_modes=8)
     plant_threshold(monkeypatch, lambda d, s: 0.25 * largest_preload(d))
     monkeypatch.setattr(preload_robust, "simulate_design", fake_sample)

@@ -23,9 +23,8 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies import design_preload, preload
-
-#: The planted design's own step, window, and the step every run saw.
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload import chart as preload
 DT, T_END = 4e-8, 0.05
 
 

@@ -325,7 +325,7 @@ def test_the_steel_relays_fixed_band_reading():
     two fine-grid preloads within 2 % of it (one over the target, one at
     it), none from there to 1.5 times the answer, where the band tried
     every fine-grid preload."""
-    from contactsep.studies.preload_search import fine_band
+    from contactsep.studies.preload.search import fine_band
     fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
     old = {r["n_modes"]: r for r in searches(OLD)["steel_relay"]}["32"]
     answer = float(fixed["robust_min_preload_lb"])
@@ -375,7 +375,7 @@ def test_the_steel_relays_check_at_n64_is_the_study():
     samples and tolerance at its answer and every fine-grid preload
     within 2 % either side; none opens at 64 modes, where at 32 the
     window 1 % above the old answer opened 2 of 100."""
-    from contactsep.studies.preload_search import fine_band
+    from contactsep.studies.preload.search import fine_band
     assert table(RECORD.read_text(), STEEL_CHECK) == steel_check_table()
     fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
     answer = float(fixed["robust_min_preload_lb"])
@@ -462,7 +462,7 @@ def test_the_steel_curve_reading():
     third fewer openings at 64 modes, the counts it quotes, and the
     robust answer holding at 2N where p_open is 0.2-0.3 but not at 0.1
     and 0.05."""
-    from contactsep.studies.preload_search import FINE_RATIO
+    from contactsep.studies.preload.search import FINE_RATIO
     fixed = {r["n_modes"]: r for r in searches(FIXED)["steel_relay"]}["32"]
     grid = [FINE_RATIO ** j for j in range(-200, -170)
             if LOW < FINE_RATIO ** j < HIGH]

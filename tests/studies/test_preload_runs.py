@@ -13,8 +13,10 @@ from concurrent.futures import Future
 import pytest
 from design_family import FAMILY
 
-from contactsep.studies import preload, preload_robust
-from contactsep.studies.preload_runs import PreloadRun, SampleRun
+from contactsep.studies.preload import chart as preload
+
+from contactsep.studies.preload import robust as preload_robust
+from contactsep.studies.preload.runs import PreloadRun, SampleRun
 from contactsep.studies.run_journal import RunJournal, canonical
 
 SETTINGS = {"dt": 1e-8, "t_end": 0.01, "damping": "none"}

@@ -1,4 +1,4 @@
-"""The verdict line of ``contactsep preload`` (studies.verdict): the
+"""The verdict line of ``contactsep preload`` (studies.preload.verdict): the
 answer to use and how converged it is, or what moved and the rerun with
 its time; the robust answer's verdict (not shown below the samples its
 rule needs; held; not held); the same text in the JSON; the early stop's
@@ -22,9 +22,11 @@ import contactsep
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
-from contactsep.studies import design_preload, preload, preload_robust
-from contactsep.studies.preload import Simulations
-from contactsep.studies.preload_robust import (
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import robust as preload_robust
+from contactsep.studies.preload.chart import Simulations
+from contactsep.studies.preload.robust import (
     parse_tolerances,
     robust_preload,
 )
@@ -42,7 +44,7 @@ def _last_line(argv, capsys) -> tuple[str, dict]:
 
 
 class _Clock:
-    """The search's clock (contactsep.studies.preload reads
+    """The search's clock (contactsep.studies.preload.chart reads
     time.perf_counter): it moves only by the planted runs' costs, so an
     estimate made from it is arithmetic, not a timing under whatever
     load shares the machine."""

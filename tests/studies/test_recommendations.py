@@ -17,8 +17,8 @@ import pytest
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.model import Design, materials
-from contactsep.studies import contact_points as cp
-from contactsep.studies import materials as mat
+from contactsep.studies.thesis import contact_points as cp
+from contactsep.studies.thesis import materials as mat
 from contactsep.studies.plots import save_png
 from contactsep import units
 
@@ -159,7 +159,7 @@ def test_committed_study_is_what_the_code_computes(name):
     of docs/studies are today's; regenerate with `contactsep study NAME
     --out docs/studies`."""
     from test_committed_outputs import COMMITTED, compare
-    from contactsep.studies.recommendations import STUDIES
+    from contactsep.studies.thesis.recommendations import STUDIES
     committed = (COMMITTED / f"{name}.csv").read_text()
     compare(committed, STUDIES[name][0]().csv_text(), name)
     assert (COMMITTED / f"{name}.png").read_bytes()[:8] == \

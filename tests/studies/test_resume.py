@@ -16,8 +16,12 @@ import pytest
 from forked import killed_at
 
 from contactsep.cli import main as cli_main
-from contactsep.studies import chunk_runs, resume, runner, sweep, writers
-from contactsep.studies.chatter_sweep import ChatterSummary
+from contactsep.studies import resume
+from contactsep.studies.sweep import chunk_runs
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep import writers
+from contactsep.studies.sweep.chatter import ChatterSummary
 from contactsep.studies.stats import BLOCK, RunningMoments
 
 EQ23 = ["sweep", "--vary", "h2=0.1:0.8:7", "--sample",
@@ -147,7 +151,7 @@ def test_chunks_made_by_other_code_are_refused(tmp_path, capsys,
                                                monkeypatch):
     command = _outputs(tmp_path, [*EQ23, "--resume"])
     _killed_at(command, "write", 2)
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     original = code_digest.code_digest
     monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
     status, _, err = _run(capsys, command)

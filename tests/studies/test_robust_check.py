@@ -20,8 +20,8 @@ from design_family import FAMILY
 import contactsep
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
-from contactsep.studies import preload_robust
-from contactsep.studies.preload_search import fine_band
+from contactsep.studies.preload import robust as preload_robust
+from contactsep.studies.preload.search import fine_band
 
 DESIGN = FAMILY["thesis"].replace(n_modes=8)
 TOLERANCE = ["d=uniform(0.24,0.26)"]

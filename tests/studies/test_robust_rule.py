@@ -1,4 +1,4 @@
-"""The robust answer's rule (studies.robust_rule): p_target met on the
+"""The robust answer's rule (studies.preload.robust_rule): p_target met on the
 upper end of the 95 % Wilson interval, the samples that rule needs, and
 the early stop, whose decision must be the full set's exactly."""
 
@@ -11,8 +11,8 @@ import pytest
 from scipy.optimize import brentq
 from scipy.stats import norm
 
-from contactsep.studies import robust_rule
-from contactsep.studies.robust_rule import (
+from contactsep.studies.preload import robust_rule
+from contactsep.studies.preload.robust_rule import (
     block_stops,
     meets,
     p_open_high,

@@ -27,8 +27,8 @@ from planted_preload import CALLS, fake_event, fake_sample
 
 from contactsep.cli import main
 from contactsep.errors import InputError
-from contactsep.studies import design_preload
-from contactsep.studies.preload import Simulations
+from contactsep.studies.preload import command as design_preload
+from contactsep.studies.preload.chart import Simulations
 from contactsep.studies.resume import ResumeError
 from contactsep.studies.run_journal import RunJournal, task_key
 
@@ -321,7 +321,7 @@ def test_a_journal_made_by_other_code_is_refused(planted_preload, tmp_path,
     path = tmp_path / "p.csv"
     command = [*COMMAND, "--csv", str(path), "--resume"]
     _killed_at(command, 30)
-    from contactsep.studies import code_digest
+    from contactsep.runs import code_digest
     original = code_digest.code_digest
     monkeypatch.setattr(code_digest, "code_digest", lambda *a: "0" * 64)
     status, _, err = _run(capsys, command)

@@ -1,4 +1,4 @@
-"""Runs made ahead for idle workers (contactsep.studies.runs_ahead): the
+"""Runs made ahead for idle workers (contactsep.studies.preload.runs_ahead): the
 preload search gives the same answer, asks for the same runs in the same
 order and logs only those, whatever the number of workers; and more of
 the workers are busy.  The simulations are planted (an event below a
@@ -17,10 +17,11 @@ from design_family import FAMILY
 
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
-from contactsep.studies import preload, preload_search
-from contactsep.studies.preload_verify import search_design
+from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import search as preload_search
+from contactsep.studies.preload.verify import search_design
 from contactsep.studies.run_journal import RunJournal
-from contactsep.studies.runs_ahead import RunsAhead
+from contactsep.studies.preload.runs_ahead import RunsAhead
 
 SETTINGS = {"dt": 1e-8, "t_end": 0.01, "damping": "none"}
 

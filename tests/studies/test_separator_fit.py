@@ -10,9 +10,7 @@ import pytest
 import scipy.optimize
 
 from contactsep.cli import main
-from contactsep.studies import separator_fit as sf
-
-
+from contactsep.studies.thesis import separator_fit as sf
 def test_golden_section_finds_a_known_minimum():
     x = sf.golden(lambda v: (v - 0.3712) ** 2, -2.0, 5.0, tol=1e-9)
     assert x == pytest.approx(0.3712, abs=1e-8)
@@ -105,7 +103,7 @@ def test_conclusions_with_a_stiff_spring_are_the_rigid_separators():
     (issue 27): with a separator spring stiff enough to be rigid, y3_max
     and eq. 24's R are the thesis's beams' (the closed-form path)."""
     from contactsep.model import thesis_design
-    from contactsep.studies import conclusions
+    from contactsep.studies.thesis import conclusions
     base = thesis_design(n_modes=8)
     values = conclusions._values("conclusion6", base)
     stiff = base.replace(kt2=1e15)

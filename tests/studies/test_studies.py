@@ -23,9 +23,10 @@ from sweep_collect import Collect
 from contactsep import studies
 from contactsep.cli import main
 from contactsep.model import evaluate
-from contactsep.studies import chunk_runs, runner, stops, sweep
-
-# the thesis studies' design: eq. 23's lower response as printed
+from contactsep.runs import stops
+from contactsep.studies.sweep import chunk_runs
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 from contactsep.studies.study import thesis_study_design
 
 
@@ -229,7 +230,7 @@ def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
     and a stall on a loaded machine (a CI run: y3_max_sd_in one unit in
     the last place apart) would change the partition, not the order."""
     distributed = pytest.importorskip("distributed")
-    from contactsep.studies.chunks import Chunks
+    from contactsep.runs.chunks import Chunks
     monkeypatch.setattr(Chunks, "record", lambda self, designs, seconds:
                         None)
     local = runner.run_sweep(spec(), threshold=0.1, chunk_size=7,
@@ -247,7 +248,7 @@ def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
 
 def test_gather_finished_takes_only_finished_chunks():
     distributed = pytest.importorskip("distributed")
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
 
     def fail():
         raise ValueError("a chunk that fails")
@@ -446,7 +447,7 @@ def test_a_signal_stops_a_parallel_sweep_quietly(tmp_path, signum, status):
 
 
 def test_a_linear_axis_is_numpys_linspace():
-    from contactsep.studies.sweep import LinearAxis
+    from contactsep.studies.sweep.spec import LinearAxis
     for start, stop, count in [(0.1, 0.5, 19), (0.1, 0.5, 1),
                                (0.3, 0.3, 5), (-2.0, 7.5, 1000),
                                (1e-3, 1.0, 99_991)]:

@@ -117,7 +117,7 @@ def test_without_matplotlib_nothing_is_computed_or_written(
 
 def test_study_chatter_draws_its_table(tmp_path, capsys, monkeypatch):
     pytest.importorskip("matplotlib")
-    from contactsep.studies import chatter
+    from contactsep.studies.thesis import chatter_table as chatter
     small = functools.partial(chatter.chatter_table, thicknesses=(0.25, 0.5),
                               modes=(4,), models=("appE", "newton"))
     monkeypatch.setattr(chatter, "chatter_table", small)

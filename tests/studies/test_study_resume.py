@@ -19,7 +19,7 @@ from planted_preload import CALLS, fake_zero_preload
 
 from contactsep.cli import main
 from contactsep.cli.studies import RESUMABLE
-from contactsep.studies import conclusions
+from contactsep.studies.thesis import conclusions
 from contactsep.studies.run_journal import RunJournal
 
 STUDIES = {
@@ -162,6 +162,6 @@ def test_resume_is_refused_where_it_keeps_nothing(planted, tmp_path,
 def test_the_resumable_studies_are_those_of_simulations():
     """Every study that runs its simulations on a pool takes --resume:
     the list equals the registries it is written from."""
-    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     assert set(RESUMABLE) == {"preload", "buttons", *CONCLUSIONS, *ADVICE}

@@ -10,9 +10,8 @@ import pytest
 from sweep_collect import Collect
 
 from contactsep.model import evaluate, thesis_design
-from contactsep.studies import runner, sweep
-
-#: Each result column and the Evaluation field it must equal.
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 RESULTS = {"y3_max_in": "y3_max", "t_max_s": "t_max", "psi_lb_s": "psi",
            "v0_in_s": "v0", "status": "status"}
 

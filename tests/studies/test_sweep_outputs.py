@@ -20,7 +20,9 @@ from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import SIZE_RANGE
-from contactsep.studies import runner, stops, sweep
+from contactsep.runs import stops
+from contactsep.studies.sweep import run as runner
+from contactsep.studies.sweep import spec as sweep
 from contactsep.studies.stats import wilson_interval
 
 

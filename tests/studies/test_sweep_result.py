@@ -15,8 +15,8 @@ import pytest
 
 import contactsep
 from contactsep.cli import main
-from contactsep.studies.sweep import SweepError
-from contactsep.studies.sweep_result import SweepResult
+from contactsep.studies.sweep.spec import SweepError
+from contactsep.studies.sweep.result import SweepResult
 
 pandas = pytest.importorskip("pandas")
 

@@ -164,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--png needs matplotlib (pip install "
                          "'contactsep[plot]')")
     from contactsep.chatter.numerics import DEFAULT_MODES
-    from contactsep.studies.verdict import chatter_verdict
+    from contactsep.studies.preload.verdict import chatter_verdict
 
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)

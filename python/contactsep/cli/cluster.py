@@ -2,7 +2,7 @@
 work on a Dask cluster (Dask's own two ways of naming a scheduler:
 ``distributed.Client(address)``, ``Client(scheduler_file=FILE)``).  The
 connection is made once every option is checked, and closed when the
-command ends (contactsep.studies.dask_run.connect: a scheduler that does
+command ends (contactsep.runs.dask_run.connect: a scheduler that does
 not answer is one line)."""
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ def connect(args: argparse.Namespace):
     """The Client of the scheduler the options name, or None."""
     if not given(args):
         return None
-    from contactsep.studies import dask_run
+    from contactsep.runs import dask_run
     if getattr(args, "scheduler_file", None):
         return dask_run.connect(scheduler_file=args.scheduler_file)
     return dask_run.connect(args.scheduler)
@@ -68,6 +68,6 @@ def cluster(args: argparse.Namespace):
         yield client
     finally:
         if client is not None:
-            from contactsep.studies import dask_run
+            from contactsep.runs import dask_run
             with dask_run.quiet_dask(), contextlib.suppress(Exception):
                 client.close(timeout=2)

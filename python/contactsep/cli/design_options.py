@@ -210,7 +210,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
         labels[field] = option
     apply_units(args, si)
     if getattr(args, "separator", "thesis") == "physical":
-        from contactsep.studies.separator_fit import PHYSICAL_SEPARATOR
+        from contactsep.studies.thesis.separator_fit import PHYSICAL_SEPARATOR
         for field, value in PHYSICAL_SEPARATOR.items():
             if field not in values:
                 values[field] = value
@@ -266,7 +266,7 @@ def fields_from_file(args: argparse.Namespace) -> set:
 
 #: The command whose default N is not the Design's -> where it is kept.
 _COMMAND_MODES = {"chatter": "contactsep.chatter.numerics",
-                  "preload": "contactsep.studies.preload"}
+                  "preload": "contactsep.studies.preload.chart"}
 
 
 def _default_modes(command):

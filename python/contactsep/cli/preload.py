@@ -1,6 +1,6 @@
 """``contactsep preload``: the smallest preload that keeps this design's
 circuit closed, its own error estimate, and the robust answer under
-tolerances (contactsep.studies.design_preload)."""
+tolerances (contactsep.studies.preload.command)."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from contactsep.cli.help import examples
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
 from contactsep.model.names import shown, shown_text, units_shown
-from contactsep.studies.preload_answer import robust_check_text, spans_text
+from contactsep.studies.preload.answer import robust_check_text, spans_text
 
 #: simulate()'s keywords that are options of the command.
 _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
@@ -29,8 +29,8 @@ _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep preload``."""
     from contactsep.chatter.simulate import DAMPINGS
-    from contactsep.studies.preload import DEFAULT_MODES, MODELS
-    from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+    from contactsep.studies.preload.chart import DEFAULT_MODES, MODELS
+    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
 
     parser = commands.add_parser(
         "preload", help="the smallest preload that keeps the circuit "
@@ -141,7 +141,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 def add_robust_options(parser: argparse.ArgumentParser) -> None:
     """The robust answer's options (--tolerance, --p-target, --samples,
     --seed), shared by ``preload`` and ``report``."""
-    from contactsep.studies.preload_robust import (
+    from contactsep.studies.preload.robust import (
         DEFAULT_P_TARGET,
         DEFAULT_SAMPLES,
         MAX_SAMPLES,
@@ -171,14 +171,14 @@ def tolerances_in_units(args) -> list:
     """--tolerance's texts with their bare numbers in the unit system of
     --units (SI: each given its SI unit, as every option's bare number
     is read in SI)."""
-    from contactsep.studies.sweep_axes import sample_in_si
+    from contactsep.studies.sweep.axes import sample_in_si
     if getattr(args, "units", "us") != "si":
         return list(args.tolerance)
     return [sample_in_si(text) for text in args.tolerance]
 
 
 def _p_target(text):
-    from contactsep.studies.preload_robust import (
+    from contactsep.studies.preload.robust import (
         DEFAULT_P_TARGET,
         check_p_target,
     )
@@ -193,8 +193,8 @@ def _p_target(text):
 
 def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
-    from contactsep.studies.preload import DEFAULT_MODES
-    from contactsep.studies.preload_robust import parse_tolerances
+    from contactsep.studies.preload.chart import DEFAULT_MODES
+    from contactsep.studies.preload.robust import parse_tolerances
 
     p_target = _p_target(args.p_target)
     overrides = design_overrides(args)
@@ -219,9 +219,9 @@ def run(args: argparse.Namespace) -> int:
 def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
-    from contactsep.studies.design_preload import journal_inputs, preload
-    from contactsep.studies.preload_verify import expected_runs
-    from contactsep.studies.stops import search_progress
+    from contactsep.runs.stops import search_progress
+    from contactsep.studies.preload.command import journal_inputs, preload
+    from contactsep.studies.preload.verify import expected_runs
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]

@@ -25,8 +25,8 @@ from contactsep.cli.values import integer
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep report``."""
-    from contactsep.studies.preload import DEFAULT_MODES
-    from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
+    from contactsep.studies.preload.chart import DEFAULT_MODES
+    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
 
     parser = commands.add_parser(
         "report", help="a design report: one HTML page",
@@ -65,9 +65,9 @@ def run(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace) -> int:
     from contactsep import __version__
     from contactsep.model import thesis_design
-    from contactsep.studies.design_preload import preload
+    from contactsep.studies.preload.command import preload
     from contactsep.studies.plots import require_matplotlib
-    from contactsep.studies.preload import DEFAULT_MODES
+    from contactsep.studies.preload.chart import DEFAULT_MODES
     from contactsep.studies.report import html_report, releases
 
     require_matplotlib()            # before any simulation

@@ -36,8 +36,8 @@ from contactsep.cli.study_runs import (
 )
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
-from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
-from contactsep.studies.sweep_checks import CHATTER_UNUSED
+from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+from contactsep.studies.sweep.checks import CHATTER_UNUSED
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
 DEFAULT_DPI = 100
@@ -47,8 +47,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep study``, then ``contactsep sweep``."""
     from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies import STUDIES
-    from contactsep.studies.preload import DEFAULT_MODES as PRELOAD_MODES
-    from contactsep.studies.preload import MODELS as PRELOAD_MODELS
+    from contactsep.studies.preload.chart import DEFAULT_MODES as PRELOAD_MODES
+    from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
 
     study = commands.add_parser(
         "study", help="regenerate a thesis figure or table",
@@ -166,8 +166,8 @@ def _need_matplotlib() -> None:
 
 def _compute(name: str, args, overrides: dict, journal=None):
     from contactsep.studies import OWN_FIELDS, STUDIES
-    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
-    from contactsep.studies.preload import FIXED as PRELOAD_FIXED
+    from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.preload.chart import FIXED as PRELOAD_FIXED
 
     # a --design file's value of a study's own field gives way to it (a
     # file from model --json lists every field: issue 31)
@@ -177,7 +177,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
         k in fields_from_file(args) and k in own.get(name, ()))}
     if name == "preload":
         overrides = drop_echoes(args, overrides, CHATTER_UNUSED)
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     if name in ADVICE:
         return recommendation_study(name, args, overrides, journal)
     searches = ("preload", *CONCLUSIONS)
@@ -214,7 +214,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
         if args.backend:
             raise InputError("study separator-fit computes the beams' "
                              "modes itself (no --backend)")
-        from contactsep.studies.separator_fit import separator_fit
+        from contactsep.studies.thesis.separator_fit import separator_fit
         return separator_fit(**overrides)
     if name == "chatter":
         if overrides or args.backend:
@@ -222,7 +222,7 @@ def _compute(name: str, args, overrides: dict, journal=None):
                              "runs the thesis rig for its five separators "
                              "and N = 4, 16, 32 (contactsep chatter runs "
                              "any design)")
-        from contactsep.studies.chatter import (
+        from contactsep.studies.thesis.chatter_table import (
             MODES,
             THICKNESSES,
             chatter_table,
@@ -257,8 +257,8 @@ def _study_targets(args, names) -> dict:
 
 def run_study(args: argparse.Namespace) -> int:
     from contactsep.studies import STUDIES
-    from contactsep.studies.conclusions import STUDIES as CONCLUSIONS
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
 
     names = list(STUDIES) if args.name == "all" else [args.name]
     searches = ("preload", *CONCLUSIONS, *ADVICE)

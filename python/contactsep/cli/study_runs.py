@@ -20,7 +20,7 @@ RESUMABLE = ("preload", "conclusion3", "conclusion5", "conclusion6",
 
 def conclusion4_study(args, overrides: dict):
     """study conclusion4: e_apparent of three contact laws."""
-    from contactsep.studies import restitution
+    from contactsep.studies.thesis import restitution
     overrides = dict(overrides)
     n_modes = overrides.pop("n_modes", restitution.MODES)
     if overrides or args.backend:
@@ -42,7 +42,7 @@ def conclusion4_study(args, overrides: dict):
 def buttons_study(args, overrides: dict, journal=None):
     """study buttons: open time and smallest preload against the
     button's shape and radius."""
-    from contactsep.studies import buttons
+    from contactsep.studies.thesis import buttons
     overrides = dict(overrides)
     n_modes = overrides.pop("n_modes", buttons.MODES)
     if overrides or args.backend or args.model:
@@ -72,8 +72,8 @@ def study_workers(args):
 def search_study(name: str, args, overrides: dict, journal=None):
     """study preload and conclusion3|5|6|7: three-beam simulations with
     the preload search; their own model, N (default 32) and workers."""
-    from contactsep.studies.conclusions import conclusion
-    from contactsep.studies.preload import DEFAULT_MODES, preload_chart
+    from contactsep.studies.thesis.conclusions import conclusion
+    from contactsep.studies.preload.chart import DEFAULT_MODES, preload_chart
     if args.backend:
         raise InputError(f"study {name} runs the chatter simulation (no "
                          f"--backend)")
@@ -81,7 +81,7 @@ def search_study(name: str, args, overrides: dict, journal=None):
     options = {"model": args.model or "hertz",
                "n_modes": overrides.pop("n_modes", DEFAULT_MODES),
                "workers": study_workers(args), "journal": journal}
-    from contactsep.studies.search_checks import SearchError
+    from contactsep.studies.preload.search_checks import SearchError
     try:
         with study_bar(args, None) as bar:
             if name == "preload":
@@ -105,7 +105,7 @@ def search_study(name: str, args, overrides: dict, journal=None):
 def recommendation_study(name: str, args, overrides: dict, journal=None):
     """study contact-points and materials (the thesis's recommendations
     3 and 4): three-beam simulations, Hertz contact; N and workers."""
-    from contactsep.studies.recommendations import STUDIES as ADVICE
+    from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     if args.backend or args.model or args.damping:
         raise InputError(f"study {name} runs the chatter simulation with "
                          f"Hertz contact (no --backend, --model or "
@@ -122,7 +122,7 @@ def recommendation_study(name: str, args, overrides: dict, journal=None):
 def study_bar(args, total):
     """A progress bar's update (or None) for a study of simulations:
     --progress auto (on a terminal), always, never; closed after."""
-    from contactsep.studies.stops import progress_bar
+    from contactsep.runs.stops import progress_bar
     enabled = {"auto": None, "always": True,
                "never": False}[getattr(args, "progress", "auto")]
     bar = progress_bar(total, enabled)

@@ -28,16 +28,16 @@ from contactsep.cli.unit_system import from_si
 from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError, printable
 from contactsep.output.pieces import PIECE_S
-from contactsep.studies.chatter_sweep import (
+from contactsep.studies.sweep.chatter import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
 from contactsep.studies.fields import SETTINGS
-from contactsep.studies.runner import WORKERS_PER_CORE, max_workers
-from contactsep.studies.runner import kept_note as runner_note
-from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE
-from contactsep.studies.sweep_axes import MAX_DESIGNS
-from contactsep.studies.sweep_checks import CHATTER_UNUSED
-from contactsep.studies.sweep_checks import MODELS as SWEEP_MODELS
+from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+from contactsep.studies.sweep.run import kept_note as runner_note
+from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE
+from contactsep.studies.sweep.axes import MAX_DESIGNS
+from contactsep.studies.sweep.checks import CHATTER_UNUSED
+from contactsep.studies.sweep.checks import MODELS as SWEEP_MODELS
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -156,7 +156,7 @@ def _failures(summary: dict, model: str) -> str:
     if model == "eq23":
         from contactsep.model.status import MESSAGES
     else:
-        from contactsep.studies.chatter_sweep import MESSAGES
+        from contactsep.studies.sweep.chatter import MESSAGES
     total = summary["n"] + summary["n_failed"]
     reasons = ", ".join(f"{count:,} {MESSAGES[code].split(':')[0]}"
                         for code, count in sorted(
@@ -233,9 +233,9 @@ def run_sweep(args: argparse.Namespace) -> int:
 
 def _run_sweep(args: argparse.Namespace) -> int:
     from contactsep.model.names import shown_data
-    from contactsep.studies import runner
-    from contactsep.studies.sweep import make_spec
-    from contactsep.studies.sweep_axes import (
+    from contactsep.studies.sweep import run as runner
+    from contactsep.studies.sweep.spec import make_spec
+    from contactsep.studies.sweep.axes import (
         parse_sample,
         parse_vary,
         sample_in_si,
@@ -322,7 +322,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
             sys.stdout.flush()
             why = ""
             if args.model != "eq23" and 2 in summary["n_failed_by_status"]:
-                from contactsep.studies.chatter_sweep import first_refusal
+                from contactsep.studies.sweep.chatter import first_refusal
                 first = first_refusal(spec)
                 why = f"; the first design: {first}" if first else ""
             raise InputError(f"{_failures(summary, args.model)}: every "

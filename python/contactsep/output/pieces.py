@@ -1,5 +1,5 @@
 """Long work cut into pieces by their measured time: the one sizing rule
-of a sweep's chunks (:class:`contactsep.studies.chunks.Chunks`) and of a
+of a sweep's chunks (:class:`contactsep.runs.chunks.Chunks`) and of a
 large batch's pieces (:func:`contactsep.model.evaluate.evaluate`).
 
 Python sees Ctrl-C and SIGTERM only between compiled calls, and a pool

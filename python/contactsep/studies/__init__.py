@@ -6,10 +6,11 @@ sweeps and tolerance studies, on the general model (contactsep.model).
 >>> s["y3_max_in"], s.to_pandas()      # (pandas optional)
 """
 
-from contactsep.studies import mode_share
-from contactsep.studies import figures, tables
-from contactsep.studies.mode_share import conclusion8
-from contactsep.studies.figures import (
+from contactsep.studies.thesis import mode_share
+from contactsep.studies import tables
+from contactsep.studies.thesis import figures
+from contactsep.studies.thesis.mode_share import conclusion8
+from contactsep.studies.thesis.figures import (
                                         convergence,
                                         fig5,
                                         fig6,

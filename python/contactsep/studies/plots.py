@@ -95,7 +95,7 @@ def require_matplotlib() -> None:
 
 
 def _recommendations() -> dict:
-    from contactsep.studies.recommendations import STUDIES
+    from contactsep.studies.thesis.recommendations import STUDIES
     return STUDIES
 
 
@@ -124,15 +124,15 @@ def save_png(study: Study, path, dpi: int = DPI) -> None:
         _write(plt, fig, path, dpi)
         return
     elif name == "buttons":
-        from contactsep.studies.buttons import draw
+        from contactsep.studies.thesis.buttons import draw
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 5.0))
         draw(axes, study)
     elif name == "conclusion4":
-        from contactsep.studies.restitution import draw
+        from contactsep.studies.thesis.restitution import draw
         fig, axes = plt.subplots(1, 2, sharey=True, figsize=(8.0, 4.0))
         draw(axes, study)
     elif name == "separator-fit":
-        from contactsep.studies.separator_fit import draw
+        from contactsep.studies.thesis.separator_fit import draw
         fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.0, 7.0))
         draw(axes, study)
     elif name in TABLES or name in CONCLUSION_AXES or \

@@ -159,7 +159,7 @@ def _p_open_figure(robust):
 
 
 def _verdict(answer) -> tuple[str, bool]:
-    """The answer's verdict line (contactsep.studies.verdict, without
+    """The answer's verdict line (contactsep.studies.preload.verdict, without
     the measured rerun time: the page's bytes do not depend on the
     machine's speed) and whether it is settled."""
     text = answer.verdict.text
@@ -245,7 +245,7 @@ def _robust_section(robust) -> list:
 def html_report(design, answer, releases, *, command: str,
                 version: str) -> str:
     """The page (a str) for ``design``: ``answer`` its
-    :class:`~contactsep.studies.preload_answer.PreloadAnswer`,
+    :class:`~contactsep.studies.preload.answer.PreloadAnswer`,
     ``releases`` ((title, ChatterResult), ...) the runs whose gaps it
     shows, ``command`` and ``version`` what made it."""
     verdict, settled = _verdict(answer)

@@ -29,7 +29,7 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.output import json_text
-from contactsep.studies.sweep import SweepSpec
+from contactsep.studies.sweep.spec import SweepSpec
 
 _CHUNK_FILE = re.compile(r"^(\d+)-(\d+)\.npz$")
 
@@ -52,7 +52,7 @@ def manifest(spec: SweepSpec) -> dict:
     other digits) and the digest of the code that computes them (an
     edited development install too: :mod:`.code_digest`)."""
     from contactsep import __version__
-    from contactsep.studies.code_digest import STUDIES, code_digest
+    from contactsep.runs.code_digest import STUDIES, code_digest
     return {"contactsep": __version__, "code_sha256": code_digest(STUDIES),
             "model": spec.model, "inputs": spec.inputs()}
 

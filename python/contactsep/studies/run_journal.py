@@ -10,10 +10,10 @@ simulation gives the same result whatever process runs it.  The journal,
 a directory (``.NAME.resume/`` beside the --csv file), holds
 ``manifest.json`` (what made the search: its inputs, the package version
 and the digest of the simulation code,
-:mod:`~contactsep.studies.code_digest`) and ``runs.jsonl``, one line per
+:mod:`~contactsep.runs.code_digest`) and ``runs.jsonl``, one line per
 finished simulation: a digest of its task (the function, the design, the
 model, every setting, the preload) and its result; a named task
-(:mod:`~contactsep.studies.preload_runs`) is digested as the plain tuple
+(:mod:`~contactsep.studies.preload.runs`) is digested as the plain tuple
 it replaced, and the code digest reads the simulation layers only, so a
 journal kept before the tasks were named is still answered from.  A
 line is written whole as its simulation ends, so a SIGKILL at any moment
@@ -73,7 +73,7 @@ def canonical(value):
 def task_key(function, task) -> str:
     """The digest that names one simulation: ``function`` (by module and
     name) applied to ``task``; a task with a ``key_tuple()`` (a
-    :class:`~contactsep.studies.preload_runs.PreloadRun`) by that tuple,
+    :class:`~contactsep.studies.preload.runs.PreloadRun`) by that tuple,
     so that its key is the one its plain tuple had."""
     if callable(getattr(task, "key_tuple", None)):
         task = task.key_tuple()
@@ -115,7 +115,7 @@ class RunJournal:
     def __init__(self, path: str | os.PathLike, inputs: dict,
                  label: str | None = None) -> None:
         from contactsep import __version__
-        from contactsep.studies.code_digest import code_digest
+        from contactsep.runs.code_digest import code_digest
         self.path = os.fspath(path)
         self.label = label or self.path
         self.results: dict = {}

@@ -1,5 +1,5 @@
 """The robust answer's rule and its early stop (``contactsep preload
---tolerance``; :mod:`contactsep.studies.preload_robust`).
+--tolerance``; :mod:`contactsep.studies.preload.robust`).
 
 A preload meets p_target when the upper end of the 95 % Wilson interval
 of its p_open (n_open of the n samples that ran) is at most p_target:

@@ -2,16 +2,16 @@
 (``contactsep preload``, ``contactsep.preload``; docs/preload.md, "The
 preload command").
 
-:func:`preload` runs the preload search of :mod:`contactsep.studies.preload`
+:func:`preload` runs the preload search of :mod:`contactsep.studies.preload.chart`
 (the ceiling first, scan, bisection to 1 %, every 0.99 % step from the
 answer to 2 times it simulated, and from 0.7 times it where the scan was
 not monotone or ``band_below`` asks) on one design, then its check at
 half the step and twice the modes, 2 % either side, searching again
 there only where it fails (the answer's own error estimate,
-``min_preload_change``: :mod:`contactsep.studies.preload_verify`), and,
+``min_preload_change``: :mod:`contactsep.studies.preload.verify`), and,
 given tolerances, the robust answer
-(:mod:`contactsep.studies.preload_robust`).  Every batch of simulations
-runs on the search's worker pool (:class:`~contactsep.studies.preload.
+(:mod:`contactsep.studies.preload.robust`).  Every batch of simulations
+runs on the search's worker pool (:class:`~contactsep.studies.preload.chart.
 Simulations`).  The simulation's settings (dt, t_end, damping, min_open,
 open_threshold, or any other keyword simulate() takes) pass through
 unchanged to every run.
@@ -25,17 +25,17 @@ import warnings
 from contactsep.chatter import simulate
 from contactsep.chatter.stack import largest_preload
 from contactsep.errors import ContactsepWarning, InputError
-from contactsep.studies.preload import (
+from contactsep.studies.preload.chart import (
     FINE_RATIO,
     MODELS,
     Simulations,
     limit_notes,
 )
-from contactsep.studies.preload_answer import (  # noqa: F401 (old home)
+from contactsep.studies.preload.answer import (  # noqa: F401 (old home)
     PreloadAnswer,
     spans_text,
 )
-from contactsep.studies.preload_checks import (  # noqa: F401 (old home)
+from contactsep.studies.preload.checks import (  # noqa: F401 (old home)
     MAX_PERTURBATION,
     check_converge,
     check_perturbation,
@@ -49,8 +49,8 @@ from contactsep.studies.preload_checks import (  # noqa: F401 (old home)
     search_notes,
     windows,
 )
-from contactsep.studies.preload_converge import MARGIN, MAX_MODES
-from contactsep.studies.preload_robust import (
+from contactsep.studies.preload.converge import MARGIN, MAX_MODES
+from contactsep.studies.preload.robust import (
     DEFAULT_P_TARGET,
     DEFAULT_SAMPLES,
     check_p_target,
@@ -58,7 +58,7 @@ from contactsep.studies.preload_robust import (
     parse_tolerances,
     robust_preload,
 )
-from contactsep.studies.preload_verify import search_design, verify_design
+from contactsep.studies.preload.verify import search_design, verify_design
 
 #: Where the answer moves with N or the step: it may be the threshold's
 #: own conditioning (docs/preload.md, "How well-posed the answer is").
@@ -104,7 +104,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         Check the answer at half the step and twice the modes for
         ``min_preload_change`` (default True): every 0.99 % step within
         2 % either side of it; where that fails, the whole search there
-        (:mod:`contactsep.studies.preload_verify`).
+        (:mod:`contactsep.studies.preload.verify`).
     converge : None, bool or int
         The answer converged to 2 % (``converged_*`` fields): where
         ``min_preload_change`` exceeds 2 %, the answer at 2N is checked
@@ -116,7 +116,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         ``verify`` is on and every member has the same N; otherwise no
         check).  True also searches again at 4N where the check fails,
         and so on up to checks at N = 128; an integer: up to checks at
-        that N (contactsep.studies.preload_converge); False: no check.
+        that N (contactsep.studies.preload.converge); False: no check.
         Needs ``verify`` and one N for every member.
     perturbation : float, optional
         A relative change r of y_s (0 < r <= 1e-3; 1e-6 is far below any

@@ -1,5 +1,5 @@
 """The parts of the design preload search that are not the search
-itself (:func:`contactsep.studies.design_preload.preload`): its
+itself (:func:`contactsep.studies.preload.command.preload`): its
 arguments checked (``perturbation``, ``converge``), its journal's
 manifest, the perturbed and converged answers' fields, and the answer's
 event windows and notes.
@@ -13,7 +13,7 @@ import math
 
 from contactsep.errors import InputError
 from contactsep.model.names import shown_text
-from contactsep.studies.preload import (
+from contactsep.studies.preload.chart import (
     BAND_HIGH,
     BAND_LOW,
     FINE_RATIO,
@@ -22,14 +22,14 @@ from contactsep.studies.preload import (
     min_preloads,
     search,
 )
-from contactsep.studies.preload_converge import (
+from contactsep.studies.preload.converge import (
     LEAST_REFINEMENT,
     MARGIN,
     converge_rows,
     largest_check,
     reachable,
 )
-from contactsep.studies.preload_robust import DEFAULT_P_TARGET
+from contactsep.studies.preload.robust import DEFAULT_P_TARGET
 from contactsep.studies.run_journal import RunJournal
 
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
@@ -80,7 +80,7 @@ def journal_inputs(design, model: str, settings: dict, *, tolerance=(),
                    verify=True, converge=None, perturbation=None,
                    band_below=False) -> dict:
     """What a search's journal must have been made with to be continued
-    (its manifest): :func:`~contactsep.studies.design_preload.preload`'s
+    (its manifest): :func:`~contactsep.studies.preload.command.preload`'s
     arguments that choose the simulations it asks for."""
     # band_below named only when asked: a journal of the default search
     # keeps the manifest it had before the option

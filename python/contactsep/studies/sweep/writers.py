@@ -15,9 +15,9 @@ from contactsep import output
 from contactsep.errors import InputError, printable
 from contactsep.model.names import shown_columns, shown_data, units_note
 from contactsep.output import json_text
-from contactsep.studies import chatter_sweep
+from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.studies.study import csv_comments
-from contactsep.studies.sweep import SweepSpec
+from contactsep.studies.sweep.spec import SweepSpec
 
 #: The first comment line of a sweep's CSV and its Parquet metadata.
 TITLE = "contactsep sweep of the general model (eq. 23) on the thesis design"

@@ -2,29 +2,29 @@
 preload whose probability of a discontinuity event, over a design's
 tolerances, is at most a target.
 
-The answer of :func:`contactsep.studies.design_preload.preload` is a
+The answer of :func:`contactsep.studies.preload.command.preload` is a
 threshold in a phase-sensitive system: a part made to its drawing's
 tolerances may open at a preload the nominal design keeps closed.  Here
 the tolerances are distributions of design fields, written as a sweep's
 ``--sample`` (``'d=normal(0.25,0.005)'``, ``'ys=uniform(0.45,0.55)'``;
-:func:`contactsep.studies.sweep_axes.parse_sample`), and the samples are
-the sweep's own draws (:func:`contactsep.studies.sweep.chunk_inputs`: the
+:func:`contactsep.studies.sweep.axes.parse_sample`), and the samples are
+the sweep's own draws (:func:`contactsep.studies.sweep.spec.chunk_inputs`: the
 same seed gives the same designs as ``contactsep sweep``).  The same
 samples are simulated at every preload tried (common random numbers),
-each through :func:`contactsep.studies.chatter_sweep.simulate_design`:
+each through :func:`contactsep.studies.sweep.chatter.simulate_design`:
 a sample the simulation refuses or cannot finish is counted as failed
 and left out of ``p_open``, as in a chatter sweep.
 
 A preload meets the target when the upper end of the 95 % Wilson
 interval of p_open = n_open / n (n: the samples that ran) is at most
-``p_target`` (:mod:`contactsep.studies.robust_rule`: the point estimate
+``p_target`` (:mod:`contactsep.studies.preload.robust_rule`: the point estimate
 would call 0 of 20 open "at most 1 %"); below
-:func:`~contactsep.studies.robust_rule.samples_needed` samples (381 for
+:func:`~contactsep.studies.preload.robust_rule.samples_needed` samples (381 for
 0.01) none can, and no robust search is run.  A preload's samples run in
 fixed index blocks, and once the samples still to run cannot change its
 decision the rest are not run: the same decision as all of them, so the
 same answer.  The answer is the preload search of
-:mod:`contactsep.studies.preload` on that test (scan 2^(k/4) lb from the
+:mod:`contactsep.studies.preload.chart` on that test (scan 2^(k/4) lb from the
 nominal answer, bisection to 1 %, meeting the target at the scan's steps
 to an octave above the last failing preload), its fine band
 being every preload of the fine grid (0.99 % steps) from the answer to
@@ -48,11 +48,11 @@ import numpy as np
 
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.studies import fields as design_fields
-from contactsep.studies.chatter_sweep import simulate_design
-from contactsep.studies.preload_converge import MARGIN
-from contactsep.studies.preload_runs import SampleRun
-from contactsep.studies.preload_search import fine_band, search
-from contactsep.studies.robust_rule import (
+from contactsep.studies.sweep.chatter import simulate_design
+from contactsep.studies.preload.converge import MARGIN
+from contactsep.studies.preload.runs import SampleRun
+from contactsep.studies.preload.search import fine_band, search
+from contactsep.studies.preload.robust_rule import (
     FIRST_BLOCK,
     block_stops,
     p_open_high,
@@ -60,7 +60,7 @@ from contactsep.studies.robust_rule import (
     settled,
 )
 from contactsep.studies.stats import wilson_interval
-from contactsep.studies.sweep import chunk_inputs, make_spec
+from contactsep.studies.sweep.spec import chunk_inputs, make_spec
 
 #: Samples of the tolerances unless asked: enough to show p_open <= 0.05
 #: (73 are), not 0.01 (381 are; --samples raises it).
@@ -208,7 +208,7 @@ def _plain(value):
 
 def _sample_run(task) -> tuple:
     """(n_events, status) of one sample at one preload (in a worker):
-    ``task`` a :class:`~contactsep.studies.preload_runs.SampleRun`."""
+    ``task`` a :class:`~contactsep.studies.preload.runs.SampleRun`."""
     fields, model, settings = task.design, task.model, task.sample_settings
     row = simulate_design(fields, model, {
         **settings, "stop_at_event": settings.get("stepper") != "fixed"
@@ -293,7 +293,7 @@ def robust_preload(design, model: str, settings: dict, spec, p_target,
     """The robust answer for ``design`` (a Design) simulated by ``model``
     with ``settings`` (simulate()'s keywords), the tolerances drawn by
     ``spec`` (:func:`parse_tolerances`), the runs on ``simulations``
-    (an open :class:`contactsep.studies.preload.Simulations`); the scan
+    (an open :class:`contactsep.studies.preload.chart.Simulations`); the scan
     starts near ``start`` lb (the nominal answer) and stops at
     ``ceiling`` lb.  ``nominal_events``: the preloads (lb) at which the
     nominal design had an event; those above an answer are tried too

@@ -8,10 +8,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from contactsep import output
-from contactsep.studies.frames import DataFrameWriter
-from contactsep.studies.runner import run_sweep
-from contactsep.studies.sweep import make_spec
-from contactsep.studies.writers import column_notes, title
+from contactsep.studies.sweep.frames import DataFrameWriter
+from contactsep.studies.sweep.run import run_sweep
+from contactsep.studies.sweep.spec import make_spec
+from contactsep.studies.sweep.writers import column_notes, title
 
 
 @dataclass(frozen=True)
@@ -138,7 +138,7 @@ def sweep(vary=(), sample=(), *, samples: int | None = None, seed: int = 0,
 
     Raises
     ------
-    contactsep.studies.sweep.SweepError
+    contactsep.studies.sweep.spec.SweepError
         A bad axis, distribution, field or setting (an InputError).
 
     Examples

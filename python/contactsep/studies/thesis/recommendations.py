@@ -5,9 +5,9 @@ itself."""
 
 from __future__ import annotations
 
-from contactsep.studies import contact_points, materials
+from contactsep.studies.thesis import contact_points
 
-#: name -> (study(**overrides, n_modes=, workers=, progress=) -> Study,
+from contactsep.studies.thesis import materials
 #: draw(axes, study), the fields it sets: field -> why).
 STUDIES = {
     "contact-points": (contact_points.contact_points, contact_points.draw,

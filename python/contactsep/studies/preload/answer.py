@@ -1,5 +1,5 @@
 """The answer of ``contactsep preload`` (:class:`PreloadAnswer`, from
-:func:`contactsep.studies.design_preload.preload`) and its outputs: the
+:func:`contactsep.studies.preload.command.preload`) and its outputs: the
 JSON dictionary, the commented CSV, the converged answer in words."""
 
 from __future__ import annotations
@@ -9,13 +9,13 @@ import math
 from dataclasses import dataclass
 
 from contactsep.model.names import shown, shown_key, shown_text
-from contactsep.studies.preload_robust import RobustPreload
+from contactsep.studies.preload.robust import RobustPreload
 
 
 @dataclass(frozen=True)
 class PreloadAnswer:
     """The smallest preload with no discontinuity event for one design
-    (:func:`contactsep.studies.design_preload.preload`)."""
+    (:func:`contactsep.studies.preload.command.preload`)."""
 
     #: The design searched, as given.
     design: object
@@ -33,7 +33,7 @@ class PreloadAnswer:
     #: (verify_min_preload_lb - answer) / answer (None: not verified, or
     #: no finite nonzero answer to compare): within 2 % where the check
     #: at half the step and twice the modes held, the whole search's
-    #: change where it failed (contactsep.studies.preload_verify).
+    #: change where it failed (contactsep.studies.preload.verify).
     min_preload_change: float | None
     #: The answer at half the step and twice the modes (None: not run):
     #: where the check there held (an event at one of the fine grid's
@@ -102,8 +102,8 @@ class PreloadAnswer:
 
     @property
     def verdict(self):
-        """The verdict (contactsep.studies.verdict)."""
-        from contactsep.studies.verdict import preload_verdict
+        """The verdict (contactsep.studies.preload.verdict)."""
+        from contactsep.studies.preload.verdict import preload_verdict
         return preload_verdict(self)
 
     def to_json_dict(self) -> dict:

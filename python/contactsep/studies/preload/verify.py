@@ -25,9 +25,9 @@ import dataclasses
 import math
 
 from contactsep.chatter.stack import largest_preload
-from contactsep.studies.preload_converge import MARGIN, window_answer
-from contactsep.studies.preload_runs import PreloadRun
-from contactsep.studies.preload_search import (
+from contactsep.studies.preload.converge import MARGIN, window_answer
+from contactsep.studies.preload.runs import PreloadRun
+from contactsep.studies.preload.search import (
     PER_OCTAVE,
     TOLERANCE,
     PreloadSearch,

@@ -30,7 +30,7 @@ import pkgutil
 #: The layers that compute a simulation's result.
 SIMULATION = ("restored", "model", "beams", "chatter")
 #: Those and the studies: what a sweep's columns depend on.
-STUDIES = (*SIMULATION, "studies")
+STUDIES = (*SIMULATION, "runs", "studies")
 #: Top-level modules of the package that every layer uses.
 _SHARED = ("constants", "errors", "units")
 
@@ -81,7 +81,7 @@ def code_digest(layers=SIMULATION) -> str:
 
     Examples
     --------
-    >>> from contactsep.studies.code_digest import code_digest
+    >>> from contactsep.runs.code_digest import code_digest
     >>> len(code_digest())
     64
     """

@@ -14,7 +14,7 @@ of the rattle, or an answer that moved down), every 0.25 % between it
 and the answer.
 
 A row that fails is searched again at 2N, dt/2 (the chart's whole
-search, :func:`contactsep.studies.preload.min_preloads`) and its new
+search, :func:`contactsep.studies.preload.chart.min_preloads`) and its new
 answer checked the same way at 4N, dt/4; up to :data:`MAX_MODES`.  A
 row is only searched again at an N whose own check fits under
 MAX_MODES, so a row that fails its last possible check keeps its
@@ -37,7 +37,7 @@ import numpy as np
 
 from contactsep.chatter.stack import smallest_dt
 from contactsep.errors import InputError
-from contactsep.studies.preload_runs import PreloadRun
+from contactsep.studies.preload.runs import PreloadRun
 
 #: How close the threshold at 2N, dt/2 must lie to a converged answer.
 MARGIN = 0.02
@@ -174,8 +174,8 @@ def converge_rows(make_designs, answers, n_modes, dt, model, settings,
     ``make_designs(n, rows)`` gives the designs of the rows (indices) at
     N = n; ``answers`` the chart's at ``n_modes`` and ``dt``;
     ``settings`` simulate()'s keywords but dt; ``sims`` an open
-    :class:`~contactsep.studies.preload.Simulations`; ``search_again``
-    the chart's search (:func:`contactsep.studies.preload.min_preloads`,
+    :class:`~contactsep.studies.preload.chart.Simulations`; ``search_again``
+    the chart's search (:func:`contactsep.studies.preload.chart.min_preloads`,
     given by the caller: this module sits beside it, not under it)."""
     state = [{"answer": float(a), "n": int(n_modes), "dt": float(dt),
               "check": 0, "held": False, "search": None,
@@ -219,7 +219,7 @@ def chart_columns(rows, make_designs, found, n_modes, dt, model, settings,
                   sims, max_modes=MAX_MODES, *, search_again):
     """The chart's converged columns and notes: ``rows`` its (d, y_s),
     ``found`` its searches at ``n_modes`` and ``dt``; returns
-    (columns, notes, answers) for :func:`~contactsep.studies.preload.
+    (columns, notes, answers) for :func:`~contactsep.studies.preload.chart.
     preload_chart` (answers: the RowAnswers, whose ``search`` is a
     row's search again)."""
     answers = converge_rows(make_designs, [r.min_preload_lb for r in found],

@@ -1,7 +1,7 @@
 """What ``--vary`` and ``--sample`` take: a sweep's axes (lists, or
 START:STOP:COUNT ranges held as :class:`LinearAxis`) and distributions,
 parsed from their texts and checked, each refusal one line naming the
-option; :func:`contactsep.studies.sweep.make_spec` builds the sweep from
+option; :func:`contactsep.studies.sweep.spec.make_spec` builds the sweep from
 them.
 """
 
@@ -17,7 +17,7 @@ from contactsep import units
 from contactsep.errors import InputError
 from contactsep.model.design import MAX_MODES
 from contactsep.studies import fields as design_fields
-from contactsep.studies.sweep_checks import SweepError
+from contactsep.studies.sweep.checks import SweepError
 
 #: Most designs a sweep may have: 1e12 takes weeks on a hundred cores
 #: and writes a 100 TB CSV; the designs are counted in Python integers

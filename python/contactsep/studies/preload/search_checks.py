@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.errors import InputError, shown
-from contactsep.studies.sweep_checks import CHATTER_UNUSED
+from contactsep.studies.sweep.checks import CHATTER_UNUSED
 
 
 class SearchError(InputError):
@@ -21,7 +21,7 @@ def check_workers(workers) -> None:
     ``distributed.Client`` (the simulations on its Dask cluster)."""
     if workers is None:
         return
-    from contactsep.studies.dask_run import is_client
+    from contactsep.runs.dask_run import is_client
     if is_client(workers):
         return
     if isinstance(workers, (bool, np.bool_)) or not isinstance(

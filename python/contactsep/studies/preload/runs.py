@@ -2,7 +2,7 @@
 one sample of a design's tolerances, at one preload.
 
 A batch of them runs on worker processes or a Dask cluster
-(:class:`contactsep.studies.preload.Simulations`), handed out the
+(:class:`contactsep.studies.preload.chart.Simulations`), handed out the
 costliest first, so that it ends with short runs on every worker rather
 than one long run while the others wait.  Their cost is their preload: a
 run with none is the cheapest, and while the preload keeps the lower
@@ -61,7 +61,7 @@ class PreloadRun:
 @dataclass(frozen=True)
 class SampleRun(PreloadRun):
     """One simulation of a sample of a design's tolerances (the robust
-    search, :mod:`contactsep.studies.preload_robust`): ``design`` the
+    search, :mod:`contactsep.studies.preload.robust`): ``design`` the
     sample's design fields (a dict), ``settings`` its own ``simulate()``
     keywords, the preload not among them.
     """
@@ -69,7 +69,7 @@ class SampleRun(PreloadRun):
     @property
     def sample_settings(self) -> dict:
         """The sample's settings with the preload, as
-        :func:`contactsep.studies.chatter_sweep.simulate_design` takes
+        :func:`contactsep.studies.sweep.chatter.simulate_design` takes
         them."""
         return {**self.settings, "preload": self.preload_lb}
 
@@ -81,7 +81,7 @@ class SampleRun(PreloadRun):
 
 def run_row(search, task: PreloadRun, event) -> tuple:
     """One simulation of a search as a row of the preload CSV
-    (:meth:`contactsep.studies.preload_answer.PreloadAnswer.csv_text`):
+    (:meth:`contactsep.studies.preload.answer.PreloadAnswer.csv_text`):
     ``(search, preload_lb, n_modes, dt_s, event)``; ``search`` the name
     of the search the run belongs to, or a function of the task giving
     it; ``dt_s`` the step the run was given (None: it took its design's

@@ -1,5 +1,5 @@
 """A batch of simulations on a Dask cluster (``contactsep preload
---scheduler``, the studies of :class:`~contactsep.studies.preload.
+--scheduler``, the studies of :class:`~contactsep.studies.preload.chart.
 Simulations`): the sweep's machinery of :mod:`dask_run` (the connection,
 the probe, the wait that tells a lost scheduler from a lost worker)
 applied to a list of tasks instead of a sweep's chunks.
@@ -12,7 +12,7 @@ to ``finished`` as it is fetched, so that a journal keeps it before the
 next ones are waited for.  A worker lost mid-batch
 costs its tasks, which Dask runs again (a simulation's result does not
 depend on where it runs); a scheduler lost mid-batch is one
-:class:`~contactsep.studies.dask_run.SchedulerLost` line, the results
+:class:`~contactsep.runs.dask_run.SchedulerLost` line, the results
 fetched before it kept by the journal.
 """
 
@@ -23,7 +23,7 @@ from concurrent.futures import CancelledError
 
 from contactsep.errors import InputError
 from contactsep.output import one_line
-from contactsep.studies import dask_run
+from contactsep.runs import dask_run
 
 
 def on_worker(function, task):
@@ -35,7 +35,7 @@ def on_worker(function, task):
 
 def _code() -> tuple[str, str]:
     from contactsep import __version__
-    from contactsep.studies.code_digest import code_digest
+    from contactsep.runs.code_digest import code_digest
     return __version__, code_digest()
 
 

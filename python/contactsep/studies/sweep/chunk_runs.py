@@ -1,6 +1,6 @@
 """Where a sweep's chunks are computed and how they come back, in order:
 in this process, on a local worker pool (restarted where a worker
-dies), or on a Dask cluster; :func:`contactsep.studies.runner.run_sweep`
+dies), or on a Dask cluster; :func:`contactsep.studies.sweep.run.run_sweep`
 drives them and streams the results to its writers.
 """
 
@@ -14,13 +14,14 @@ import time
 from concurrent.futures.process import BrokenProcessPool
 
 from contactsep.errors import InputError
-from contactsep.studies import chatter_sweep, dask_run
-from contactsep.studies.chunks import Chunks
-from contactsep.studies.dask_run import connect
-from contactsep.studies.pool import stop_pool, worker_pool
+from contactsep.runs import dask_run
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.runs.chunks import Chunks
+from contactsep.runs.dask_run import connect
+from contactsep.runs.pool import stop_pool, worker_pool
 from contactsep.studies.resume import load_columns, save_columns
-from contactsep.studies.stops import wait_for
-from contactsep.studies.sweep import Summary, SweepSpec, evaluate_chunk
+from contactsep.runs.stops import wait_for
+from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
 
 def evaluate(spec: SweepSpec, first: int, last: int) -> dict:
@@ -212,7 +213,7 @@ DASK_WINDOW_PER_WORKER = 4
 def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                   store):
     """As :func:`results_local`, the chunks on a Dask cluster
-    (contactsep.studies.dask_run).
+    (contactsep.runs.dask_run).
 
     The parent's loop is the limit on many workers (measured on 16:
     docs/performance.md): a result fetched alone costs a round trip to

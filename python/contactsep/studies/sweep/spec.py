@@ -5,12 +5,12 @@ A sweep is the thesis design with some fields varied over lists or ranges
 study); design i of the sweep is grid point i // K, sample i % K.  Each
 design is evaluated by a model: ``eq23`` (the general model, a chunk in
 one compiled batch), or ``hertz`` or ``newton`` (the three-beam chatter
-simulation, contactsep.studies.chatter_sweep, which may also vary the
+simulation, contactsep.studies.sweep.chatter, which may also vary the
 simulation's settings preload, min_open and damping).  Chunks are
 evaluated in this process, in a process pool on the local cores, or on
 a Dask cluster, and streamed in order to the output: memory is bounded
 by a few chunks whatever the size.  What --vary and --sample take is
-parsed in :mod:`contactsep.studies.sweep_axes`.
+parsed in :mod:`contactsep.studies.sweep.axes`.
 
 Samples are reproducible and independent of the chunking: sample k of a
 field is drawn from block k // SAMPLE_BLOCK of a generator seeded with
@@ -30,7 +30,7 @@ from contactsep.model.names import shown_data
 from contactsep.studies import fields as design_fields
 from contactsep.studies.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
-from contactsep.studies.sweep_checks import (
+from contactsep.studies.sweep.checks import (
     SweepError,
     check_chatter_modes,
     check_dt,
@@ -40,7 +40,7 @@ from contactsep.studies.sweep_checks import (
     check_elastic,
     check_used,
 )
-from contactsep.studies.sweep_axes import (
+from contactsep.studies.sweep.axes import (
     MAX_DESIGNS,
     LinearAxis,
     parse_sample,

@@ -31,7 +31,7 @@ from contactsep.model.names import shown_key, shown_text, units_note
 from contactsep.output import ComputationLost
 from contactsep.studies import fields as design_fields
 from contactsep.studies.stats import RunningMoments, wilson_interval
-from contactsep.studies.sweep import SweepSpec, chunk_inputs, count_failures
+from contactsep.studies.sweep.spec import SweepSpec, chunk_inputs, count_failures
 
 #: Output columns after the varied inputs (a contract: issue 16).
 RESULT_COLUMNS = ("first_impact_s", "first_impulse_lb_s",
@@ -100,7 +100,7 @@ def notes(model: str, dt=None) -> list[str]:
         "first_circuit_open_s nan: never open",
         "status 0 = ok, 2 invalid input, 3 overflow, 4 stepper failed, "
         "7 energy bound, 9 unconverged (energy check failed; results "
-        "kept, left out of p_open) (contactsep.studies.chatter_sweep); "
+        "kept, left out of p_open) (contactsep.studies.sweep.chatter); "
         "failed designs have nan results and n_events -1",
     ]
 

@@ -12,7 +12,7 @@ shape and radius the study reports, with the elastic law:
 * ``circuit_open_s``, ``n_events``: with no preload;
 * ``min_preload_lb``: the smallest lower-contact preload with no
   discontinuity event in the window (the preload chart's search,
-  contactsep.studies.preload).
+  contactsep.studies.preload.chart).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import design_lines
-from contactsep.studies.preload import Simulations, limit_notes, min_preloads
+from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, thesis_study_design
 
 #: The shapes and radii (in) of the study.

@@ -1,5 +1,5 @@
 """Running a sweep: its options checked, its chunks' results (computed
-locally or on a Dask cluster: :mod:`contactsep.studies.chunk_runs`)
+locally or on a Dask cluster: :mod:`contactsep.studies.sweep.chunk_runs`)
 streamed in order to writers, with a progress bar on a terminal, and its
 writers closed however it ends."""
 
@@ -11,8 +11,8 @@ import time
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
-from contactsep.studies import chatter_sweep
-from contactsep.studies.chunk_runs import (  # noqa: F401 - the runner's API
+from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.studies.sweep.chunk_runs import (  # noqa: F401 - the runner's API
     DASK_WINDOW_PER_WORKER,
     MAX_POOL_RESTARTS,
     chunk_result,
@@ -23,13 +23,13 @@ from contactsep.studies.chunk_runs import (  # noqa: F401 - the runner's API
     results_dask,
     results_local,
 )
-from contactsep.studies.chunks import Chunks
-from contactsep.studies.dask_run import (  # noqa: F401 - the runner's API
+from contactsep.runs.chunks import Chunks
+from contactsep.runs.dask_run import (  # noqa: F401 - the runner's API
     SCHEDULER_TIMEOUT_S,
     SchedulerLost,
     connect,
 )
-from contactsep.studies.pool import (  # noqa: F401 - the runner's API
+from contactsep.runs.pool import (  # noqa: F401 - the runner's API
     WORKERS_PER_CORE,
     max_workers,
     quiet_worker,
@@ -43,9 +43,9 @@ from contactsep.studies.resume import (  # noqa: F401 - the runner's API
     load_columns,
     save_columns,
 )
-from contactsep.studies.stops import StopRequests, progress_bar
-from contactsep.studies.sweep import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
-from contactsep.studies.writers import (  # noqa: F401 - the runner's API
+from contactsep.runs.stops import StopRequests, progress_bar
+from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
+from contactsep.studies.sweep.writers import (  # noqa: F401 - the runner's API
     COLUMNS_NOTE,
     TITLE,
     CsvWriter,
@@ -62,7 +62,7 @@ class SweepInterrupted(InputError):
     interrupted = True
 
 
-#: The pool workers' set-up (the name studies.preload imports).
+#: The pool workers' set-up (the name studies.preload.chart imports).
 _quiet_worker = quiet_worker
 
 
@@ -113,13 +113,13 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     chunk goes to every writer as it arrives (without writers each
     worker sends back its chunk's summary only).  Returns the summary
     (:meth:`Summary.as_dict`, or :meth:`ChatterSummary.as_dict
-    <contactsep.studies.chatter_sweep.ChatterSummary.as_dict>` for a
+    <contactsep.studies.sweep.chatter.ChatterSummary.as_dict>` for a
     chatter model; ``elapsed_s``; and ``inputs``: what made the sweep,
     :meth:`SweepSpec.inputs`).
 
     ``chunk_size``: the most designs a chunk has (default
     :func:`default_chunk_size`; chunks are sized by cost below it:
-    :class:`~contactsep.studies.chunks.Chunks`); ``threshold`` (in, eq23
+    :class:`~contactsep.runs.chunks.Chunks`); ``threshold`` (in, eq23
     only): also report P(max y3 > threshold);
     ``workers``: local processes (default: the usable cores; 1 runs in
     this process; at most WORKERS_PER_CORE a core); ``scheduler``: a Dask

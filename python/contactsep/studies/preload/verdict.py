@@ -182,7 +182,7 @@ def _nominal_verdict(answer) -> Verdict:
 
 
 def _robust_verdict(answer, r) -> Verdict:
-    from contactsep.studies.robust_rule import p_open_high
+    from contactsep.studies.preload.robust_rule import p_open_high
 
     if not r.shown:
         needed = r.samples_needed

@@ -36,7 +36,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import design_lines
-from contactsep.studies.preload import Simulations, limit_notes, min_preloads
+from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
 #: The positions of both contacts on the separator, as x / L2.
@@ -83,7 +83,7 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
         n_events, longest_open_s, max_lower_gap_in (and min_preload_lb,
         the same for both preloads' rows).
     """
-    from contactsep.studies.search_checks import (
+    from contactsep.studies.preload.search_checks import (
         check_modes,
         check_values,
         check_workers,

@@ -40,7 +40,7 @@ from contactsep.model.materials import (
     material_fields,
 )
 from contactsep.studies.fields import design_lines
-from contactsep.studies.preload import Simulations, limit_notes, min_preloads
+from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 
 #: Modes per member (as study contact-points).
@@ -88,7 +88,7 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
         E2_psi, gamma2_lb_in3, preload_lb, circuit_open_s, n_events,
         max_lower_gap_in (and min_preload_lb).
     """
-    from contactsep.studies.search_checks import (
+    from contactsep.studies.preload.search_checks import (
         check_modes,
         check_values,
         check_workers,

@@ -132,9 +132,9 @@ class DataFrameWriter:
 
     Examples
     --------
-    >>> from contactsep.studies.frames import DataFrameWriter
-    >>> from contactsep.studies.runner import run_sweep
-    >>> from contactsep.studies.sweep import make_spec
+    >>> from contactsep.studies.sweep.frames import DataFrameWriter
+    >>> from contactsep.studies.sweep.run import run_sweep
+    >>> from contactsep.studies.sweep.spec import make_spec
     >>> rows = DataFrameWriter()
     >>> summary = run_sweep(make_spec(vary=["h2=0.1:0.5:5"]),
     ...                     writers=[rows], workers=1, progress=False)

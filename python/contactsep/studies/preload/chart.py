@@ -3,7 +3,7 @@ and the chart built on it (``contactsep study preload``): the smallest
 lower-contact preload with no discontinuity event in the window.
 
 The search itself (scan, bisection to 1 %, the fine check from 0.7 to 2
-times the answer) is :func:`contactsep.studies.preload_search.search`;
+times the answer) is :func:`contactsep.studies.preload.search.search`;
 this module runs it on simulations (:class:`Simulations`,
 :func:`min_preloads`) and builds the chart (:func:`preload_chart`; the
 chart: the thesis rig for d = 0.125 ... 0.75 in and y_s = 0.25, 0.5,
@@ -29,16 +29,16 @@ from contactsep.chatter.stack import largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
-from contactsep.studies.pool import (
+from contactsep.runs.pool import (
     map_longest_first,
     stop_pool,
     usable_cores,
     worker_pool,
 )
-from contactsep.studies.preload_converge import chart_columns, largest_check
-from contactsep.studies.preload_runs import PreloadRun, run_row
-from contactsep.studies.runs_ahead import RunsAhead
-from contactsep.studies.preload_search import (
+from contactsep.studies.preload.converge import chart_columns, largest_check
+from contactsep.studies.preload.runs import PreloadRun, run_row
+from contactsep.studies.preload.runs_ahead import RunsAhead
+from contactsep.studies.preload.search import (
     BAND_HIGH,
     BAND_LOW,
     FINE_RATIO,
@@ -67,7 +67,7 @@ FIXED = {"h2": "its rows, d = 0.125-0.75 in",
 
 def _preload_of(task) -> float:
     """A task's cost, the order of a batch (pool.map_longest_first): a
-    :class:`~contactsep.studies.preload_runs.PreloadRun`'s preload (lb),
+    :class:`~contactsep.studies.preload.runs.PreloadRun`'s preload (lb),
     0 for any other task (a study's runs without one)."""
     return task.cost if isinstance(task, PreloadRun) else 0.0
 
@@ -75,7 +75,7 @@ def _preload_of(task) -> float:
 def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
     simulation; runs in a worker): ``task`` a
-    :class:`~contactsep.studies.preload_runs.PreloadRun`."""
+    :class:`~contactsep.studies.preload.runs.PreloadRun`."""
     from contactsep.chatter.simulate import (
         CoarseStepWarning,
         UnconvergedWarning,
@@ -103,7 +103,7 @@ class Simulations:
     caller's notes."""
 
     def __init__(self, workers=None, progress=None, journal=None):
-        from contactsep.studies.dask_run import is_client
+        from contactsep.runs.dask_run import is_client
         #: The Dask client the batches run on, or None (local).
         self.client = workers if is_client(workers) else None
         self.workers = 1 if self.client else workers or usable_cores()
@@ -129,7 +129,7 @@ class Simulations:
 
     def __enter__(self) -> "Simulations":
         if self.client is not None:
-            from contactsep.studies.dask_map import check_code, threads
+            from contactsep.runs.dask_map import check_code, threads
             check_code(self.client)
             self.ahead.capacity = threads(self.client)
         elif self.workers > 1:
@@ -173,7 +173,7 @@ class Simulations:
     def _run(self, function, tasks: list, finished=None,
              cost=_preload_of) -> list:
         if self.client is not None:
-            from contactsep.studies.dask_map import run_tasks
+            from contactsep.runs.dask_map import run_tasks
             order = sorted(range(len(tasks)), key=lambda i: -cost(tasks[i]))
             return run_tasks(self.client, function, tasks, order=order,
                              finished=finished, progress=self.progress,
@@ -224,7 +224,7 @@ class Simulations:
 
     def events(self, tasks: list) -> list:
         """Whether each of ``tasks``
-        (:class:`~contactsep.studies.preload_runs.PreloadRun`) has a
+        (:class:`~contactsep.studies.preload.runs.PreloadRun`) has a
         discontinuity event."""
         found = self.map(_simulate_event, tasks)
         self.log += [run_row(self.search, t, e) for t, e in zip(tasks, found)]
@@ -245,7 +245,7 @@ class Simulations:
 def search_runs(designs, model: str, settings: dict, tasks) -> list:
     """The runs of a batch of :func:`search` (its ``has_event``'s
     ``tasks``): each ``(row, preload)`` as a
-    :class:`~contactsep.studies.preload_runs.PreloadRun` of
+    :class:`~contactsep.studies.preload.runs.PreloadRun` of
     ``designs[row]`` simulated by ``model`` with ``settings`` at
     ``preload`` lb."""
     return [PreloadRun(designs[row], model, settings, preload)
@@ -296,7 +296,7 @@ def min_preloads(designs, model: str = "hertz", settings=None,
         raise InputError(f"model: found {model!r}, expected one of "
                          f"{', '.join(MODELS)}")
     settings = dict(settings or {})
-    from contactsep.studies.search_checks import check_designs, check_workers
+    from contactsep.studies.preload.search_checks import check_designs, check_workers
     designs = check_designs(designs)
     check_workers(workers)
 
@@ -344,11 +344,11 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ``progress(k)`` is called as k more simulations finish (a bar);
     ``converge``: each row checked at 2N, dt/2 and searched again where
     it fails, up to checks at N = 128 (or at the N given;
-    :mod:`contactsep.studies.preload_converge`);
+    :mod:`contactsep.studies.preload.converge`);
     ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
-    from contactsep.studies import search_checks as checks
+    from contactsep.studies.preload import search_checks as checks
     checks.check_search("preload", model, MODELS, n_modes, workers,
                         overrides, True)
     thicknesses = checks.check_values("thicknesses", thicknesses, "in")

@@ -1,7 +1,7 @@
 """The preload search itself: the smallest preload with no discontinuity
 event, from a function that says which preloads have one (the chart,
-:mod:`contactsep.studies.preload`, and ``contactsep preload``,
-:mod:`contactsep.studies.design_preload`, run it on simulations).
+:mod:`contactsep.studies.preload.chart`, and ``contactsep preload``,
+:mod:`contactsep.studies.preload.command`, run it on simulations).
 
 For each design (the chart: the thesis rig for d = 0.125 ... 0.75 in and
 y_s = 0.25, 0.5, 0.75 in) the search
@@ -195,7 +195,7 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
     highest grid value at or below it (module docstring, step 0).
     ``speculate(asked, tasks)`` before a scan or bisection batch of
     ``asked`` runs: the (row, preload) the next steps may ask for, most
-    likely first (:mod:`~contactsep.studies.runs_ahead`); the same runs
+    likely first (:mod:`~contactsep.studies.preload.runs_ahead`); the same runs
     are asked for with it as without.
     """
     if band_batch is not None and not (isinstance(band_batch, int)

@@ -11,7 +11,7 @@ recommends, on the thesis rig with y_s = 0.5 in, and sets beside eq.
   preload (the lower contact touching the separator, as in the thesis);
 * ``min_preload_lb``: the smallest lower-contact preload with no
   discontinuity event in the window (the preload chart's search,
-  contactsep.studies.preload) — how hard the design must press its
+  contactsep.studies.preload.chart) — how hard the design must press its
   lower contact to keep the circuit closed.
 
 Conclusion 3: a smaller coefficient of restitution (Hertz contact with
@@ -29,7 +29,7 @@ from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
 from contactsep.constants import LISTING_TAU_S
 from contactsep.studies.fields import column_name, design_lines
-from contactsep.studies.preload import (
+from contactsep.studies.preload.chart import (
     DEFAULT_MODES,
     MODELS,
     Simulations,
@@ -114,7 +114,7 @@ def conclusion(name: str, model: str = "hertz",
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
     from contactsep.errors import shown
-    from contactsep.studies.search_checks import SearchError, check_search
+    from contactsep.studies.preload.search_checks import SearchError, check_search
     if name not in STUDIES:
         raise SearchError(f"name: found {shown(name)}, expected one of "
                           f"{', '.join(STUDIES)}")
