@@ -39,7 +39,7 @@ from contactsep.studies.study import (
 #: The contact points x3/L3.
 RATIOS = np.round(np.arange(0.50, 1.0001, 0.01), 10)
 #: Modes per member (the share and n_maxima at N = 32 equal those at
-#: N = 64: tests/studies/test_conclusion8.py, slow).
+#: N = 64: tests/studies/thesis/test_conclusion8.py, slow).
 MODES = 32
 #: A maximum counts when it rises this fraction of max |y3| above the
 #: higher of the minima that separate it from higher maxima.

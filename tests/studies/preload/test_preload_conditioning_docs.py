@@ -5,7 +5,7 @@ window) and preload_conditioning_chart.csv (the thesis rigs at the
 preload chart's 0.06 s window and 5e-8 s step), written by
 benchmarks/preload_conditioning.py: each design's whole search on
 copies whose y_s differs by 1e-9 and 1e-6 of itself.  Reads files only;
-tests/studies/test_preload_perturbation.py confirms the steel relay's
+tests/studies/preload/test_preload_perturbation.py confirms the steel relay's
 ill-conditioning by direct runs."""
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pytest
 from design_family import FAMILY
 from test_preload_docs import section, table
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 STUDIES = {"own": ROOT / "docs" / "studies" / "preload_conditioning.csv",
            "0.06 s, 5e-8 s":
                ROOT / "docs" / "studies" / "preload_conditioning_chart.csv"}

@@ -19,7 +19,7 @@ from contactsep.errors import InputError
 
 pandas = pytest.importorskip("pandas")
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 COMMITTED = sorted((ROOT / "docs" / "studies").glob("*.csv"))
 
 

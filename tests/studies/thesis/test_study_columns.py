@@ -279,7 +279,7 @@ def test_every_column_is_checked_here():
                    "relative_difference", "experimental_cps"],
         "table3": ["d_in", "p_rad_s", "printed_Lc_in", "Lc_formula_in",
                    "relative_difference", "Lc_model_in"],
-        # checked in tests/studies/test_conclusion8.py (the share against
+        # checked in tests/studies/thesis/test_conclusion8.py (the share against
         # the cantilever's formulas, the swings against a naive count)
         "conclusion8": ["r", "x3_in", "first_mode_share", "n_maxima",
                         "y3_max_in"]}

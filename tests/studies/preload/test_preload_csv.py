@@ -21,7 +21,7 @@ import contactsep
 from contactsep.cli import main
 from contactsep.model import thesis_design
 from contactsep.studies.preload import chart as preload
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 GALLERY = ROOT / "examples" / "plot_02_preload.py"
 #: The columns, written out here (not imported from the code under test).
 COLUMNS = ["search", "preload_lb", "n", "n_open", "n_failed", "n_modes",

@@ -168,7 +168,7 @@ def test_the_studies_batches_reach_the_pool_costliest_first(
     runs in one batch: the preloaded ones (tens of times slower) are
     handed out first, whatever order the rows are in."""
     import importlib
-    module = importlib.import_module(f"contactsep.studies.{study}")
+    module = importlib.import_module(f"contactsep.studies.thesis.{study}")
     recorder = RecordingPool()
     handed = []
 

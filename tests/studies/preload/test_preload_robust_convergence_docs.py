@@ -16,7 +16,7 @@ from design_family import FAMILY
 from test_preload_conditioning_docs import by_design, g4, pct, rows
 from test_preload_docs import table
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 STUDY = ROOT / "docs" / "studies" / "preload_robust_convergence.csv"
 TESTED = ROOT / "docs" / "studies" / "preload_robust_convergence_tested.csv"
 #: The study's record (its tables), and the summary the preload page

@@ -17,7 +17,7 @@ from contactsep.model import thesis_design
 from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload import search as preload_search
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 COLUMNS = ["model", "n_modes", "d_in", "ys_in", "min_preload_lb"]
 
 

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 from test_preload_docs import section, table
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 STUDY = ROOT / "docs" / "studies" / "preload_family.csv"
 TITLE = "### The preload command on the family"
 HEADER = "| design | N | dt (s) | min preload (lb) | at 2N, dt/2 (lb) |"

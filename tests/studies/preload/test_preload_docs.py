@@ -14,7 +14,7 @@ import math
 import re
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 PAGE = ROOT / "docs" / "preload.md"
 CHART = ROOT / "docs" / "studies" / "preload.csv"
 
