@@ -1,5 +1,5 @@
 """Nanoseconds a Hertz step, free and preloaded, this tree against
-another (docs/performance.md, "The preloaded step"):
+another (docs/performance-contact.md, "The preloaded step"):
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_design_answer.py \\
         --base-python /path/to/base/venv/bin/python [--quick]

@@ -13,7 +13,7 @@ second half of the window, its range and the strongest frequency of its
 spectrum: a lower contact that stays pressed rings on its Hertz spring
 for the whole window (the elastic law has no damping), so its force is
 not smooth between impacts and the steps must follow the ringing
-(docs/performance.md, "Preloaded runs"); the last column is the depth
+(docs/performance-contact.md, "Preloaded runs"); the last column is the depth
 range with Flores damping calibrated to the design's e.
 
 CPU time of this process (``time.process_time``), so that other work on

@@ -1,5 +1,5 @@
 """Efficiency at 16, 64 and 256 workers, projected from measured costs
-(docs/performance.md, "Scaling on paper"):
+(docs/performance-parallel.md, "Scaling on paper"):
 
     python benchmarks/scaling_projection.py [--parent-ms 0.5] [--save]
 
