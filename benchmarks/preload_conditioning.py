@@ -1,6 +1,6 @@
 """How well-posed is the smallest preload?  Each design's whole search
 repeated on copies of it whose release deflection y_s differs by parts
-per billion or per million (docs/preload.md, "How well-posed the
+per billion or per million (docs/preload-family.md, "How well-posed the
 answer is"; issue 25):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/preload_conditioning.py \\

@@ -1,6 +1,6 @@
 """The smallest preload of each design of the test family at the default
 N, and how far it moves at twice the modes and half the step (issue 25,
-items 2 and 5; docs/preload.md, "The preload command on the family"):
+items 2 and 5; docs/preload-family.md, "The preload command on the family"):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/preload_family.py \\
         [--designs NAME,NAME] [--workers K] [--json F] [--csv F]

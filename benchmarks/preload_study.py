@@ -1,4 +1,4 @@
-"""The preload chart's numbers checked (docs/preload.md, "The preload
+"""The preload chart's numbers checked (docs/preload-family.md, "The preload
 chart"), on the local cores:
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/preload_study.py [PART ...]

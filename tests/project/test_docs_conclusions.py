@@ -127,7 +127,7 @@ def test_the_committed_study_is_what_the_code_computes(name):
 def physical_section() -> str:
     """The preload page's last section: the physical separator's chart
     and conclusions."""
-    text = (ROOT / "docs" / "preload.md").read_text()
+    text = (ROOT / "docs" / "preload-family.md").read_text()
     start = text.index("### With the physical separator")
     end = re.search(r"^## ", text[start:], flags=re.MULTILINE)
     return text[start:start + end.start() if end else len(text)]

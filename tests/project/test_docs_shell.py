@@ -17,7 +17,8 @@ import pytest
 
 from conftest import ROOT
 
-PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
+         *sorted((ROOT / "docs" / "howto").glob("*.md"))]
 #: Commands checked for syntax only: installing, measuring, and the
 #: robust preload search at 381 samples, shown with its cost (hours).
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/",
@@ -32,7 +33,8 @@ SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
 COMMAND_TIMEOUT_S = 1700
 #: Pages whose commands belong to a layer that changes them often (the
 #: chatter layer's own page): run in the slow set.
-SLOW_PAGES = {"chatter.md", "numerics.md", "preload.md"}
+SLOW_PAGES = {"chatter.md", "numerics.md", "preload.md",
+              "preload-family.md"}
 ACTIVATE = ". .venv/bin/activate"
 
 
@@ -58,11 +60,13 @@ def cases():
                 slow = page.name in SLOW_PAGES or any(
                     word in command for word in SLOW)
                 marks = [pytest.mark.slow] if slow else []
+                where = page.relative_to(ROOT)
                 yield pytest.param(command, marks=marks,
-                                   id=f"{page.name}: {command[:60]}")
+                                   id=f"{where}: {command[:60]}")
 
 
-@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+@pytest.mark.parametrize("page", PAGES,
+                         ids=lambda p: str(p.relative_to(ROOT)))
 def test_every_shell_block_is_valid_bash(page):
     for block in blocks(page):
         done = subprocess.run(["bash", "-n"], input=block, text=True,

@@ -163,7 +163,7 @@ def test_the_search_at_n4_holds_3_percent_either_side():
     """Two rows at N = 4 where it holds.  At N = 4 "closed" is far from
     monotone: for 10 of the 15 rows the answer sits at the top of an
     open window narrower than 3 %, and 3 % below it is closed too
-    (docs/preload.md, "The preload chart"); at N = 32 the 14 rows with
+    (docs/preload-family.md, "The preload chart"); at N = 32 the 14 rows with
     an answer hold (test_the_committed_chart_holds_3_percent_either_side)."""
     rows = [(0.5, 0.25), (0.75, 0.5)]
     found = preload.min_preloads(
@@ -256,7 +256,7 @@ def test_the_committed_chart_is_what_the_code_computes():
 
 
 #: Rows of the committed chart (Hertz, N = 32) where "closed" is not
-#: monotone 3 % below the answer (docs/preload.md, "The preload chart"):
+#: monotone 3 % below the answer (docs/preload-family.md, "The preload chart"):
 #: there the preload 3 % below has no event either.
 NOT_MONOTONE_BELOW = set()
 #: Rows with no answer: an event at 26.9 lb, and the simulation takes at

@@ -1,4 +1,4 @@
-"""What docs/preload.md says of how well-posed the smallest preload is
+"""What docs/preload-family.md says of how well-posed the smallest preload is
 (issue 25; "How well-posed the answer is") against the committed studies
 docs/studies/preload_conditioning.csv (each design's own step and
 window) and preload_conditioning_chart.csv (the thesis rigs at the

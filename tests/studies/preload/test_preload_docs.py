@@ -1,4 +1,4 @@
-"""What docs/preload.md says of the preload chart against the committed
+"""What docs/preload-family.md says of the preload chart against the committed
 chart (docs/studies/preload.csv, issue 25 item 5): the table of "The
 preload chart", the headline row, the convergence table of
 "Convergence of the answer" (each row's N, step and check at 2N and
@@ -15,7 +15,7 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-PAGE = ROOT / "docs" / "preload.md"
+PAGE = ROOT / "docs" / "preload-family.md"
 CHART = ROOT / "docs" / "studies" / "preload.csv"
 
 

@@ -1,4 +1,4 @@
-"""What docs/preload.md says of the preload command on the design family
+"""What docs/preload-family.md says of the preload command on the design family
 (issue 25, items 2 and 6; "The preload command on the family") against
 the committed study docs/studies/preload_family.csv, written by
 benchmarks/preload_family.py (``contactsep.preload(design,

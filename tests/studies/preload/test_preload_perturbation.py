@@ -4,7 +4,7 @@ same settings.  A planted threshold of known sensitivity to
 y_s, the command's outputs and refusals, and on the steel relay direct
 runs showing that its threshold is ill-conditioned: designs whose y_s
 differ by parts per billion disagree, 3-11 % above the answer, on
-whether the circuit opens (docs/preload.md, "How well-posed the answer
+whether the circuit opens (docs/preload-family.md, "How well-posed the answer
 is")."""
 
 from __future__ import annotations

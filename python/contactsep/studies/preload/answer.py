@@ -79,7 +79,7 @@ class PreloadAnswer:
     #: the largest abs(perturbed - answer) / answer (None: no finite
     #: nonzero answer to compare).  A spread far above r says the
     #: threshold itself is ill-conditioned: no N or step converges the
-    #: answer closer than that (docs/preload.md, "How well-posed the
+    #: answer closer than that (docs/preload-family.md, "How well-posed the
     #: answer is").
     perturbation: float | None = None
     perturbed_min_preload_lb: tuple = ()

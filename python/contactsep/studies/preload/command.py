@@ -61,7 +61,7 @@ from contactsep.studies.preload.robust import (
 from contactsep.studies.preload.verify import search_design, verify_design
 
 #: Where the answer moves with N or the step: it may be the threshold's
-#: own conditioning (docs/preload.md, "How well-posed the answer is").
+#: own conditioning (docs/preload-family.md, "How well-posed the answer is").
 _HINT = ("; if it is the threshold itself, ill-conditioned, more modes "
          "will not settle it: --perturbation 1e-6 measures that")
 #: simulate()'s keywords the search sets itself.
@@ -126,7 +126,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         or window the simulation chooses from the design moves by
         about r with it).  Where
         the spread is far above r the threshold is ill-conditioned, and
-        no N or step converges it closer (docs/preload.md, "How
+        no N or step converges it closer (docs/preload-family.md, "How
         well-posed the answer is").  Two more searches at N.
     band_below : bool
         The fine band from 0.7 times the answer in every search at N

@@ -1,5 +1,5 @@
 """The preload chart converged row by row (``contactsep study preload
---converge``; issue 25, docs/preload.md "Convergence of the answer").
+--converge``; issue 25, docs/preload-family.md "Convergence of the answer").
 
 A row's answer at N modes and step dt is **converged to 2 %** when, at
 2N and dt/2, a preload 2 % above it has no discontinuity event and one
@@ -8,7 +8,7 @@ within 2 % of the answer, unless a window of events lies further above
 it at 2N (the check tries 2 % either side only, not the search's fine
 band to twice the answer: becu_light's answer held its check at
 N = 128 and a whole search there found a window 3.6 % above it,
-docs/preload.md "The preload command on the family").  The
+docs/preload-family.md "The preload command on the family").  The
 preload 2 % below is tried first; where it is closed (a closed window
 of the rattle, or an answer that moved down), every 0.25 % between it
 and the answer.

@@ -35,7 +35,7 @@ depends only on the highest event and the tested preloads above it);
 it finds the closed windows below it, which a monotone scan gives no
 sign of.
 
-"Closed" is not monotone in preload (docs/preload.md, "The preload
+"Closed" is not monotone in preload (docs/preload-family.md, "The preload
 chart"): below the highest preload with an event a smaller one may be
 closed, and short open windows lie between the scan's values.  The
 answer is therefore the smallest tested preload above which every
