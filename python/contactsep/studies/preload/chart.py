@@ -161,7 +161,7 @@ class Simulations:
             planned(self.phase or (self.search if isinstance(
                 self.search, str) else "perturbed"), len(batch))
         run = self._run if self.journal is None else self._run_journaled
-        results = run(function, batch, cost=cost)
+        results = run(function, batch, cost=cost) if batch else []
         for i, result in zip(todo, results):
             out[i] = result
         self.ahead.keep(extra, results[len(todo):])

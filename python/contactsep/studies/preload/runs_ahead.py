@@ -14,7 +14,7 @@ The answer cannot depend on this: a search asks for exactly the runs it
 asks for without it, in the same order, and each run's result is the
 same function of the same task wherever and whenever it ran.  A run made
 ahead that the search never asks for is in no answer, log or CSV (it is
-counted apart, ``unused``); a journal keeps it like any other, so that a
+counted apart: ``made`` less ``used``); a journal keeps it like any other, so that a
 resumed search does not run it again.
 """
 
@@ -34,11 +34,6 @@ class RunsAhead:
         #: Runs made ahead, and how many of them a batch then asked for.
         self.made = 0
         self.used = 0
-
-    @property
-    def unused(self) -> int:
-        """Runs made ahead that no batch asked for (so far)."""
-        return self.made - self.used
 
     def room(self, asked: int) -> int:
         """How many runs fit beside a batch of ``asked`` runs in its last
@@ -84,7 +79,7 @@ class RunsAhead:
         batch's own runs, none of which is run twice); the queue is then
         empty.  Beside no runs (a batch answered from here), the queue
         waits for the next batch that runs."""
-        if not tasks:
+        if not tasks or not self._queued:
             return []
         queued, self._queued = self._queued, []
         asked = {task_key(function, task) for task in tasks}
