@@ -74,15 +74,6 @@ def check_code(client) -> None:
                          f"start them from this environment")
 
 
-def threads(client) -> int:
-    """The threads the cluster's workers run tasks on now (at least 1):
-    how many runs a batch can have in flight at once."""
-    try:
-        return max(sum(int(n) for n in client.nthreads().values()), 1)
-    except Exception:   # noqa: BLE001 - a count only; the runs will tell
-        return 1
-
-
 #: Seconds between two fetches of the results that have arrived: each
 #: fetch is a round trip to the scheduler, so results arriving faster
 #: (short simulations on many workers) come in one fetch of many.

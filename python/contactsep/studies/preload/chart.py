@@ -129,9 +129,9 @@ class Simulations:
 
     def __enter__(self) -> "Simulations":
         if self.client is not None:
-            from contactsep.runs.dask_map import check_code, threads
-            check_code(self.client)
-            self.ahead.capacity = threads(self.client)
+            from contactsep.runs import dask_map, dask_run
+            dask_map.check_code(self.client)
+            self.ahead.capacity = dask_run.threads(self.client)
         elif self.workers > 1:
             self._pool = worker_pool(self.workers)
             self.ahead.capacity = self.workers
