@@ -39,31 +39,40 @@ def planted_event(task) -> bool:
     return task.preload_lb < t or 1.3 * t < task.preload_lb < 1.32 * t
 
 
-@pytest.fixture
-def planted(monkeypatch):
-    """The planted simulations on a RecordingPool (each task run in this
-    process as it is handed out), which records what each batch sent to
-    the workers: the count the busy share is taken from, apart from the
-    Simulations' own bookkeeping."""
+class SendingPool(RecordingPool):
+    """A RecordingPool that records what each batch sent to it (a batch
+    begins where :func:`plant`'s map_longest_first opens one)."""
+
+    def submit(self, function, task):
+        self.batches[-1].append(task.preload_lb)
+        return super().submit(function, task)
+
+
+def plant(setattr) -> list:
+    """The planted simulations on SendingPools (each task run in this
+    process as it is handed out); ``setattr(module, name, value)``
+    (pytest's monkeypatch, or the builtin).  Returns the pools made, the
+    count the busy share is taken from, apart from the Simulations' own
+    bookkeeping."""
     pools = []
     real = preload.map_longest_first
 
-    class Recording(RecordingPool):
-        def submit(self, function, task):
-            self.batches[-1].append(task.preload_lb)
-            return super().submit(function, task)
-
     def pool(workers):
-        pools.append(Recording())
+        pools.append(SendingPool())
         return pools[-1]
 
     def batch(pool, *args, **kwargs):
         pool.batches.append([])
         return real(pool, *args, **kwargs)
-    monkeypatch.setattr(preload, "worker_pool", pool)
-    monkeypatch.setattr(preload, "map_longest_first", batch)
-    monkeypatch.setattr(preload, "_simulate_event", planted_event)
+    setattr(preload, "worker_pool", pool)
+    setattr(preload, "map_longest_first", batch)
+    setattr(preload, "_simulate_event", planted_event)
     return pools
+
+
+@pytest.fixture
+def planted(monkeypatch):
+    return plant(monkeypatch.setattr)
 
 
 def sent(pool) -> list:
