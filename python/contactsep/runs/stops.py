@@ -59,6 +59,15 @@ class SearchProgress:
     def __call__(self, finished: int) -> None:
         self.bar.update(finished)
 
+    def estimated(self, estimate) -> None:
+        """The search's estimate before its first run (an object with
+        ``runs`` and ``line()``: :class:`contactsep.studies.preload.
+        estimate.SearchEstimate`): its line written above the bar, its
+        runs the bar's total where they pass the first estimate."""
+        if estimate.runs > (self.bar.total or 0):
+            self.bar.total = estimate.runs
+        self.bar.write(estimate.line(), file=sys.stderr)
+
     def planned(self, phase: str, count: int) -> None:
         """A batch of ``count`` runs of ``phase`` is about to run."""
         self.asked += count

@@ -20,6 +20,7 @@ unchanged to every run.
 from __future__ import annotations
 
 import math
+import time
 import warnings
 
 from contactsep.chatter import simulate
@@ -58,7 +59,12 @@ from contactsep.studies.preload.robust import (
     parse_tolerances,
     robust_preload,
 )
-from contactsep.studies.preload.verify import search_design, verify_design
+from contactsep.studies.preload.estimate import run_seconds, search_estimate
+from contactsep.studies.preload.verify import (
+    expected_runs,
+    search_design,
+    verify_design,
+)
 
 #: Where the answer moves with N or the step: it may be the threshold's
 #: own conditioning (docs/preload-family.md, "How well-posed the answer is").
@@ -70,9 +76,25 @@ _OWN = ("preload", "samples", "single_impulse", "model", "design")
 
 def _probe(design, model, settings):
     """One run at no preload here: the design and settings checked (an
-    InputError in one line, not in a worker), the step simulate() takes."""
-    return simulate(design, model=model, preload=0.0, samples=1,
-                    single_impulse=False, **settings)
+    InputError in one line, not in a worker), the step simulate() takes,
+    and the estimated seconds of a run at that step (:mod:`estimate`)."""
+    start = time.perf_counter()
+    result = simulate(design, model=model, preload=0.0, samples=1,
+                      single_impulse=False, **settings)
+    return result, run_seconds(result, time.perf_counter() - start)
+
+
+def _tell_estimate(progress, run_s, check_run_s, verify, workers) -> None:
+    """The search's estimated time on ``workers``, before its first run,
+    to a progress that takes it (``progress.estimated``:
+    :class:`contactsep.runs.stops.SearchProgress`)."""
+    told = getattr(progress, "estimated", None)
+    if told is None:
+        return
+    search_runs = expected_runs(verify=False)
+    check_runs = expected_runs() - search_runs if verify else 0
+    told(search_estimate(search_runs, run_s, check_runs, check_run_s,
+                         workers))
 
 
 def preload(design, model: str = "hertz", *, tolerance=(),
@@ -169,7 +191,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         raise InputError("--samples: the draws of --tolerance; give a "
                          "tolerance")
     perturbation = check_perturbation(perturbation)
-    probe = _probe(design, model, settings)
+    probe, run_s = _probe(design, model, settings)
+    check_run_s = 0.0
     max_check = check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
     notes = []
@@ -178,7 +201,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         # the search at N has run
         finer = design.replace(n_modes=doubled_modes(design.n_modes))
         verify_settings = {**settings, "dt": probe.dt / 2}
-        _probe(finer, model, verify_settings)
+        check_run_s = _probe(finer, model, verify_settings)[1]
     inputs = journal_inputs(design, model, settings, tolerance=tolerance,
                             p_target=p_target, samples=samples, seed=seed,
                             verify=verify, converge=converge,
@@ -186,6 +209,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                             band_below=band_below)
     with opened_journal(journal, inputs) as kept, \
             Simulations(workers, progress=progress, journal=kept) as sims:
+        _tell_estimate(progress, run_s, check_run_s, verify,
+                       sims.ahead.capacity)
         # with tolerances the band below too: the robust search tries
         # the nominal design's events above its own answer
         found = search_design(design, model, settings, sims, ceiling,
