@@ -119,16 +119,19 @@ def test_the_answer_and_the_runs_asked_for_do_not_depend_on_w(name,
 
 
 @pytest.mark.parametrize("name", sorted(FAMILY))
-def test_eight_workers_are_kept_busy(name, planted):
-    """At least 80 % of 8 workers' slots hold a run, and at least 20
-    points more than the same search without runs ahead (its bisection
-    steps are one run each, its scans four: 61-65 % here)."""
+@pytest.mark.parametrize("workers", [8, 16])
+def test_eight_and_sixteen_workers_are_kept_busy(name, workers, planted):
+    """At least 80 % of 8 or 16 workers' slots hold a run, and at least
+    20 points more than the same search without runs ahead (its
+    bisection steps are one run each, its scans four: 61-65 % at 8
+    workers, 39-44 % at 16), and most runs made ahead are asked for."""
     design = FAMILY[name]
     _, alone = searched(design, 1)
-    searched(design, 8)
-    share = busy_share(sent(planted[-1]), 8)
+    _, sims = searched(design, workers)
+    share = busy_share(sent(planted[-1]), workers)
     assert share >= 0.8
-    assert share >= busy_share(alone.batches, 8) + 0.2
+    assert share >= busy_share(alone.batches, workers) + 0.2
+    assert sims.ahead.used >= 0.75 * sims.ahead.made
 
 
 def test_a_journal_keeps_the_runs_made_ahead(planted, tmp_path):
@@ -164,6 +167,35 @@ def test_the_midpoints_ahead_hold_every_later_bisection_step():
             a, b = (m, b) if m < t else (a, m)
         named = {p for _, p in ahead}
         assert set(steps[1:6]) <= named
+
+
+def test_the_scan_s_last_batch_names_the_first_midpoint():
+    """Brute force over random thresholds and ceilings: the search's
+    batch after its last scan batch (the bisection's first midpoint) is
+    among the runs named ahead of that scan batch."""
+    rng = random.Random(5)
+    for _ in range(300):
+        t = math.exp(rng.uniform(math.log(0.01), math.log(50.0)))
+        ceiling = t * rng.uniform(1.5, 40.0)
+        batches, named = [], []
+
+        def has_event(tasks):
+            batches.append([p for _, p in tasks])
+            return [p < t for _, p in tasks]
+
+        def speculate(asked, tasks):
+            named.append((len(batches), {p for _, p in tasks}))
+        preload_search.search(1, has_event, ceilings=[ceiling],
+                              ceiling_first=True, band=False,
+                              speculate=speculate)
+        on_grid = [i for i, b in enumerate(batches)
+                   if all(p == 0.0 or abs(4 * math.log2(p) -
+                          round(4 * math.log2(p))) < 1e-9 for p in b)]
+        last_scan = max(on_grid)
+        if last_scan + 1 >= len(batches):
+            continue                    # no bisection (answer on the grid)
+        ahead = dict(named)[last_scan]
+        assert set(batches[last_scan + 1]) <= ahead, (t, ceiling)
 
 
 def test_room_fills_the_last_round():

@@ -352,6 +352,31 @@ def _octave_above(tested: dict, top_k: int) -> list:
 
 def _scan_ahead(scans, zeros, tops, tasks) -> list:
     """The scan's next octave after ``tasks`` if all closed, then if all
+    events; the bisection's first midpoint in the bracket the scan holds
+    now (where ``tasks``, all closed, end the scan); then its first
+    midpoints between adjacent grid values of ``tasks`` and the scan
+    (where a bracket may form there)."""
+    rows = sorted({row for row, _ in tasks})
+    held = [(row, math.sqrt(lo * hi)) for row in rows
+            for lo, hi in [_bracket(scans[row], zeros[row])]
+            if lo > 0.0 and math.isfinite(hi)]
+    return _octaves_ahead(scans, zeros, tops, tasks) + held + [
+        (row, math.sqrt(grid(k) * grid(k + 1))) for row in rows
+        for k in _adjacent(scans[row], {
+            round(PER_OCTAVE * math.log2(p)) for r, p in tasks
+            if r == row and p > 0.0})]
+
+
+def _adjacent(scan: dict, asked: set) -> list:
+    """The grid indices k with k and k + 1 both scanned or asked, one of
+    them asked: where a bracket of the answer may form."""
+    known = set(scan) | asked
+    return [k for k in sorted(known)
+            if k + 1 in known and (k in asked or k + 1 in asked)]
+
+
+def _octaves_ahead(scans, zeros, tops, tasks) -> list:
+    """The scan's next octave after ``tasks`` if all closed, then if all
     events."""
     out = []
     for event in (False, True):
