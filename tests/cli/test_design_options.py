@@ -17,7 +17,7 @@ from contactsep.cli import build_parser, main
 from contactsep.cli.design_options import _Given
 from contactsep.constants import GRAVITY_IN_PER_S2
 from contactsep.model import Design, evaluate, thesis_design
-from contactsep.studies import fields
+from contactsep.model import fields
 
 DESIGN_FIELDS = [f.name for f in dataclasses.fields(Design)]
 #: The unit suffixes of docs/studies.md, "Names and units".

@@ -48,7 +48,7 @@ from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
     MODELS,
     STEPPERS,
 )
-from contactsep.chatter.limits import check_settings as _check
+from contactsep.chatter.settings import check_settings as _check
 from contactsep.chatter.single_impulse import single_impulse as _single_impulse
 from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
     COARSE_DT,
