@@ -31,7 +31,6 @@ from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.result import ChatterResult, blown_up
 from contactsep.chatter.system import members
-from contactsep.constants import LISTING_TAU_S  # noqa: F401 (tests read it)
 from contactsep.errors import ContactsepWarning
 from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
     APPE_MAX_MODES,

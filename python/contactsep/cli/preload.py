@@ -220,7 +220,8 @@ def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.runs.stops import search_progress
-    from contactsep.studies.preload.command import journal_inputs, preload
+    from contactsep.studies.preload.checks import journal_inputs
+    from contactsep.studies.preload.command import preload
     from contactsep.studies.preload.verify import expected_runs
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
