@@ -56,19 +56,6 @@ def test_every_model_option_has_help():
             action.option_strings
 
 
-def test_the_field_table_is_the_designs():
-    assert set(fields.FIELDS) == set(DESIGN_FIELDS)
-    # each unit as help(Design) states it, a table written apart
-    doc = Design.__doc__
-    for field in DESIGN_FIELDS:
-        unit = fields.unit(field)
-        line = next(line for line in doc.splitlines()
-                    if re.match(rf"\s+([\w, ]+, )?{field}(,[\w, ]+)? : ",
-                                line))
-        stated = line.split(" : ")[1].split(" or ")[0].strip()
-        assert stated == (unit or stated), (field, stated, unit)
-
-
 def test_dir_lists_the_model_names():
     assert {"evaluate", "Design", "thesis_design"} <= set(dir(contactsep))
 
