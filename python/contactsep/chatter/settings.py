@@ -33,7 +33,8 @@ from contactsep.chatter.limits import (
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import fields
-from contactsep.model.design import SIZE_RANGE, Design
+from contactsep.model.design import Design
+from contactsep.model.design_domain import SIZE_RANGE
 
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
 VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt", "alpha",

@@ -18,26 +18,19 @@ from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import LISTING_TAU_S
 from contactsep.model import physics
 from contactsep.model.contact_points import lower_point_problem
-from contactsep.model.fields import (
-    IMPACT_VELOCITIES,
-    LC_READINGS,
-    LOWER_RESPONSES,
-    RELEASES,
-)
-from contactsep.model.design_domain import (  # noqa: F401 (re-exported)
-    DEFLECTION_RANGE,
-    DENSITY_RANGE,
-    END_CODES,
-    INT_COLUMNS,
-    MODULUS_RANGE,
+from contactsep.model.design_domain import (
     REAL_COLUMNS,
-    SIZE_RANGE,
     SUPPORT_CLEARANCE,
     DesignError,
     _check_number,
     _rules,
     invalid_rows,
-    outside_domain,
+)
+from contactsep.model.fields import (
+    IMPACT_VELOCITIES,
+    LC_READINGS,
+    LOWER_RESPONSES,
+    RELEASES,
 )
 
 #: Most modes per member: the sums cost more than N per design (6 s at
