@@ -42,7 +42,7 @@ import dataclasses
 import sys
 import warnings
 
-from contactsep.cli.unit_system import (  # noqa: F401 - in_units: API
+from contactsep.cli.unit_system import (
     SI_COMMANDS,
     UNIT_SYSTEMS,
     apply_units,
