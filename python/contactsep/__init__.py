@@ -34,24 +34,25 @@ from contactsep.restored.result import Result
 
 #: The general model's names, imported on first use (``contactsep.model``).
 _MODEL_NAMES = ("Design", "thesis_design", "evaluate")
-#: Names of the studies layer, imported on first use.
-_STUDIES_NAMES = {"read": "contactsep.studies.sweep.frames",
-                  "load_design": "contactsep.studies.design_file",
-                  "preload": "contactsep.studies.preload.command",
-                  "sweep": "contactsep.studies.sweep.result"}
+#: Names imported on first use from their modules: the design-file
+#: reader's (the model layer's) and the studies layer's.
+_LAZY_NAMES = {"read": "contactsep.studies.sweep.frames",
+               "load_design": "contactsep.model.design_file_read",
+               "preload": "contactsep.studies.preload.command",
+               "sweep": "contactsep.studies.sweep.result"}
 #: The layers, imported on first use.
 _LAYERS = ("restored", "model", "chatter", "studies")
 
 __all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError",
            "Result", "cards_per_set", "modes", "replay", "solve",
-           *_MODEL_NAMES, *_STUDIES_NAMES, *_LAYERS]
+           *_MODEL_NAMES, *_LAZY_NAMES, *_LAYERS]
 
 
 def __getattr__(name: str):
     if name in _MODEL_NAMES:
         return getattr(importlib.import_module("contactsep.model"), name)
-    if name in _STUDIES_NAMES:
-        return getattr(importlib.import_module(_STUDIES_NAMES[name]), name)
+    if name in _LAZY_NAMES:
+        return getattr(importlib.import_module(_LAZY_NAMES[name]), name)
     if name == "modes":
         return importlib.import_module("contactsep.model.member_modes").modes
     if name in _LAYERS:

@@ -17,8 +17,7 @@ from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.rigid_stop import ZENO_SPEED
 from contactsep.chatter.system import members
 from contactsep.cli import main
-from contactsep.model import Design, names
-from contactsep.studies import fields
+from contactsep.model import Design, fields
 
 pytest.importorskip("contactsep.chatter._chatter")
 
@@ -106,7 +105,7 @@ def test_the_json_echoes_the_inputs_and_carries_the_answers(capsys):
                                                               18.0)
     # every field but those shown only when given (x2_lower: None)
     assert len(echoed) == len(dataclasses.fields(Design)) - len(
-        names.SHOWN_WHEN_GIVEN)
+        fields.SHOWN_WHEN_GIVEN)
     assert Design(**{fields.field_name(k): v
                      for k, v in echoed.items()}) == design
     # the e given and no law named: Flores's law, calibrated to it

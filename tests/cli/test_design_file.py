@@ -20,7 +20,7 @@ import contactsep
 from contactsep.cli import build_parser
 from contactsep.cli import main as cli_main
 from contactsep.errors import InputError
-from contactsep.model import Design, names
+from contactsep.model import Design, fields
 
 FIELDS = [f.name for f in dataclasses.fields(Design)]
 DEFAULTS = {f.name: f.default for f in dataclasses.fields(Design)}
@@ -85,7 +85,7 @@ def test_to_file_then_load_design_is_the_same_design(tmp_path, name,
     data = strict_json(path.read_text())
     # the unit system first, then each field under its name with unit
     assert list(data)[0] == "units" and data["units"] == "us"
-    assert set(data) - {"units"} <= {names.field_key(f) for f in FIELDS}
+    assert set(data) - {"units"} <= {fields.column_name(f) for f in FIELDS}
     # N only where it is not the Design's default (4)
     assert ("n_modes" in data) == (design.n_modes != 4)
     assert os.listdir(tmp_path) == ["d.json"]       # no temporary left
@@ -162,8 +162,8 @@ def test_model_json_writes_n_modes_only_when_given(capsys, tmp_path, argv,
     assert design.get("n_modes") == written
     # every other key as before: each field under its output name
     assert set(design) == {"units"} | {
-        names.field_key(f) for f in FIELDS
-        if f not in names.SHOWN_WHEN_GIVEN} - (
+        fields.column_name(f) for f in FIELDS
+        if f not in fields.SHOWN_WHEN_GIVEN} - (
         set() if written is not None else {"n_modes"})
     # a file that had it passes it on; one that did not, does not
     path = tmp_path / "m.json"

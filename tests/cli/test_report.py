@@ -13,7 +13,7 @@ import pytest
 from browser import chromium, headless
 
 from contactsep.cli import main
-from contactsep.model.names import FIELDS, OUTPUT_NAMES
+from contactsep.model.fields import FIELDS, OUTPUT_NAMES
 
 pytest.importorskip("matplotlib")
 

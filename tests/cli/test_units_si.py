@@ -16,8 +16,7 @@ import math
 import pytest
 
 from contactsep.cli import main
-from contactsep.model import names
-from contactsep.studies import fields
+from contactsep.model import fields, names
 
 M = 0.0254
 N = 4.4482216152605

@@ -24,8 +24,8 @@ from contactsep.model import (
     status,
     thesis_design,
 )
-from contactsep.model import design as design_module
-from contactsep.model.design import REAL_COLUMNS
+from contactsep.model import design_domain as design_module
+from contactsep.model.design_domain import REAL_COLUMNS
 
 EXTREMES = (math.nan, math.inf, -math.inf, 0.0, -1.0, 1e-300, 1e300,
             2.0**63)

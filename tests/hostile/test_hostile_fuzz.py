@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.model import Design, DesignError, evaluate
-from contactsep.model.design import REAL_COLUMNS
+from contactsep.model.design_domain import REAL_COLUMNS
 from contactsep.studies.sweep import spec as sweep
 FIELDS = [f.name for f in dataclasses.fields(Design)]
 SETTINGS = settings(max_examples=150, deadline=None,

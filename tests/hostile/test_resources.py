@@ -13,6 +13,7 @@ import pytest
 from hostile_cli import main, refusal
 
 from contactsep.chatter import simulate
+from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.studies.sweep import run as runner
@@ -127,8 +128,7 @@ def test_the_default_run_at_the_largest_n_is_within_the_work_bound():
     """The bound refuses what the thesis rig does not need: its converged
     step at N = 1024 over the listing's window is inside it (the design's
     own step at N = 1024 is not: test_a_design_step_past_the_budget_...)."""
-    steps = simulate_module.LISTING_TAU_S / simulate_module.DEFAULT_DT[
-        "hertz"]
+    steps = LISTING_TAU_S / simulate_module.DEFAULT_DT["hertz"]
     assert steps * 3 * simulate_module.MAX_MODES <= simulate_module.MAX_WORK
 
 

@@ -10,7 +10,8 @@ import pytest
 
 from contactsep.errors import InputError
 from contactsep.model import Design, DesignError, evaluate, thesis_design
-from contactsep.model.design import INT_COLUMNS, REAL_COLUMNS, pack
+from contactsep.model.design import pack
+from contactsep.model.design_domain import INT_COLUMNS, REAL_COLUMNS
 
 CONTRACT_REAL = ("L1 b1 h1 gamma1 E1 x1 L2 b2 h2 gamma2 E2 x2 Lc "
                  "L3 b3 h3 gamma3 E3 x3 ys e tau gap").split()

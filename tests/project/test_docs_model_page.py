@@ -19,7 +19,7 @@ from test_docs_pages import NUMBER, printed, quoted
 import contactsep
 from conftest import ROOT, THESIS_DECKS
 from contactsep.model import compiled
-from contactsep.model import design as design_module
+from contactsep.model import design_domain as design_module
 
 pint = pytest.importorskip("pint")
 UNITS = pint.UnitRegistry()

@@ -164,6 +164,19 @@ def test_run_machinery_left_studies():
     assert moved <= {p.stem for p in (PACKAGE / "runs").glob("*.py")}
 
 
+def test_the_designs_vocabulary_has_one_home():
+    """The Design's fields are named, read and written in the model
+    (model/fields.py, the design file's reader beside its format), not
+    in the studies; the model's vocabulary imports no layer above it."""
+    studies = {p.stem for p in (PACKAGE / "studies").rglob("*.py")}
+    assert not studies & {"fields", "design_file"}
+    model = {p.stem for p in (PACKAGE / "model").glob("*.py")}
+    assert {"fields", "design_file", "design_file_read"} <= model
+    for name in ("contactsep.model.fields", "contactsep.model.design_file",
+                 "contactsep.model.design_file_read"):
+        assert {layer(t) for t, _ in imports(name)} <= {"shared", "model"}
+
+
 def test_studies_has_its_three_subpackages():
     subpackages = {p.name for p in (PACKAGE / "studies").iterdir()
                    if (p / "__init__.py").is_file()}

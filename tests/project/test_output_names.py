@@ -20,7 +20,7 @@ import pytest
 import contactsep
 from contactsep.chatter import simulate
 from contactsep.cli import main
-from contactsep.model import Design, evaluate, names
+from contactsep.model import Design, evaluate, fields
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The table (docs/studies.md, "Names and units").
@@ -55,7 +55,7 @@ STRUCTURES = {"events", "circuit_open_intervals", "rest_intervals",
               "changes", "converge_history"}
 #: Attribute names that carry a unit: never an output key.
 RAW = {f.name for f in dataclasses.fields(Design)
-       if contactsep.studies.fields.unit(f.name)} | {
+       if fields.unit(f.name)} | {
     "t1", "v_impact", "psi", "v0", "y3_max", "t_max", "y3_min", "t_min",
     "M1", "M2", "M3", "p1", "p2", "p3", "c3"}
 
@@ -81,8 +81,8 @@ def leaves(value, path=()):
 
 
 #: The design's fields under their output names (the one table,
-#: contactsep.model.names).
-DESIGN_KEYS = {names.field_key(f) for f in names.FIELDS}
+#: contactsep.model.fields).
+DESIGN_KEYS = {fields.column_name(f) for f in fields.FIELDS}
 
 
 def checked(keys) -> None:
@@ -158,8 +158,8 @@ def test_the_design_has_one_set_of_names(outputs):
     # every field, but those shown only when given (x2_lower: None
     # keeps the outputs of designs without it unchanged)
     assert len(model_design) == len(dataclasses.fields(Design)) - len(
-        names.SHOWN_WHEN_GIVEN)
-    assert names.design_keys(Design(x2_lower=1.0))["x2_lower_in"] == 1.0
+        fields.SHOWN_WHEN_GIVEN)
+    assert fields.design_keys(Design(x2_lower=1.0))["x2_lower_in"] == 1.0
     assert "d_in" in model_design and "h2" not in model_design
     fixed = outputs["chatter_sweep"]["inputs"]["fixed"]
     assert set(fixed) <= set(model_design)

@@ -123,7 +123,7 @@ def test_study_chatter_draws_its_table(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(chatter, "chatter_table", small)
     assert main(["study", "chatter", "--png", str(tmp_path / "c.png"),
                  "--csv", str(tmp_path / "c.csv")]) == 0
-    # a column per model, 9 x 5.4 in at 100 dpi (plots.CHATTER_FIGSIZE)
+    # a column per model, 9 x 5.4 in at 100 dpi (plot_panels.CHATTER_FIGSIZE)
     assert png_size(tmp_path / "c.png") == (900, 540)
     lines = (tmp_path / "c.csv").read_text().splitlines()
     assert len([line for line in lines if not line.startswith("#")]) == 5

@@ -77,7 +77,7 @@ def check_law(model, damping, alpha, contact, yield_pressure,
 def check_button(model, button, length, contact):
     """Refuse a button that cannot run, in one line naming the
     argument; returns the cylinder's length as a float (or None)."""
-    from contactsep.model.design import SIZE_RANGE
+    from contactsep.model.design_domain import SIZE_RANGE
     if button not in BUTTONS:
         raise ChatterError(f"button: found {button!r}, expected one of "
                            f"{', '.join(BUTTONS)}")

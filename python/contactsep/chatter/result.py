@@ -10,7 +10,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.chatter import circuit
-from contactsep.model import names
+from contactsep.model import fields
 
 
 def plain(value):
@@ -29,8 +29,8 @@ def plain(value):
 
 def design_dict(design) -> dict:
     """Every field of a single Design under its output name (``L3_in``,
-    ``d_in``: :mod:`contactsep.model.names`), JSON-ready."""
-    return plain(names.design_keys(design))
+    ``d_in``: :mod:`contactsep.model.fields`), JSON-ready."""
+    return plain(fields.design_keys(design))
 
 
 @dataclass(frozen=True, repr=False)

@@ -31,7 +31,6 @@ from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.result import ChatterResult, blown_up
 from contactsep.chatter.system import members
-from contactsep.constants import LISTING_TAU_S  # noqa: F401 (tests read it)
 from contactsep.errors import ContactsepWarning
 from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
     APPE_MAX_MODES,
@@ -48,7 +47,7 @@ from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
     MODELS,
     STEPPERS,
 )
-from contactsep.chatter.limits import check_settings as _check
+from contactsep.chatter.settings import check_settings as _check
 from contactsep.chatter.single_impulse import single_impulse as _single_impulse
 from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
     COARSE_DT,

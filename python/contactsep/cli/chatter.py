@@ -364,10 +364,10 @@ def summary_text(result, listed: int | None = 10, si: bool = False) -> str:
 
 def _design_parts(design, si: bool = False) -> list[str]:
     """'L1 19 in', 'd 0.25 in', ...: each given field under its output
-    name (studies.fields), with its unit (``si``: in SI)."""
+    name (model.fields), with its unit (``si``: in SI)."""
     import dataclasses
 
-    from contactsep.studies import fields
+    from contactsep.model import fields
     parts = []
     for f in dataclasses.fields(design) if design is not None else ():
         value = getattr(design, f.name)

@@ -12,7 +12,7 @@ sweep, study, chatter): one option per field of
   as typed (``--d: found -0.1, expected a finite number > 0``).
 
 Precedence: ``--design FILE`` (a design file, read by
-:mod:`contactsep.studies.design_file` as ``contactsep.load_design``
+:mod:`contactsep.model.design_file_read` as ``contactsep.load_design``
 reads it: a JSON object of fields, or the output of ``contactsep model
 --json`` whose ``design`` it reads) is the starting design; the
 command line overrides it, and so do a study's own axes and a sweep's
@@ -25,7 +25,7 @@ all three members, ``"material2": "steel"`` in a file) fills E, gamma
 and nu of a member in its place among the options: the last given wins,
 whether the preset or an explicit ``--E2`` (in a file the explicit
 fields win).  Values are read by
-:func:`contactsep.studies.fields.parse_value`, the one place that reads
+:func:`contactsep.model.fields.parse_value`, the one place that reads
 a field from text.
 
 A numerics field (n_modes) that only the file gave is used, and said so
@@ -42,7 +42,7 @@ import dataclasses
 import sys
 import warnings
 
-from contactsep.cli.unit_system import (  # noqa: F401 - in_units: API
+from contactsep.cli.unit_system import (
     SI_COMMANDS,
     UNIT_SYSTEMS,
     apply_units,
@@ -51,9 +51,9 @@ from contactsep.cli.unit_system import (  # noqa: F401 - in_units: API
     si_asked,
 )
 from contactsep.errors import ContactsepWarning, InputError, printable
+from contactsep.model import design_file_read
+from contactsep.model import fields as F
 from contactsep.model.design_file import NUMERICS
-from contactsep.studies import design_file
-from contactsep.studies import fields as F
 
 #: Where the command line's design values are kept: (field or name,
 #: option as typed, text), in command-line order.
@@ -179,11 +179,11 @@ def design_overrides(args: argparse.Namespace) -> dict:
     values, labels = {}, {}
     path = getattr(args, "design", None)
     if path:
-        values, labels = design_file.read_fields(path, f"--design {path}")
+        values, labels = design_file_read.read_fields(path, f"--design {path}")
     typed = {}
     for field, option, text in getattr(args, _GIVEN, None) or ():
         if isinstance(field, tuple):    # --materialN NAME: E, gamma, nu
-            for name, number in design_file.preset_fields(
+            for name, number in design_file_read.preset_fields(
                     text, field[1], option).items():
                 typed[name] = option
                 values[name] = number
@@ -215,7 +215,7 @@ def design_overrides(args: argparse.Namespace) -> dict:
             if field not in values:
                 values[field] = value
                 labels[field] = "--separator physical"
-    design_file.make_design(values, labels)
+    design_file_read.make_design(values, labels)
     for message in unit_system_doubts(values, labels):
         warnings.warn(message, ContactsepWarning)
     setattr(args, _FROM_FILE, set(values) - set(typed))

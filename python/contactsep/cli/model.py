@@ -9,12 +9,9 @@ import warnings
 import numpy as np
 
 from contactsep import output
-from contactsep.cli.design_options import (
-    add_design_options,
-    design_overrides,
-    in_units,
-)
+from contactsep.cli.design_options import add_design_options, design_overrides
 from contactsep.cli.help import examples
+from contactsep.cli.unit_system import in_units
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.design_file import NUMERICS
 from contactsep.model.names import (

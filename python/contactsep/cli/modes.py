@@ -45,7 +45,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from contactsep.model import thesis_design
     from contactsep.model.member_modes import modes
-    from contactsep.studies.fields import describe
+    from contactsep.model.fields import describe
 
     overrides = design_overrides(args)
     design = thesis_design(**overrides)

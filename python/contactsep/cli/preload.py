@@ -177,7 +177,8 @@ def tolerances_in_units(args) -> list:
     return [sample_in_si(text) for text in args.tolerance]
 
 
-def _p_target(text):
+def parse_p_target(text):
+    """--p-target's value (DEFAULT_P_TARGET when not given), checked."""
     from contactsep.studies.preload.robust import (
         DEFAULT_P_TARGET,
         check_p_target,
@@ -196,7 +197,7 @@ def run(args: argparse.Namespace) -> int:
     from contactsep.studies.preload.chart import DEFAULT_MODES
     from contactsep.studies.preload.robust import parse_tolerances
 
-    p_target = _p_target(args.p_target)
+    p_target = parse_p_target(args.p_target)
     overrides = design_overrides(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)
     design = thesis_design(**overrides)
@@ -220,7 +221,8 @@ def _run(args, design, p_target, workers) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.runs.stops import search_progress
-    from contactsep.studies.preload.command import journal_inputs, preload
+    from contactsep.studies.preload.checks import journal_inputs
+    from contactsep.studies.preload.command import preload
     from contactsep.studies.preload.verify import expected_runs
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}

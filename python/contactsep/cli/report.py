@@ -16,8 +16,8 @@ from contactsep.cli.design_options import (
 )
 from contactsep.cli.help import examples
 from contactsep.cli.preload import (
-    _p_target,
     add_robust_options,
+    parse_p_target,
     tolerances_in_units,
 )
 from contactsep.cli.values import integer
@@ -71,7 +71,7 @@ def _run(args: argparse.Namespace) -> int:
     from contactsep.studies.report import html_report, releases
 
     require_matplotlib()            # before any simulation
-    p_target = _p_target(args.p_target)
+    p_target = parse_p_target(args.p_target)
     overrides = design_overrides(args)
     args.tolerance = tolerances_in_units(args)
     overrides.setdefault("n_modes", DEFAULT_MODES)

@@ -31,7 +31,7 @@ from contactsep.output.pieces import PIECE_S
 from contactsep.studies.sweep.chatter import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
-from contactsep.studies.fields import SETTINGS
+from contactsep.model.fields import SETTINGS
 from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
 from contactsep.studies.sweep.run import kept_note as runner_note
 from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE
@@ -184,7 +184,7 @@ def _print_summary(summary: dict, spec) -> None:
 def _settings(args: argparse.Namespace, si: bool = False) -> dict:
     """The chatter settings typed as options (setting -> value; a bare
     number read in SI where ``si``)."""
-    from contactsep.studies.fields import SETTINGS, parse_value
+    from contactsep.chatter.settings import parse_value
     typed = {"preload": (args.preload, "--preload"),
              "min_open": (args.min_open, "--min-open"),
              "damping": (args.damping, "--damping"),

@@ -95,7 +95,7 @@ def _bare_names() -> dict:
     (preload's inputs: "design": {"L1": 19}, "settings": {"dt": ...}) ->
     each name's key with its unit ('L1' -> 'L1_in'), which in_units
     converts as it converts a key with its suffix."""
-    from contactsep.studies import fields as F
+    from contactsep.model import fields as F
     design = {f: F.column_name(f) for f in F.FIELDS if F.FIELDS[f][0]}
     settings = {s: F.column_name(s) for s in F.SETTINGS if F.SETTINGS[s][0]}
     settings["open_threshold"] = "open_threshold_in"

@@ -58,7 +58,7 @@ def finite(unit: str = ""):
 class Bare(float):
     """A bare number an option read (no unit typed), with the package
     unit it was read in: ``--units si`` rereads it in SI
-    (contactsep.cli.design_options.apply_units); with the default
+    (contactsep.cli.unit_system.apply_units); with the default
     ``us`` it is that float."""
 
     __slots__ = ("unit",)

@@ -18,34 +18,25 @@ from contactsep.beams.member import DEFAULT_NU
 from contactsep.constants import LISTING_TAU_S
 from contactsep.model import physics
 from contactsep.model.contact_points import lower_point_problem
-from contactsep.model.design_domain import (  # noqa: F401 (re-exported)
-    DEFLECTION_RANGE,
-    DENSITY_RANGE,
-    END_CODES,
-    INT_COLUMNS,
-    MODULUS_RANGE,
+from contactsep.model.design_domain import (
     REAL_COLUMNS,
-    SIZE_RANGE,
     SUPPORT_CLEARANCE,
     DesignError,
     _check_number,
     _rules,
     invalid_rows,
-    outside_domain,
+)
+from contactsep.model.fields import (
+    IMPACT_VELOCITIES,
+    LC_READINGS,
+    LOWER_RESPONSES,
+    RELEASES,
 )
 
 #: Most modes per member: the sums cost more than N per design (6 s at
 #: 1e5, 26 s at 3e5), and modes far beyond L/h are outside Bernoulli-Euler
 #: beam theory anyway.
 MAX_MODES = 100_000
-
-#: Option values, in the order of their codes (the first is the default,
-#: except for lower_response: "impulse", the physically consistent form;
-#: the thesis studies, decks and replay keep "as-printed" explicitly).
-IMPACT_VELOCITIES = ("exact", "listing")
-LOWER_RESPONSES = ("as-printed", "impulse")
-LC_READINGS = ("listing", "frequencies", "mass")
-RELEASES = ("tip", "contact")
 
 _ENDS = ("end1", "end2", "end3")
 _OPTIONS = {"impact_velocity": IMPACT_VELOCITIES,

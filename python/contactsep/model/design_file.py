@@ -1,10 +1,10 @@
 """A design file: the one JSON object that :meth:`Design.to_file`
 writes, ``contactsep model --json`` prints under ``design``, and
 ``contactsep.load_design`` and ``--design FILE`` read
-(:mod:`contactsep.studies.design_file`).
+(:mod:`contactsep.model.design_file_read`).
 
 The object's keys are the fields' output names, each with its unit
-(``L1_in``, ``d_in``, ``gamma2_lb_in3``: :mod:`contactsep.model.names`),
+(``L1_in``, ``d_in``, ``gamma2_lb_in3``: :mod:`contactsep.model.fields`),
 after ``"units": "us"``, the unit system those suffixes are in.  It
 holds the geometry, the materials and the physics; a numerics field
 (:data:`NUMERICS`) only where it was asked for, so that a simulation
@@ -19,7 +19,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.errors import InputError
-from contactsep.model import names
+from contactsep.model import fields
 
 #: The unit system of every key's suffix: in, lb, s (E in psi, weight
 #: densities in lb/in^3), as the keys say.
@@ -41,10 +41,10 @@ def file_fields(design, numerics=()) -> dict:
     if design.shape != ():
         raise InputError(f"a design file holds one design, not a batch "
                          f"of {design.size}")
-    keep = {names.field_key(name) for name in numerics}
-    numeric_keys = {names.field_key(name) for name in NUMERICS}
+    keep = {fields.column_name(name) for name in numerics}
+    numeric_keys = {fields.column_name(name) for name in NUMERICS}
     out = {"units": UNITS}
-    for key, value in names.design_keys(design).items():
+    for key, value in fields.design_keys(design).items():
         if key in numeric_keys and key not in keep:
             continue
         if isinstance(value, list):

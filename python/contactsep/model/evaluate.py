@@ -14,13 +14,11 @@ from contactsep.errors import InputError
 from contactsep.model import energy, given, physics
 from contactsep.model import status as status_codes
 from contactsep.model.contact_points import lower_point_differs
-from contactsep.model.design import (
+from contactsep.model.design import Design, Packed, pack
+from contactsep.model.design_domain import (
     REAL_COLUMNS,
-    Design,
     DesignError,
-    Packed,
     outside_domain,
-    pack,
 )
 from contactsep.model.names import RESULT_KEYS
 from contactsep.output import pieces

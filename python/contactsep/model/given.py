@@ -37,9 +37,9 @@ from contactsep import beams
 from contactsep.beams import member as member_beams
 from contactsep.beams.member import THEORIES
 from contactsep.errors import InputError
-from contactsep.model.design import (
+from contactsep.model.design import Packed
+from contactsep.model.design_domain import (
     REAL_COLUMNS,
-    Packed,
     invalid_rows,
     outside_domain,
 )

@@ -1,7 +1,8 @@
-"""One name per quantity in every output (issue 30, item 5): the
-design's fields and the model's results under their snake_case name and
-unit suffix (docs/studies.md, "Names and units"), for every JSON, CSV,
-Parquet, ``to_dict()`` and DataFrame the package writes.
+"""One name per quantity in every output: the model's results under
+their snake_case name and unit suffix (docs/studies.md, "Names and
+units"), for every JSON, CSV, Parquet, ``to_dict()`` and DataFrame the
+package writes, and the same keys in SI (``--units si``).  The Design's
+fields and their names: :mod:`contactsep.model.fields`.
 
 Units are the package's: in, lb, s, psi, lb/in^3.  A key is the
 quantity's name followed by its unit's suffix (``_in``, ``_s``,
@@ -13,64 +14,6 @@ from __future__ import annotations
 
 from contextlib import contextmanager
 from contextvars import ContextVar
-
-#: field -> (unit suffix of its column, unit as printed, meaning).
-FIELDS: dict[str, tuple[str, str, str]] = {}
-MEMBERS = {"1": "upper contact", "2": "separator", "3": "lower contact"}
-for _m, _member in MEMBERS.items():
-    FIELDS.update({
-        f"L{_m}": ("in", "in", f"{_member} length"),
-        f"b{_m}": ("in", "in", f"{_member} width"),
-        f"h{_m}": ("in", "in", f"{_member} thickness"
-                   + (" d" if _m == "2" else "")),
-        f"gamma{_m}": ("lb_in3", "lb/in^3", f"{_member} weight density"),
-        f"E{_m}": ("psi", "psi", f"{_member} Young's modulus"),
-        f"end{_m}": ("", "", f"{_member} end conditions (x = 0 first)"),
-    })
-FIELDS.update({
-    "x1": ("in", "in", "contact point on the upper contact, from x = 0"),
-    "x2": ("in", "in", "contact point on the separator, from x = 0"),
-    "x3": ("in", "in", "contact point on the lower contact, from x = 0"),
-    "x2_lower": ("in", "in", "where the lower contact touches the "
-                             "separator, from x = 0 (default: x2)"),
-    "Lc": ("in", "in", "separator equivalent length L_c (Table III)"),
-    "ys": ("in", "in", "static deflection of the upper contact before "
-                       "release"),
-    "e": ("", "", "coefficient of restitution, 0 <= e <= 1"),
-    "n_modes": ("", "", "modes per member: N, or N1,N2,N3"),
-    "tau": ("s", "s", "window of the lower-contact response, from the "
-                      "impact"),
-    "gap": ("in", "in", "position of the separator surface seen by the "
-                        "upper contact"),
-    "impact_velocity": ("", "", "exact: abs(dy1/dt) at t1; listing: "
-                                "Appendix G's ACT (no sin)"),
-    "lower_response": ("", "", "as-printed: eq. 13/23 with v0/L3; "
-                               "impulse: psi/M3 (eq. 19)"),
-    "lc_reading": ("", "", "reading of L_c: listing (hybrid), "
-                           "frequencies, or mass"),
-    "release": ("", "", "tip: the cantilever's tip is deflected; "
-                        "contact: the contact point x1"),
-})
-
-for _m, _member in MEMBERS.items():
-    FIELDS.update({
-        f"beam{_m}": ("", "", f"{_member} beam theory"),
-        f"nu{_m}": ("", "", f"{_member} Poisson's ratio"),
-        f"kappa{_m}": ("", "", f"{_member} shear coefficient"),
-        f"kr{_m}": ("lb_in_rad", "lb in/rad", f"{_member} rotational "
-                    f"spring at each clamped end"),
-        f"kt{_m}": ("lb_per_in", "lb/in", f"{_member} translational spring "
-                    f"at each supported end"),
-        f"mass{_m}": ("lb", "lb", f"{_member} added point mass (weight)"),
-        f"x_mass{_m}": ("in", "in", f"where the {_member}'s point mass "
-                        f"sits, from x = 0"),
-    })
-
-#: The name a field has in outputs, where it is not the field's own.
-OUTPUT_NAMES = {"h2": "d"}
-#: Fields an output shows only when given (None, their default, is
-#: left out, so that the outputs of designs without them are unchanged).
-SHOWN_WHEN_GIVEN = ("x2_lower",)
 
 #: The general model's results (:class:`contactsep.model.Evaluation`):
 #: (attribute, key with its unit, unit as printed, meaning), in order.
@@ -98,34 +41,6 @@ PER_MODE = (("p1", "p1_rad_s", 0), ("p2", "p2_rad_s", 1),
 #: Every result's attribute -> key.
 RESULT_KEYS = {**{a: k for a, k, _, _ in RESULTS}, **dict(FLAGS),
                **{a: k for a, k, _ in PER_MODE}}
-
-
-def field_key(field: str) -> str:
-    """A design field's key in every output: 'h2' -> 'd_in', 'e' -> 'e',
-    'gamma2' -> 'gamma2_lb_in3'."""
-    suffix = FIELDS[field][0]
-    name = OUTPUT_NAMES.get(field, field)
-    return f"{name}_{suffix}" if suffix else name
-
-
-def design_keys(design) -> dict:
-    """Every field of a single Design under its output key, plain values
-    (a tuple of mode counts as a list; a field of SHOWN_WHEN_GIVEN only
-    when given)."""
-    import dataclasses
-
-    import numpy as np
-    out = {}
-    for f in dataclasses.fields(design):
-        value = getattr(design, f.name)
-        if value is None and f.name in SHOWN_WHEN_GIVEN:
-            continue
-        if isinstance(value, tuple):
-            value = list(value)
-        elif isinstance(value, np.ndarray) and value.ndim == 0:
-            value = value.item()
-        out[field_key(f.name)] = value
-    return out
 
 
 #: The Hertz family's energy book in the chatter outputs (issue 28,

@@ -21,7 +21,8 @@ import numpy as np
 from contactsep import beams
 from contactsep.constants import GRAVITY_IN_PER_S2
 from contactsep.model import status
-from contactsep.model.design import REAL_COLUMNS, Packed, invalid_rows
+from contactsep.model.design import Packed
+from contactsep.model.design_domain import REAL_COLUMNS, invalid_rows
 from contactsep.model.twin_extremes import extremes
 
 #: Acceleration of gravity (in/s^2): weight to mass (Appendix B).

@@ -19,9 +19,7 @@ import textwrap
 from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.names import shown
-from contactsep.studies.plot_panels import (  # noqa: F401 - plots' API
-    CHATTER_FIGSIZE,
-    CHATTER_MODEL_LABELS,
+from contactsep.studies.plot_panels import (
     CONCLUSION_AXES,
     ONE_PANEL,
     TABLES,

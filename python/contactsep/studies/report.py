@@ -17,15 +17,15 @@ import html
 import io
 import math
 
-from contactsep.model.names import (
+from contactsep.model.fields import (
     FIELDS,
+    GROUPS,
+    OPTIONAL,
     OUTPUT_NAMES,
+    PHYSICS_GROUPS,
     SHOWN_WHEN_GIVEN,
-    shown,
-    shown_key,
-    shown_text,
 )
-from contactsep.studies.fields import GROUPS, OPTIONAL, PHYSICS_GROUPS
+from contactsep.model.names import shown, shown_key, shown_text
 from contactsep.studies.plots import _pyplot, chatter_figure
 
 #: The units the page names (in, lb, s, psi, lb/in^3; or SI).

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep.errors import InputError
-from contactsep.studies.fields import OUTPUT_NAMES, unit
+from contactsep.model.fields import OUTPUT_NAMES, unit
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies.preload import command as design_preload
 from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload.checks import windows
 from contactsep.studies.preload import robust as preload_robust
 from contactsep.studies.stats import wilson_interval
 from contactsep.studies.sweep.spec import chunk_inputs
@@ -150,9 +151,8 @@ def test_the_progress_callback_counts_every_simulation(planted,
 def test_windows_are_runs_of_tested_preloads():
     tested = [(0.5, True), (1.0, True), (1.5, False), (2.0, True),
               (2.5, False), (3.0, False), (3.5, True), (4.0, False)]
-    assert design_preload.windows(tested) == ((0.5, 1.0), (2.0, 2.0),
-                                              (3.5, 3.5))
-    assert design_preload.windows(tested, below=4.0, event=False) == (
+    assert windows(tested) == ((0.5, 1.0), (2.0, 2.0), (3.5, 3.5))
+    assert windows(tested, below=4.0, event=False) == (
         (1.5, 1.5), (2.5, 3.0))
 
 

@@ -251,7 +251,7 @@ def test_the_command_runs_the_band_below_on_request(monkeypatch, capsys):
 
 
 def test_a_journal_names_band_below_only_when_asked():
-    from contactsep.studies.preload.command import journal_inputs
+    from contactsep.studies.preload.checks import journal_inputs
     design = FAMILY["thesis"]
     assert "band_below" not in journal_inputs(design, "hertz", {})
     assert journal_inputs(design, "hertz", {}, band_below=True)[

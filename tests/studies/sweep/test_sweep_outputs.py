@@ -19,7 +19,7 @@ from sweep_collect import Collect
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
 from contactsep.model import evaluate, thesis_design
-from contactsep.model.design import SIZE_RANGE
+from contactsep.model.design_domain import SIZE_RANGE
 from contactsep.runs import stops
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep

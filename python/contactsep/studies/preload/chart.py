@@ -28,7 +28,7 @@ from contactsep.chatter.simulate import DEFAULT_DT
 from contactsep.chatter.stack import largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
-from contactsep.studies.fields import design_lines
+from contactsep.model.fields import design_lines
 from contactsep.runs.pool import (
     map_longest_first,
     stop_pool,

@@ -32,12 +32,8 @@ from contactsep.studies.preload.chart import (
     Simulations,
     limit_notes,
 )
-from contactsep.studies.preload.answer import (  # noqa: F401 (old home)
-    PreloadAnswer,
-    spans_text,
-)
-from contactsep.studies.preload.checks import (  # noqa: F401 (old home)
-    MAX_PERTURBATION,
+from contactsep.studies.preload.answer import PreloadAnswer
+from contactsep.studies.preload.checks import (
     check_converge,
     check_perturbation,
     converged_fields,

@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep.errors import ContactsepWarning, InputError
-from contactsep.studies import fields as design_fields
+from contactsep.model import fields as design_fields
 from contactsep.studies.sweep.chatter import simulate_design
 from contactsep.studies.preload.converge import MARGIN
 from contactsep.studies.preload.runs import SampleRun

@@ -16,7 +16,8 @@ import numpy as np
 from contactsep import units
 from contactsep.errors import InputError
 from contactsep.model.design import MAX_MODES
-from contactsep.studies import fields as design_fields
+from contactsep.chatter import settings as chatter_settings
+from contactsep.model import fields as design_fields
 from contactsep.studies.sweep.checks import SweepError
 
 #: Most designs a sweep may have: 1e12 takes weeks on a hundred cores
@@ -26,8 +27,8 @@ MAX_DESIGNS = 10**12
 
 #: What --vary and --sample take: design fields, and chatter settings
 #: (make_spec refuses the settings for eq23).
-_VARIABLE = design_fields.VARIABLE + design_fields.VARIABLE_SETTINGS
-_SAMPLED = design_fields.SAMPLED + design_fields.SAMPLED_SETTINGS
+_VARIABLE = design_fields.VARIABLE + chatter_settings.VARIABLE_SETTINGS
+_SAMPLED = design_fields.SAMPLED + chatter_settings.SAMPLED_SETTINGS
 #: What --vary takes as START:STOP:COUNT: the numbers.
 _LINEAR = _SAMPLED + ("dt", "alpha", "yield_pressure")
 
@@ -98,9 +99,9 @@ def parse_vary(text: str) -> tuple[str, object]:
         if field in design_fields.SETTINGS:
             # a linear axis lies between its ends: checking them checks it
             for end in (values.start, values.stop):
-                design_fields.parse_value(field, end, label)
+                chatter_settings.parse_value(field, end, label)
     else:
-        items = [design_fields.parse_value(field, item, label)
+        items = [chatter_settings.parse_value(field, item, label)
                  for item in values_text.split(",")]
         for item in items:
             if isinstance(item, float) and not math.isfinite(item):

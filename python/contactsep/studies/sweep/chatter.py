@@ -29,7 +29,7 @@ from contactsep.errors import InputError
 from contactsep.model import thesis_design
 from contactsep.model.names import shown_key, shown_text, units_note
 from contactsep.output import ComputationLost
-from contactsep.studies import fields as design_fields
+from contactsep.model import fields as design_fields
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep.spec import SweepSpec, chunk_inputs, count_failures
 

@@ -10,7 +10,8 @@ import numpy as np
 
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
-from contactsep.studies import fields as design_fields
+from contactsep.chatter import settings as chatter_settings
+from contactsep.model import fields as design_fields
 
 #: What a sweep may evaluate: the general model, or a chatter model.
 MODELS = ("eq23", "hertz", "newton")
@@ -70,7 +71,7 @@ def _fixed(base, settings) -> tuple[dict, dict]:
         if str(name) not in design_fields.SETTINGS:
             raise SweepError(f"settings: {name}: not a chatter setting "
                              f"(one of {', '.join(design_fields.SETTINGS)})")
-        chosen[name] = design_fields.parse_value(
+        chosen[name] = chatter_settings.parse_value(
             name, value, f"--{name.replace('_', '-')}")
     return fields, chosen
 

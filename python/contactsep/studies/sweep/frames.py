@@ -71,7 +71,7 @@ def read(path):
         raise InputError(f"{os.fspath(path)}: {output.one_line(error)}") \
             from None
     if head.lstrip()[:1] == b"{":
-        from contactsep.studies.design_file import load_design
+        from contactsep.model.design_file_read import load_design
         return load_design(path)
     pandas = output.require_pandas()
     if head[:len(_PARQUET_MAGIC)] == _PARQUET_MAGIC:

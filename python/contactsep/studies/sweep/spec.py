@@ -27,8 +27,8 @@ import numpy as np
 from contactsep.model import evaluate, thesis_design
 from contactsep.model.design import Design
 from contactsep.model.names import shown_data
-from contactsep.studies import fields as design_fields
-from contactsep.studies.fields import column_name
+from contactsep.model import fields as design_fields
+from contactsep.model.fields import column_name
 from contactsep.studies.stats import RunningMoments, wilson_interval
 from contactsep.studies.sweep.checks import (
     SweepError,

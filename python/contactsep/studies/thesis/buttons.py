@@ -21,7 +21,7 @@ import numpy as np
 
 from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
-from contactsep.studies.fields import design_lines
+from contactsep.model.fields import design_lines
 from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, thesis_study_design
 

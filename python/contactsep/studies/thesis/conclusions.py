@@ -28,7 +28,7 @@ import numpy as np
 from contactsep.chatter import simulate
 from contactsep.chatter.simulate import DEFAULT_DT
 from contactsep.constants import LISTING_TAU_S
-from contactsep.studies.fields import column_name, design_lines
+from contactsep.model.fields import column_name, design_lines
 from contactsep.studies.preload.chart import (
     DEFAULT_MODES,
     MODELS,

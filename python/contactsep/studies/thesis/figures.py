@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.restored import thesis_decks
-from contactsep.studies.fields import design_lines
+from contactsep.model.fields import design_lines
 from contactsep.studies.study import (
     Study,
     evaluate_all,

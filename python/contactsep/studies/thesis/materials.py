@@ -39,7 +39,7 @@ from contactsep.model.materials import (
     material,
     material_fields,
 )
-from contactsep.studies.fields import design_lines
+from contactsep.model.fields import design_lines
 from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
 from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 

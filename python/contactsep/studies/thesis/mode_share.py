@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep import beams
-from contactsep.studies.fields import design_lines
+from contactsep.model.fields import design_lines
 from contactsep.studies.study import (
     Study,
     evaluate_all,

@@ -1,5 +1,6 @@
 """Reading a design file: :func:`load_design` (``contactsep.load_design``)
-and the command line's ``--design FILE`` read it here, the same way.
+and the command line's ``--design FILE`` read it here, the same way
+(the format and its writer: :mod:`contactsep.model.design_file`).
 
 The format is :mod:`contactsep.model.design_file`'s: one JSON object of
 design fields (output names with units such as ``d_in``, names as in
@@ -9,7 +10,7 @@ presets ``"material2": "steel"``), optionally ``"units": "us"`` (or
 --units si --json`` writes them); or the output of ``contactsep model
 --json``, whose ``design`` object it reads.  A file without ``units`` is
 in the package's units (every file written before the key existed).  Each value is read by
-:func:`contactsep.studies.fields.parse_value`, so a file accepts what
+:func:`contactsep.model.fields.parse_value`, so a file accepts what
 the command line accepts and refuses it with the same one line, naming
 the file and the key.
 """
@@ -21,8 +22,9 @@ import os
 
 from contactsep import output
 from contactsep.errors import InputError
+from contactsep.model import fields as F
 from contactsep.model.design_file import UNIT_SYSTEMS
-from contactsep.studies import fields as F
+from contactsep.model.names import si_key
 
 #: The largest design file read (a design is a few hundred bytes; the
 #: output of model --json with N = 100,000 modes about 10 MB).
@@ -135,7 +137,6 @@ def read_object(path: str, label: str) -> dict:
 def _si_columns() -> dict:
     """SI key ('d_m', 'E1_Pa') -> (field, factor) of each field with a
     unit (model.names.SI_SUFFIXES)."""
-    from contactsep.model.names import si_key
     out = {}
     for field in F.FIELDS:
         twin = si_key(F.column_name(field)) if F.FIELDS[field][0] else None
@@ -181,7 +182,7 @@ def _number(text: str) -> bool:
 def make_design(values: dict, labels: dict):
     """The thesis design with ``values``, its own checks reported under
     the name the user gave the field (``labels``: field -> name)."""
-    from contactsep.model import thesis_design
+    from contactsep.model.thesis_rig import thesis_design
     try:
         return thesis_design(**values)
     except InputError as error:
