@@ -223,7 +223,8 @@ def test_the_robust_answer_is_above_a_window_only_the_samples_have(
     0.0415 lb): a band of the nominal design's events would not look
     there; the robust answer is above the window, and the search tried
     every preload of the fine grid from its answer to 1.5 times it."""
-    from contactsep.studies.preload.search import FINE_RATIO, fine_band, grid
+    from contactsep.studies.preload.scan import grid
+    from contactsep.studies.preload.search import FINE_RATIO, fine_band
     design = FAMILY["thesis"].replace(n_modes=8)
     t = _threshold(design, {})
     planted()

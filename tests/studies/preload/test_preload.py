@@ -15,7 +15,7 @@ from contactsep.chatter import simulate
 from contactsep.cli import main
 from contactsep.model import thesis_design
 from contactsep.studies.preload import chart as preload
-from contactsep.studies.preload import search as preload_search
+from contactsep.studies.preload import scan as preload_scan
 
 ROOT = Path(__file__).resolve().parents[3]
 COLUMNS = ["model", "n_modes", "d_in", "ys_in", "min_preload_lb"]
@@ -107,14 +107,14 @@ def test_closed_without_a_preload_and_below_the_floor():
     never, tiny, small, always = found
     assert never.min_preload_lb == 0.0
     # below 2^-20 lb the chart says 2^-20 lb: 0 has an event, 2^-20 none
-    assert tiny.min_preload_lb == preload_search.grid(preload_search.LOWEST_K)
+    assert tiny.min_preload_lb == preload_scan.grid(preload_scan.LOWEST_K)
     assert (0.0, True) in tiny.tested
     assert 3e-6 <= small.min_preload_lb <= 3e-6 * 1.01
     # an event within an octave of the grid's top (1024 lb): no answer
     assert math.isnan(always.min_preload_lb)
     top = max(p for p, _ in always.tested)
-    assert preload_search.grid(preload_search.HIGHEST_K) / 2 < top <= preload_search.grid(
-        preload_search.HIGHEST_K)
+    assert preload_scan.grid(preload_scan.HIGHEST_K) / 2 < top <= preload_scan.grid(
+        preload_scan.HIGHEST_K)
 
 
 def test_nothing_above_a_ceiling_is_tested():
@@ -135,12 +135,12 @@ def test_nothing_above_a_ceiling_is_tested():
     # without a ceiling: an octave above the last event, 2^(7/4) lb,
     # and the band, to 2 times the answer
     top = max(p for row, p in calls if row == 2)
-    assert top >= preload_search.grid(11)
+    assert top >= preload_scan.grid(11)
     assert 2.0 * free.min_preload_lb / 1.01 <= top <= 2.0 * \
         free.min_preload_lb
     # 2^(13/4) = 9.51 lb has an event, 2^(14/4) = 11.3 lb is above 10.5
     assert math.isnan(beyond.min_preload_lb)
-    assert max(p for row, p in calls if row == 1) == preload_search.grid(13)
+    assert max(p for row, p in calls if row == 1) == preload_scan.grid(13)
 
 
 # the chart against simulate(), 3 % either side

@@ -20,7 +20,8 @@ from planted_preload import CALLS, plant_threshold
 import contactsep
 from contactsep.chatter.simulate import largest_preload
 from contactsep.errors import ContactsepWarning
-from contactsep.studies.preload.search import grid, search, top_index
+from contactsep.studies.preload.scan import grid, top_index
+from contactsep.studies.preload.search import search
 
 
 def _runs(n_modes=None):

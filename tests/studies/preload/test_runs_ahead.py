@@ -18,6 +18,7 @@ from test_preload_runs import RecordingPool
 from contactsep.chatter.simulate import largest_preload
 from contactsep.cli import main
 from contactsep.studies.preload import chart as preload
+from contactsep.studies.preload import scan as preload_scan
 from contactsep.studies.preload import search as preload_search
 from contactsep.studies.preload.verify import search_design
 from contactsep.studies.run_journal import RunJournal
@@ -157,7 +158,7 @@ def test_the_midpoints_ahead_hold_every_later_bisection_step():
         hi = lo * rng.uniform(1.05, 1.4)
         t = rng.uniform(lo, hi)
         mid = math.sqrt(lo * hi)
-        ahead = preload_search._midpoints_ahead([(0, (lo, hi), mid)], 0.01)
+        ahead = preload_scan.midpoints_ahead([(0, (lo, hi), mid)], 0.01)
         assert sorted(ahead[:2]) == [(0, math.sqrt(lo * mid)),
                                      (0, math.sqrt(mid * hi))]
         a, b, steps = lo, hi, []

@@ -13,7 +13,7 @@ from contactsep.cli import main
 from contactsep.model import evaluate
 from contactsep.studies.thesis import conclusions
 from contactsep.studies.preload import chart as preload
-from contactsep.studies.preload import search as preload_search
+from contactsep.studies.preload import scan as preload_scan
 from contactsep.studies.study import thesis_study_design
 
 #: The design each study's rows change, and how.
@@ -51,7 +51,7 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
             # no answer: an event at the highest grid preload the
             # simulation takes (at N = 4 the thin separators need more
             # than the lower contact's 27 lb)
-            top = preload_search.grid(preload_search.top_index(largest_preload(design)))
+            top = preload_scan.grid(preload_scan.top_index(largest_preload(design)))
             assert simulate(design, model="hertz", damping=damping,
                             preload=top, samples=1, single_impulse=False,
                             **THESIS).n_events > 0

@@ -27,13 +27,12 @@ import math
 from contactsep.chatter.stack import largest_preload
 from contactsep.studies.preload.converge import MARGIN, window_answer
 from contactsep.studies.preload.runs import PreloadRun
+from contactsep.studies.preload.scan import PER_OCTAVE, grid
 from contactsep.studies.preload.search import (
-    PER_OCTAVE,
     TOLERANCE,
     PreloadSearch,
     fine_band,
     fine_grid,
-    grid,
     search,
 )
 
