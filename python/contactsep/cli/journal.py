@@ -1,7 +1,7 @@
 """``--resume`` for the commands of three-beam simulations
 (``preload``, and the studies of ``cli.study_runs.RESUMABLE``): every
 finished simulation kept beside the output CSV in ``.FILE.resume/``
-(:class:`contactsep.studies.run_journal.RunJournal`), what the command
+(:class:`contactsep.runs.journal.RunJournal`), what the command
 says about it, and its removal once the CSV is in place."""
 
 from __future__ import annotations
@@ -36,8 +36,7 @@ def open_journal(resume: bool, csv, inputs: dict):
     None without."""
     if not resume:
         return None
-    from contactsep.studies.resume import store_path
-    from contactsep.studies.run_journal import RunJournal
+    from contactsep.runs.journal import RunJournal, store_path
     csv = os.fspath(csv)
     path = store_path(csv)
     journal = RunJournal(path, inputs, label=csv + " (" +
@@ -85,7 +84,7 @@ def finished(csv, journal) -> None:
         journal.remove()
         return
     from contactsep.output import locks
-    from contactsep.studies.resume import store_path
+    from contactsep.runs.journal import store_path
     path = store_path(os.fspath(csv))
     if not os.path.isdir(path):
         return

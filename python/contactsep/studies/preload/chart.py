@@ -110,7 +110,7 @@ class Simulations:
         #: Called with the number of simulations as some finish, or None;
         #: a ``planned(phase, count)`` method of it, before each batch.
         self.progress = progress
-        #: A run_journal.RunJournal keeping every finished run, or None.
+        #: A runs.journal.RunJournal keeping every finished run, or None.
         self.journal = journal
         #: Runs asked for (a journal's answers included: a resumed search
         #: counts as an uninterrupted one), and this process's seconds.
@@ -201,7 +201,7 @@ class Simulations:
                 f"are kept (rerun with --resume to continue)")
 
     def _run_journaled(self, function, tasks: list, cost) -> list:
-        from contactsep.studies.run_journal import task_key
+        from contactsep.runs.journal import task_key
         journal = self.journal
         keys = [task_key(function, task) for task in tasks]
         out, missing = [None] * len(tasks), []
@@ -345,7 +345,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ``converge``: each row checked at 2N, dt/2 and searched again where
     it fails, up to checks at N = 128 (or at the N given;
     :mod:`contactsep.studies.preload.converge`);
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
     from contactsep.studies.preload import search_checks as checks

@@ -19,7 +19,7 @@ from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
 from contactsep.runs.pool import stop_pool, worker_pool
-from contactsep.studies.resume import load_columns, save_columns
+from contactsep.runs.journal import chunk_file, load_columns, save_columns
 from contactsep.runs.stops import wait_for
 from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
@@ -58,7 +58,7 @@ def chunk_result(spec, first, last, threshold, mode, directory=None):
         summary.add(columns)
         return summary, last - first, seconds
     if mode == "file":
-        path = os.path.join(directory, f"{first:012d}-{last:012d}.npz")
+        path = chunk_file(directory, first, last)
         save_columns(path, columns)
         return path, last - first, seconds
     return columns, last - first, seconds
