@@ -30,8 +30,8 @@ from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.studies.fields import design_lines
 from contactsep.runs.pool import (
+    RestartingPool,
     map_longest_first,
-    stop_pool,
     usable_cores,
     worker_pool,
 )
@@ -133,7 +133,7 @@ class Simulations:
             dask_map.check_code(self.client)
             self.ahead.capacity = dask_run.threads(self.client)
         elif self.workers > 1:
-            self._pool = worker_pool(self.workers)
+            self._pool = RestartingPool(self.workers, make=worker_pool)
             self.ahead.capacity = self.workers
         return self
 
@@ -142,7 +142,7 @@ class Simulations:
             return
         # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
         # going are killed now, not waited for (a minute each at large N)
-        stop_pool(self._pool, finished=kind is None)
+        self._pool.stop(finished=kind is None)
 
     def map(self, function, tasks: list, cost=None) -> list:
         """function(task) for every task, in order (function and tasks
@@ -187,10 +187,10 @@ class Simulations:
                 if self.progress is not None:
                     self.progress(1)
             return out
-        # the preloaded runs (slower: fixed steps while pressed) first
-        return map_longest_first(self._pool, function, tasks,
-                                 cost=cost, done=self.progress,
-                                 finished=finished)
+        # the preloaded runs first (slower: fixed steps while pressed)
+        return self._pool.map(map_longest_first, function, tasks,
+                              cost=cost, done=self.progress,
+                              finished=finished)
 
     def _kept(self, done: int) -> str:
         """What a lost scheduler's line says of the finished runs."""
