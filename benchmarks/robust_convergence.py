@@ -57,7 +57,7 @@ from contactsep.studies.preload.command import preload  # noqa: E402
 from contactsep.studies.preload.chart import Simulations  # noqa: E402
 from contactsep.studies.preload.robust import (  # noqa: E402
     parse_tolerances, sample_counts, tolerance_samples)
-from contactsep.studies.run_journal import RunJournal  # noqa: E402
+from contactsep.runs.journal import RunJournal  # noqa: E402
 
 COLUMNS = ("design", "n_modes", "ys_in", "ys_tolerance", "samples",
            "min_preload_lb", "robust_min_preload_lb", "n", "n_open",

@@ -10,7 +10,7 @@ import signal
 import sys
 
 from contactsep.cli import main
-from contactsep.studies.run_journal import RunJournal
+from contactsep.runs.journal import RunJournal
 
 
 def _in_child(patch, args, stderr=None) -> int:

@@ -26,7 +26,7 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
     sized by the measured time, so a loaded machine cuts more of them."""
     import numpy as np
 
-    from contactsep.studies import resume
+    from contactsep.runs import journal as resume
     (claim,) = quoted("studies.md", r"in binary \(~(\d+) bytes a design "
                       r"for an eq23 sweep of one varied field\)")
     monkeypatch.setattr(resume.ChunkStore, "remove", lambda self: None)

@@ -60,13 +60,13 @@ def _resumed(name: str, owner, method: str, count: int, tmp_path,
 
 
 def test_a_killed_sweep_resumes_to_its_golden_outputs(tmp_path):
-    from contactsep.studies.resume import ChunkStore
+    from contactsep.runs.journal import ChunkStore
     _resumed("sweep", ChunkStore, "save", 3, tmp_path,
              ("--chunk-size", "4"))
 
 
 def test_a_killed_preload_search_resumes_to_its_golden_outputs(tmp_path):
-    from contactsep.studies.run_journal import RunJournal
+    from contactsep.runs.journal import RunJournal
     _resumed("preload", RunJournal, "record", 40, tmp_path)
 
 

@@ -149,7 +149,7 @@ def test_a_lost_scheduler_is_one_line_and_a_new_one_continues(
     with the uninterrupted answer, simulating only the rest."""
     from contactsep.runs import dask_run
     from contactsep.runs.dask_run import SchedulerLost
-    from contactsep.studies.run_journal import RunJournal
+    from contactsep.runs.journal import RunJournal
     uninterrupted = _robust(1)
     # the runs a search on two workers makes ahead and never asks for
     made, used = _robust(2).timing["ahead"]

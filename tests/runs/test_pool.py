@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import time
 
+import pytest
+
 from contactsep.runs.pool import map_longest_first, stop_pool, worker_pool
 
 
@@ -57,3 +59,70 @@ def test_every_worker_gets_twenty_chunks_of_at_least_a_fifth_of_a_second():
     assert next(half.plan()) == (0, 5_000, False)
     half.record(100, 0.1)
     assert half.next == 250
+
+
+# --- a worker that dies: the pool is started again ------------------------
+
+def _dies_once(task):
+    """``task`` (n, marker file): 3 n, but the worker running n = 5 is
+    SIGKILLed the first time (the marker then exists)."""
+    import os
+    import signal
+    n, marker = task
+    if n == 5 and not os.path.exists(marker):
+        open(marker, "w").close()
+        os.kill(os.getpid(), signal.SIGKILL)
+    time.sleep(0.01)
+    return 3 * n
+
+
+def _always_dies(task):
+    import os
+    import signal
+    os.kill(os.getpid(), signal.SIGKILL)
+
+
+def test_a_batch_whose_worker_dies_is_finished_on_a_new_pool(tmp_path):
+    """Every result, in order, each handed to ``finished`` once and
+    counted done once; the second pool finished it."""
+    from contactsep.runs.pool import RestartingPool
+    tasks = [(n, str(tmp_path / "died")) for n in range(12)]
+    arrived, done = [], []
+    pool = RestartingPool(2)
+    try:
+        out = pool.map(map_longest_first, _dies_once, tasks,
+                       finished=lambda i, result: arrived.append(i),
+                       done=done.append)
+    finally:
+        pool.stop()
+    assert out == [3 * n for n in range(12)]
+    assert (tmp_path / "died").exists() and len(pool.pools) == 2
+    assert sorted(arrived) == list(range(12))
+    assert sum(done) == 12
+
+
+def test_workers_that_die_every_time_are_one_line():
+    from contactsep.errors import InputError
+    from contactsep.runs.pool import MAX_POOL_RESTARTS, RestartingPool
+    pool = RestartingPool(2)
+    try:
+        with pytest.raises(InputError) as caught:
+            pool.map(map_longest_first, _always_dies, [1, 2, 3])
+    finally:
+        pool.stop(finished=False)
+    assert str(caught.value) == ("a worker process died 4 times (killed, "
+                                 "or out of memory)")
+    assert len(pool.pools) == MAX_POOL_RESTARTS + 1 == 4
+
+
+def test_a_preload_search_survives_a_dead_worker(tmp_path):
+    """The searches' Simulations (2 workers: the pool path) with a
+    journal: the batch's results, each kept once."""
+    from contactsep.runs.journal import RunJournal
+    from contactsep.studies.preload.chart import Simulations
+    tasks = [(n, str(tmp_path / "died")) for n in range(10)]
+    with RunJournal(tmp_path / "j", {}) as journal, \
+            Simulations(2, journal=journal) as sims:
+        assert sims.map(_dies_once, tasks) == [3 * n for n in range(10)]
+        assert (tmp_path / "died").exists()
+        assert journal.recorded == 10 == len(journal)

@@ -16,7 +16,7 @@ import pytest
 from forked import killed_at
 
 from contactsep.cli import main as cli_main
-from contactsep.studies import resume
+from contactsep.runs import journal as resume
 from contactsep.studies.sweep import chunk_runs
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep
@@ -112,7 +112,7 @@ def test_the_resumed_run_computes_only_what_is_missing(tmp_path, capsys,
                                                        monkeypatch):
     command = _outputs(tmp_path, [*EQ23, "--resume"])
     _killed_at(command, "write", 5)
-    store = resume.ChunkStore(str(tmp_path / "out.csv"),
+    store = runner.ChunkStore(str(tmp_path / "out.csv"),
                               sweep.make_spec(
                                   vary=["h2=0.1:0.8:7"],
                                   sample=["ys=uniform(0.45,0.55)"],

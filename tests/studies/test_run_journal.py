@@ -29,8 +29,8 @@ from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies.preload import command as design_preload
 from contactsep.studies.preload.chart import Simulations
-from contactsep.studies.resume import ResumeError
-from contactsep.studies.run_journal import RunJournal, task_key
+from contactsep.runs.journal import ResumeError
+from contactsep.runs.journal import RunJournal, task_key
 
 COMMAND = ["preload", "--n-modes", "8", "--workers", "1", "--json",
            "--tolerance", "d=uniform(0.2,0.3)", "--samples", "20",

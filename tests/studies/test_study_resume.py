@@ -20,7 +20,7 @@ from planted_preload import CALLS, fake_zero_preload
 from contactsep.cli import main
 from contactsep.cli.studies import RESUMABLE
 from contactsep.studies.thesis import conclusions
-from contactsep.studies.run_journal import RunJournal
+from contactsep.runs.journal import RunJournal
 
 STUDIES = {
     "preload": ["study", "preload", "--n-modes", "8", "--workers", "1",

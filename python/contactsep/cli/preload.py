@@ -210,14 +210,14 @@ def run(args: argparse.Namespace) -> int:
                          "tolerance")
     output.check_targets({"--csv": args.csv},
                          {"--design": args.design} if args.design else {})
-    journals.check_resume(args.resume, args.csv)
+    resume = journals.Resume(args.resume, args.csv)
     check_cluster(args)
     with cluster(args) as client, units_shown(args.units):
         return _run(args, design, p_target,
-                    args.workers if client is None else client)
+                    args.workers if client is None else client, resume)
 
 
-def _run(args, design, p_target, workers) -> int:
+def _run(args, design, p_target, workers, resume) -> int:
     """The search (on ``workers``: local processes or a Dask client) and
     its outputs."""
     from contactsep.runs.stops import search_progress
@@ -227,7 +227,7 @@ def _run(args, design, p_target, workers) -> int:
     settings = {name: getattr(args, name) for name in _OPTIONS
                 if getattr(args, name) is not None}
     enabled = {"auto": None, "always": True, "never": False}[args.progress]
-    journal = journals.open_journal(args.resume, args.csv, journal_inputs(
+    journal = resume.open_runs(journal_inputs(
         design, args.model, settings, tolerance=args.tolerance,
         p_target=p_target, samples=args.samples, seed=args.seed,
         converge=args.converge, perturbation=args.perturbation,
@@ -244,7 +244,7 @@ def _run(args, design, p_target, workers) -> int:
                          progress=bar, journal=journal, **settings)
         finished = True
     except BaseException as error:
-        journals.stopped(journal, args.csv, error)
+        resume.stopped(error)
         if not isinstance(error, InputError):
             raise
         # the simulation names its arguments; the command, its options
@@ -258,7 +258,7 @@ def _run(args, design, p_target, workers) -> int:
             bar.close(finished)
     if args.csv:
         answer.to_csv(args.csv)
-        journals.finished(args.csv, journal)
+        resume.finished()
     if args.json:
         output.write_json(sys.stdout, with_sources(answer.to_json_dict(),
                                                    args))

@@ -273,7 +273,7 @@ def run_study(args: argparse.Namespace) -> int:
                          "or --png)")
     overrides = design_overrides(args)
     check_targets(args, _study_targets(args, names))
-    csv = _study_csv(args)
+    resume = _study_resume(args)
     if args.png or args.out:
         _need_matplotlib()          # before anything is computed
     if args.name == "all":
@@ -296,12 +296,11 @@ def run_study(args: argparse.Namespace) -> int:
     check_cluster(args)
     refuse_cluster(args.name, args)
     with cluster(args) as args.cluster:
-        journal = journals.open_journal(args.resume, csv, _journal_inputs(
-            args, overrides))
+        journal = resume.open_runs(_journal_inputs(args, overrides))
         try:
             study = _compute(args.name, args, overrides, journal)
         except BaseException as error:
-            journals.stopped(journal, csv, error)
+            resume.stopped(error)
             raise
     sys.stdout.write(study.table_text())
     if args.csv:
@@ -313,15 +312,15 @@ def run_study(args: argparse.Namespace) -> int:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         _save(study, out, args.dpi)
-    if csv is not None:
-        journals.finished(csv, journal)
+    resume.finished()
     return 0
 
 
-def _study_csv(args):
-    """The CSV a study of simulations keeps its --resume journal beside
-    (--csv, else --out's NAME.csv); None for a study of eq. 23, or
-    without a CSV.  --resume is refused where it has nothing to keep."""
+def _study_resume(args) -> journals.Resume:
+    """The resume life cycle of a study of simulations: its journal
+    beside the CSV (--csv, else --out's NAME.csv); none for a study of
+    eq. 23, or without a CSV.  --resume is refused where it has nothing
+    to keep."""
     csv = args.csv or (os.path.join(args.out, f"{args.name}.csv")
                        if args.out else None)
     if args.name not in RESUMABLE:
@@ -329,9 +328,8 @@ def _study_csv(args):
             raise InputError(f"--resume: study {args.name} runs no "
                              f"three-beam simulations to keep (it is for "
                              f"{', '.join(RESUMABLE)})")
-        return None
-    journals.check_resume(args.resume, csv, give="--csv or --out")
-    return csv
+        return journals.Resume(False, None)
+    return journals.Resume(args.resume, csv, give="--csv or --out")
 
 
 def _journal_inputs(args, overrides: dict) -> dict:

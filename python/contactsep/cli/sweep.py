@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import stat
 import sys
 import warnings
 
 from contactsep import output
 from contactsep.cli import cluster
+from contactsep.cli import journal as journals
 from contactsep.cli.cluster import add_cluster_options, check_cluster
 from contactsep.cli.design_options import (
     add_design_options,
@@ -26,7 +26,7 @@ from contactsep.cli.guards import (
 from contactsep.cli.help import examples
 from contactsep.cli.unit_system import from_si
 from contactsep.cli.values import finite, integer
-from contactsep.errors import ContactsepWarning, InputError, printable
+from contactsep.errors import ContactsepWarning, InputError
 from contactsep.output.pieces import PIECE_S
 from contactsep.studies.sweep.chatter import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
@@ -203,24 +203,17 @@ def _settings(args: argparse.Namespace, si: bool = False) -> dict:
     return values
 
 
-def _regular_or_new(path: str) -> bool:
-    """Whether ``path`` is a regular file or none yet (a device or FIFO
-    output has no folder beside it for the chunks)."""
-    info = output.target_info(path)
-    return info is None or stat.S_ISREG(info.st_mode)
-
-
-def _say_unfinished(writers, store) -> None:
-    """On stderr, in one line, what a sweep stopped by SIGTERM left (it
-    otherwise prints nothing): how far it got, its outputs unchanged,
-    where its finished chunks are."""
-    note = next((getattr(w, "partial", None) for w in writers
-                 if getattr(w, "partial", None)), None)
-    if note:
-        with contextlib.suppress(OSError, ValueError):
-            sys.stderr.write(f"contactsep: {printable(note)}"
-                             f"{printable(runner_note(store, writers))}\n")
-            sys.stderr.flush()
+def _unfinished(writers, store):
+    """What a sweep stopped by SIGTERM left (it otherwise prints
+    nothing), for one line on stderr: how far it got, its outputs
+    unchanged, where its finished chunks are (None: nothing to say)."""
+    def note():
+        partial = next((getattr(w, "partial", None) for w in writers
+                        if getattr(w, "partial", None)), None)
+        if partial:
+            return partial + runner_note(store, writers)
+        return None
+    return note
 
 
 def run_sweep(args: argparse.Namespace) -> int:
@@ -265,15 +258,8 @@ def _run_sweep(args: argparse.Namespace) -> int:
         runner.require_pyarrow()
     check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
     progress = {"auto": None, "always": True, "never": False}[args.progress]
-    kept = args.csv or args.parquet
-    if args.resume and not kept:
-        raise InputError("--resume keeps the finished chunks beside the "
-                         "output: give --csv or --parquet")
-    if args.resume:
-        info = output.target_info(kept)
-        if info is not None and not stat.S_ISREG(info.st_mode):
-            raise InputError(f"--resume keeps the finished chunks beside "
-                             f"the output: {kept} is not a regular file")
+    resume = journals.Resume(args.resume, args.csv or args.parquet,
+                             kept="chunks", give="--csv or --parquet")
     # every option checked: only now the scheduler and the files
     check_cluster(args, workers=False)
     scheduler = cluster.connect(args)
@@ -293,8 +279,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
         # until the outputs are in place: one that does not finish leaves
         # its old outputs as they were and its chunks for --resume (a
         # sweep started afresh drops an earlier one's)
-        store = runner.ChunkStore(kept, spec, resume=args.resume) \
-            if kept and _regular_or_new(kept) else None
+        store = resume.open_chunks(spec)
         summary = runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
@@ -302,17 +287,13 @@ def _run_sweep(args: argparse.Namespace) -> int:
     except BaseException as error:
         for writer in writers:
             writer.abort()      # a no-op for a writer run_sweep closed
-        if isinstance(error, OSError) and store is not None and \
-                not args.resume:
-            store.remove()      # a write error (a full disk): no place
-            #                     for a fresh sweep's chunks either
-        if isinstance(error, output.Terminated):
-            _say_unfinished(writers, store)     # else its error says so
+        resume.stopped(error, _unfinished(writers, store))
         raise
     finally:
         if scheduler is not None:
             with contextlib.suppress(Exception):
                 scheduler.close()
+    resume.finished()
     if args.json:
         output.write_json(sys.stdout, shown_data(summary))
     else:

@@ -1,7 +1,7 @@
 """The digest of the code that computes a result.
 
-A resumable sweep (:mod:`contactsep.studies.resume`) and a preload
-search's journal (:mod:`contactsep.studies.run_journal`) keep finished
+A resumable sweep's chunks and a preload search's runs, kept in their
+journal (:mod:`contactsep.runs.journal`), are finished
 results for a later run to take.  The package version in their manifest
 tells one release from another, but not an edited development install
 from the code that made the results: a rerun would mix the two without

@@ -21,7 +21,7 @@ from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload import scan as preload_scan
 from contactsep.studies.preload import search as preload_search
 from contactsep.studies.preload.verify import search_design
-from contactsep.studies.run_journal import RunJournal
+from contactsep.runs.journal import RunJournal
 from contactsep.studies.preload.runs_ahead import RunsAhead
 
 SETTINGS = {"dt": 1e-8, "t_end": 0.01, "damping": "none"}

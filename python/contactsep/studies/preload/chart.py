@@ -30,8 +30,8 @@ from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model.fields import design_lines
 from contactsep.runs.pool import (
+    RestartingPool,
     map_longest_first,
-    stop_pool,
     usable_cores,
     worker_pool,
 )
@@ -110,7 +110,7 @@ class Simulations:
         #: Called with the number of simulations as some finish, or None;
         #: a ``planned(phase, count)`` method of it, before each batch.
         self.progress = progress
-        #: A run_journal.RunJournal keeping every finished run, or None.
+        #: A runs.journal.RunJournal keeping every finished run, or None.
         self.journal = journal
         #: Runs asked for (a journal's answers included: a resumed search
         #: counts as an uninterrupted one), and this process's seconds.
@@ -133,7 +133,7 @@ class Simulations:
             dask_map.check_code(self.client)
             self.ahead.capacity = dask_run.threads(self.client)
         elif self.workers > 1:
-            self._pool = worker_pool(self.workers)
+            self._pool = RestartingPool(self.workers, make=worker_pool)
             self.ahead.capacity = self.workers
         return self
 
@@ -142,7 +142,7 @@ class Simulations:
             return
         # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
         # going are killed now, not waited for (a minute each at large N)
-        stop_pool(self._pool, finished=kind is None)
+        self._pool.stop(finished=kind is None)
 
     def map(self, function, tasks: list, cost=None) -> list:
         """function(task) for every task, in order (function and tasks
@@ -187,10 +187,10 @@ class Simulations:
                 if self.progress is not None:
                     self.progress(1)
             return out
-        # the preloaded runs (slower: fixed steps while pressed) first
-        return map_longest_first(self._pool, function, tasks,
-                                 cost=cost, done=self.progress,
-                                 finished=finished)
+        # the preloaded runs first (slower: fixed steps while pressed)
+        return self._pool.map(map_longest_first, function, tasks,
+                              cost=cost, done=self.progress,
+                              finished=finished)
 
     def _kept(self, done: int) -> str:
         """What a lost scheduler's line says of the finished runs."""
@@ -201,7 +201,7 @@ class Simulations:
                 f"are kept (rerun with --resume to continue)")
 
     def _run_journaled(self, function, tasks: list, cost) -> list:
-        from contactsep.studies.run_journal import task_key
+        from contactsep.runs.journal import task_key
         journal = self.journal
         keys = [task_key(function, task) for task in tasks]
         out, missing = [None] * len(tasks), []
@@ -345,7 +345,7 @@ def preload_chart(model: str = "hertz", n_modes: int = DEFAULT_MODES, *,
     ``converge``: each row checked at 2N, dt/2 and searched again where
     it fails, up to checks at N = 128 (or at the N given;
     :mod:`contactsep.studies.preload.converge`);
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
     from contactsep.studies.preload import search_checks as checks

@@ -30,7 +30,7 @@ from contactsep.studies.preload.converge import (
     reachable,
 )
 from contactsep.studies.preload.robust import DEFAULT_P_TARGET
-from contactsep.studies.run_journal import RunJournal
+from contactsep.runs.journal import RunJournal
 
 #: The largest ``perturbation``: a probe of the threshold's conditioning,
 #: not a tolerance (those are ``tolerance``'s).

@@ -162,9 +162,9 @@ def preload(design, model: str = "hertz", *, tolerance=(),
         journal of the same inputs found there is continued, so a
         search killed at any moment and run again computes only what is
         missing, with the same answer; one of other inputs is refused:
-        :class:`contactsep.studies.resume.ResumeError`).  It is left in
+        :class:`contactsep.runs.journal.ResumeError`).  It is left in
         place: remove it once the answer is saved
-        (:class:`contactsep.studies.run_journal.RunJournal`,
+        (:class:`contactsep.runs.journal.RunJournal`,
         ``contactsep preload --csv F --resume``).
     **settings
         simulate()'s other keywords (dt, t_end, damping, min_open,

@@ -18,8 +18,12 @@ from contactsep.runs import dask_run
 from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
-from contactsep.runs.pool import stop_pool, worker_pool
-from contactsep.studies.resume import load_columns, save_columns
+from contactsep.runs.pool import (  # noqa: F401 - the runner's API
+    MAX_POOL_RESTARTS,
+    RestartingPool,
+    died_too_often,
+)
+from contactsep.runs.journal import chunk_file, load_columns, save_columns
 from contactsep.runs.stops import wait_for
 from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
@@ -58,7 +62,7 @@ def chunk_result(spec, first, last, threshold, mode, directory=None):
         summary.add(columns)
         return summary, last - first, seconds
     if mode == "file":
-        path = os.path.join(directory, f"{first:012d}-{last:012d}.npz")
+        path = chunk_file(directory, first, last)
         save_columns(path, columns)
         return path, last - first, seconds
     return columns, last - first, seconds
@@ -95,10 +99,6 @@ def submit_all(bounds: Chunks, submit, store, window_size, take):
         yield take(window.popleft())
 
 
-#: Times a sweep's local pool is started again after a worker died.
-MAX_POOL_RESTARTS = 3
-
-
 def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
                    store):
     """(kind, value, designs) of each chunk in order: kind "summary"
@@ -124,45 +124,21 @@ def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
         directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
                                      dir=shared)
-    pools = [worker_pool(workers)]      # the last one is in use
+    pool = RestartingPool(workers)
     finished = started = False
     task_mode = "summary" if mode == "summary" else "file"
 
-    def restart(broken: int) -> None:
-        """Pool number ``broken`` lost a worker: a new one, unless that
-        happened MAX_POOL_RESTARTS times (a chunk that kills its worker
-        each time, as the OOM killer would)."""
-        if broken == len(pools):
-            if len(pools) > MAX_POOL_RESTARTS:
-                raise BrokenProcessPool("a worker died too often")
-            stop_pool(pools[-1], finished=False)
-            pools.append(worker_pool(workers))
-
     def submit(first, last):
         nonlocal started
-        while True:
-            try:
-                future = pools[-1].submit(chunk_result, spec, first, last,
-                                          threshold, task_mode, directory)
-                break
-            except BrokenProcessPool:
-                stop.check()
-                restart(len(pools))
-        future.pool = len(pools)
+        future = pool.submit(chunk_result, spec, first, last, threshold,
+                             task_mode, directory, stop=stop)
         started = True
         return future
 
     def result(first, last, work):
         """A chunk's result; a worker killed meanwhile (its pool broken)
-        costs the chunks in flight, run again on a new pool (the same
-        bits: a chunk does not depend on where it runs)."""
-        while True:
-            try:
-                return wait_for(work, stop)
-            except BrokenProcessPool:
-                stop.check()   # a SIGTERM to the group: workers went first
-                restart(work.pool)
-                work = submit(first, last)
+        costs the chunks in flight, run again on a new pool."""
+        return pool.result(work, lambda: submit(first, last), stop)
 
     def take(item):
         first, last, work = item
@@ -184,9 +160,7 @@ def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         finished = True
     except BrokenProcessPool:
         stop.check()   # a SIGTERM to the whole group: the workers went first
-        raise InputError(f"a worker process died {MAX_POOL_RESTARTS + 1} "
-                         f"times (killed, or out of memory: try a smaller "
-                         f"--chunk-size)") from None
+        raise died_too_often(": try a smaller --chunk-size") from None
     except OSError as error:
         if started:
             raise
@@ -201,7 +175,7 @@ def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         # pool that could not start): the chunks still running are
         # dropped, so their workers are stopped now rather than waited
         # for (a design may take seconds)
-        stop_pool(pools[-1], finished, wait=started)
+        pool.stop(finished, wait=started)
         if store is None:
             shutil.rmtree(directory, ignore_errors=True)
 

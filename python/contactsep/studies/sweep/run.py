@@ -37,8 +37,8 @@ from contactsep.runs.pool import (  # noqa: F401 - the runner's API
     usable_cores,
     worker_pool,
 )
-from contactsep.studies.resume import (  # noqa: F401 - the runner's API
-    ChunkStore,
+from contactsep.runs import journal
+from contactsep.runs.journal import (  # noqa: F401 - the runner's API
     ResumeError,
     load_columns,
     save_columns,
@@ -60,6 +60,19 @@ class SweepInterrupted(InputError):
     command reports it in one line and exits 130, as for Ctrl-C."""
 
     interrupted = True
+
+
+class ChunkStore(journal.ChunkStore):
+    """The finished chunks of a resumable sweep of ``spec`` beside
+    ``output_path`` (:class:`contactsep.runs.journal.ChunkStore`): its
+    manifest records the sweep's model and inputs
+    (:meth:`SweepSpec.inputs`), which the journal only compares."""
+
+    def __init__(self, output_path: str, spec: SweepSpec,
+                 resume: bool = True) -> None:
+        super().__init__(output_path, {"model": spec.model,
+                                       "inputs": spec.inputs()},
+                         spec.size, resume=resume)
 
 
 #: The pool workers' set-up (the name studies.preload.chart imports).
@@ -128,7 +141,7 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     command's own exception; a dead worker; any other error) drops the
     writers' files (:meth:`CsvWriter.abort`: the old file, or none,
     stays under the final name); what it finished is in ``store``.
-    ``store``: a :class:`~contactsep.studies.resume.ChunkStore` that
+    ``store``: a :class:`ChunkStore` that
     keeps every finished chunk (and gives those an earlier run kept),
     removed when the writers' files are in place.
     """

@@ -45,7 +45,7 @@ def buttons(n_modes: int = MODES, radii=RADII, shapes=SHAPES, *,
     """Open time and smallest preload against the button's shape and
     radius (module docstring); ``progress(k)`` is called as k more
     simulations finish;
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
     for shape in shapes:

@@ -110,7 +110,7 @@ def conclusion(name: str, model: str = "hertz",
     min_preload_lb; any other design field overridden by keyword;
     ``dt`` the stepper's step (default: the model's); ``progress(k)``
     is called as k more simulations finish (a bar);
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None."""
     from contactsep.errors import shown

@@ -72,7 +72,7 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
     design field overridden by keyword; ``min_preload`` adds the preload
     search's answer (slow); ``progress(k)`` is called as k more
     simulations finish (a bar);
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None.
 

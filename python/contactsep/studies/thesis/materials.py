@@ -76,7 +76,7 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
     law, preload, contact material and separator material; any other
     design field overridden by keyword; ``progress(k)`` is called as k
     more simulations finish (a bar);
-    ``journal``: a :class:`~contactsep.studies.run_journal.RunJournal`
+    ``journal``: a :class:`~contactsep.runs.journal.RunJournal`
     that keeps every finished simulation and answers those it holds
     (``study NAME --resume``), or None.
 
