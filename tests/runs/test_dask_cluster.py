@@ -82,6 +82,37 @@ def test_a_sweep_on_the_scheduler_file_writes_the_local_bytes(
         (tmp_path / "local.csv").read_bytes()
 
 
+def test_a_study_on_the_scheduler_writes_the_local_bytes(deployment,
+                                                       tmp_path):
+    """A thesis study's simulations on the cluster (the materials study
+    at N = 2: 13 s on two local workers) give the local pool's CSV."""
+    argv = [sys.executable, "-m", "contactsep", "study", "materials",
+            "--n-modes", "2", "--progress", "never", "--csv"]
+    local = subprocess.run([*argv, "local.csv", "--workers", "2"],
+                           cwd=tmp_path, capture_output=True, text=True,
+                           timeout=300)
+    assert local.returncode == 0, local.stderr
+    before = _tasks_seen(deployment)
+    remote = subprocess.run([*argv, "remote.csv", "--scheduler",
+                             deployment.address], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=300)
+    assert remote.returncode == 0, remote.stderr
+    assert (tmp_path / "remote.csv").read_bytes() == \
+        (tmp_path / "local.csv").read_bytes()
+    # the simulations ran on the cluster: one task or more a row
+    rows = [line for line in (tmp_path / "local.csv").read_text()
+            .splitlines() if line and not line.startswith("#")]
+    assert _tasks_seen(deployment) - before >= len(rows) - 1
+
+
+def _tasks_seen(deployment) -> int:
+    """The tasks the cluster's scheduler has seen, in any state."""
+    with distributed.Client(deployment.address, timeout=30) as client:
+        return client.run_on_scheduler(lambda dask_scheduler: sum(
+            sum(prefix.state_counts.values())
+            for prefix in dask_scheduler.task_prefixes.values()))
+
+
 def test_the_preload_command_runs_on_the_scheduler_the_file_names(
         deployment, monkeypatch, capsys):
     """The command hands the search a Client of the file's scheduler
