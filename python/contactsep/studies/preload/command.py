@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from dataclasses import dataclass
 
 from contactsep.chatter import simulate
 from contactsep.chatter.stack import largest_preload
@@ -174,24 +175,13 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     -------
     PreloadAnswer
     """
-    if model not in MODELS:
-        raise InputError(f"model: found {model!r}, expected one of "
-                         f"{', '.join(MODELS)}")
-    own = sorted(set(settings) & set(_OWN))
-    if own:
-        raise InputError(f"{own[0]}: set by the preload search itself")
-    p_target = check_p_target(p_target)
-    spec = parse_tolerances(tolerance, DEFAULT_SAMPLES if samples is None
-                            else samples, seed) if tolerance else None
-    if samples is not None and not tolerance:
-        raise InputError("--samples: the draws of --tolerance; give a "
-                         "tolerance")
-    perturbation = check_perturbation(perturbation)
+    p_target, spec, perturbation = _checked_inputs(
+        model, settings, p_target, tolerance, samples, seed, perturbation)
     probe, run_s = _probe(design, model, settings)
     check_run_s = 0.0
     max_check = check_converge(converge, verify, design.n_modes)
     ceiling = largest_preload(design)
-    notes = []
+    finer = verify_settings = None
     if verify:
         # refused here (the work budget at 2N, dt/2) rather than after
         # the search at N has run
@@ -207,54 +197,120 @@ def preload(design, model: str = "hertz", *, tolerance=(),
             Simulations(workers, progress=progress, journal=kept) as sims:
         _tell_estimate(progress, run_s, check_run_s, verify,
                        sims.ahead.capacity)
-        # with tolerances the band below too: the robust search tries
-        # the nominal design's events above its own answer
-        found = search_design(design, model, settings, sims, ceiling,
-                              band_below=band_below or spec is not None)
-        # measured for the verdict's estimate of a rerun's time
-        timing = {"search": (sims.runs, sims.seconds)}
-        answer = found.min_preload_lb
-        verify_found = local = None
-        if verify:
-            verify_found, local = verify_design(
-                finer, model, verify_settings, sims, answer, band_below)
-        timing["verify"] = (sims.runs - timing["search"][0],
-                            sims.seconds - timing["search"][1])
-        perturbed = None
-        if perturbation is not None:
-            perturbed = perturbed_searches(design, model, settings, sims,
-                                           ceiling, perturbation, answer,
-                                           band_below)
-        converged = None
-        if max_check is not None:
-            converged, converge_notes = converged_fields(
-                design, model, settings, sims, found, verify_found, probe,
-                max_check, band_below)
-            notes += converge_notes
+        done = _searched(design, model, settings, sims, probe, ceiling,
+                         finer, verify_settings, max_check, perturbation,
+                         band_below, spec, p_target)
+    return _answer(design, model, settings, probe, ceiling, done,
+                   perturbation, max_check)
+
+
+def _checked_inputs(model, settings, p_target, tolerance, samples, seed,
+                    perturbation):
+    """(p_target, the tolerances' spec or None, perturbation), checked
+    before any simulation: each refusal one line."""
+    if model not in MODELS:
+        raise InputError(f"model: found {model!r}, expected one of "
+                         f"{', '.join(MODELS)}")
+    own = sorted(set(settings) & set(_OWN))
+    if own:
+        raise InputError(f"{own[0]}: set by the preload search itself")
+    p_target = check_p_target(p_target)
+    spec = parse_tolerances(tolerance, DEFAULT_SAMPLES if samples is None
+                            else samples, seed) if tolerance else None
+    if samples is not None and not tolerance:
+        raise InputError("--samples: the draws of --tolerance; give a "
+                         "tolerance")
+    return p_target, spec, check_perturbation(perturbation)
+
+
+@dataclass
+class _Searched:
+    """What :func:`preload`'s searches found, for its answer."""
+
+    found: object
+    timing: dict
+    notes: list
+    verify_found: object = None
+    local: bool | None = None
+    perturbed: object = None
+    converged: dict | None = None
+    robust: object = None
+    runs: int = 0
+    log: tuple = ()
+
+
+def _searched(design, model, settings, sims, probe, ceiling, finer,
+              verify_settings, max_check, perturbation, band_below, spec,
+              p_target) -> _Searched:
+    """The search at N, its check at 2N and half the step (``finer``,
+    ``verify_settings``; None: no check), the perturbed searches, the
+    convergence check and the robust answer, on ``sims``."""
+    # with tolerances the band below too: the robust search tries the
+    # nominal design's events above its own answer
+    found = search_design(design, model, settings, sims, ceiling,
+                          band_below=band_below or spec is not None)
+    # measured for the verdict's estimate of a rerun's time
+    done = _Searched(found=found, notes=[],
+                     timing={"search": (sims.runs, sims.seconds)})
+    answer = found.min_preload_lb
+    if finer is not None:
+        done.verify_found, done.local = verify_design(
+            finer, model, verify_settings, sims, answer, band_below)
+    done.timing["verify"] = (sims.runs - done.timing["search"][0],
+                             sims.seconds - done.timing["search"][1])
+    if perturbation is not None:
+        done.perturbed = perturbed_searches(design, model, settings, sims,
+                                            ceiling, perturbation, answer,
+                                            band_below)
+    if max_check is not None:
+        done.converged, converge_notes = converged_fields(
+            design, model, settings, sims, found, done.verify_found, probe,
+            max_check, band_below)
+        done.notes += converge_notes
+    done.runs = sims.runs
+    done.timing["nominal"] = (sims.runs, sims.seconds)
+    if spec is not None:
+        done.robust = _robust(design, model, settings, spec, p_target,
+                              sims, found, ceiling, finer, verify_settings,
+                              max_check, done.notes)
+    # runs made ahead for idle workers: (made, then asked for)
+    done.timing["ahead"] = (sims.ahead.made, sims.ahead.used)
+    done.log = tuple(sims.log)
+    return done
+
+
+def _robust(design, model, settings, spec, p_target, sims, nominal,
+            ceiling, finer, verify_settings, max_check, notes):
+    """The robust answer (and its check at 2N where ``max_check`` asks)
+    from the nominal search ``nominal``, its notes appended to
+    ``notes``."""
+    runs = sims.runs
+    answer = nominal.min_preload_lb
+    found = robust_preload(
+        design, model, settings, spec, p_target, sims,
+        start=answer if math.isfinite(answer) else None, ceiling=ceiling,
+        nominal_events=[p for p, event in nominal.tested if event])
+    notes.append(f"robust answer: {sims.runs - runs} simulations of "
+                 f"{spec.samples} samples")
+    if max_check is not None:
         runs = sims.runs
-        timing["nominal"] = (sims.runs, sims.seconds)
-        robust = None
-        if spec is not None:
-            robust = robust_preload(
-                design, model, settings, spec, p_target, sims,
-                start=answer if math.isfinite(answer) else None,
-                ceiling=ceiling,
-                nominal_events=[p for p, event in found.tested if event])
-            notes.append(f"robust answer: {sims.runs - runs} "
-                         f"simulations of {spec.samples} samples")
-            if max_check is not None:
-                runs = sims.runs
-                robust = check_robust(robust, finer, model,
-                                      verify_settings, spec, sims)
-            if robust.checked:
-                notes.append(f"robust answer's check at N = "
-                             f"{robust.check_n_modes} and half the step: "
-                             f"{sims.runs - runs} simulations; it tries "
-                             f"{MARGIN:.0%} either side only, a window of "
-                             f"the samples' events further above is not "
-                             f"seen")
-        # runs made ahead for idle workers: (made, then asked for)
-        timing["ahead"] = (sims.ahead.made, sims.ahead.used)
+        found = check_robust(found, finer, model, verify_settings, spec,
+                             sims)
+    if found.checked:
+        notes.append(f"robust answer's check at N = {found.check_n_modes} "
+                     f"and half the step: {sims.runs - runs} simulations; "
+                     f"it tries {MARGIN:.0%} either side only, a window of "
+                     f"the samples' events further above is not seen")
+    return found
+
+
+def _answer(design, model, settings, probe, ceiling, done: _Searched,
+            perturbation, max_check) -> PreloadAnswer:
+    """The answer of :func:`preload` from its searches, its warnings
+    given."""
+    found, verify_found = done.found, done.verify_found
+    answer = found.min_preload_lb
+    notes = list(done.notes)
     at_answer = None
     if math.isfinite(answer) and answer > 0:
         at_answer = simulate(design, model=model, preload=answer,
@@ -263,7 +319,7 @@ def preload(design, model: str = "hertz", *, tolerance=(),
     notes += search_notes(found, probe)
     verify_answer = None if verify_found is None else \
         verify_found.min_preload_lb
-    if local:
+    if done.local:
         notes.append(f"at half the step and twice the modes: checked "
                      f"{MARGIN:.0%} either side of the answer only (every "
                      f"{FINE_RATIO - 1:.2%} step), where it holds: a "
@@ -274,7 +330,29 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                   in limit_notes("the design", verify_found)]
     change = None if verify_found is None else relative_change(
         answer, verify_answer)
+    spread = perturbed_fields(perturbation, done.perturbed, answer)
+    _warn(done, answer, verify_answer, change, spread, perturbation,
+          max_check)
+    return PreloadAnswer(
+        design=design, model=model, settings=dict(settings),
+        dt_s=probe.dt, n_modes=design.n_modes, min_preload_lb=answer,
+        min_preload_change=change, verify_min_preload_lb=verify_answer,
+        event_windows=windows(found.tested),
+        closed_windows=windows(found.tested, below=answer, event=False),
+        tested=found.tested,
+        verify_tested=() if verify_found is None else verify_found.tested,
+        ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
+        simulations=done.runs, robust=done.robust, notes=tuple(notes),
+        timing=done.timing, runs=done.log, **(done.converged or {}),
+        **spread)
+
+
+def _warn(done: _Searched, answer, verify_answer, change, spread,
+          perturbation, max_check) -> None:
+    """The warnings of an answer that is not converged, whose robust
+    answer does not hold at 2N, or whose threshold is ill-conditioned."""
     hint = "" if perturbation is not None else _HINT
+    converged, robust = done.converged, done.robust
     # no answer at N nor at 2N (an event up to the ceiling at both): the
     # verdict says so; "not converged" would read as a number to refine
     none_either = not math.isfinite(answer) and not (
@@ -299,7 +377,6 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                       f"{MARGIN:.0%} above it, or not within {MARGIN:.0%} "
                       f"below it; raise n_modes and search again",
                       ContactsepWarning)
-    spread = perturbed_fields(perturbation, perturbed, answer)
     if spread.get("min_preload_spread") is not None and \
             spread["min_preload_spread"] > MARGIN:
         warnings.warn(f"the smallest preload moves by "
@@ -308,22 +385,8 @@ def preload(design, model: str = "hertz", *, tolerance=(),
                       f"threshold is ill-conditioned, no N or step "
                       f"converges it closer than that; a design's answer "
                       f"is the robust one (--tolerance)", ContactsepWarning)
-    if change is not None and abs(change) > 0.02:
-        if max_check is None:
-            warnings.warn(f"the smallest preload moves by {change:+.1%} "
-                          f"at half the step and twice the modes: raise "
-                          f"n_modes (or lower dt) and search again, or "
-                          f"converge it (--converge){hint}",
-                          ContactsepWarning)
-    return PreloadAnswer(
-        design=design, model=model, settings=dict(settings),
-        dt_s=probe.dt, n_modes=design.n_modes, min_preload_lb=answer,
-        min_preload_change=change, verify_min_preload_lb=verify_answer,
-        event_windows=windows(found.tested),
-        closed_windows=windows(found.tested, below=answer, event=False),
-        tested=found.tested,
-        verify_tested=() if verify_found is None else verify_found.tested,
-        ceiling_lb=ceiling, longest_open_at_answer_s=at_answer,
-        simulations=runs, robust=robust, notes=tuple(notes), timing=timing,
-        runs=tuple(sims.log),
-        **(converged or {}), **spread)
+    if change is not None and abs(change) > 0.02 and max_check is None:
+        warnings.warn(f"the smallest preload moves by {change:+.1%} at half "
+                      f"the step and twice the modes: raise n_modes (or "
+                      f"lower dt) and search again, or converge it "
+                      f"(--converge){hint}", ContactsepWarning)
