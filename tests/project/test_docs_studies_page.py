@@ -77,18 +77,18 @@ def test_osmiums_density():
     assert printed(value, claim), value
 
 
-def test_the_newton_band_claim_is_the_numerics_pages():
-    """studies.md quotes docs/numerics.md's tolerance-band convergence
+def test_the_newton_band_claim_is_the_convergence_pages():
+    """studies.md quotes docs/convergence.md's tolerance-band convergence
     (whose table is benchmarks/chatter_convergence.py band's run): the
     same 1 % at the default step and the same ±0.5 % band."""
     within, band = quoted("studies.md", r"converged to (\d+) % at the "
                           r"default step for L2 within ±([\d.]+) %: "
-                          r"docs/numerics.md, \"The Newton open time over a "
+                          r"docs/convergence.md, \"The Newton open time over a "
                           r"tolerance band\"")
-    numerics = page("numerics.md")
+    convergence = page("convergence.md")
     assert re.search(rf"The default 5e-8 s is within {within} % for every "
-                     rf"thesis separator", numerics)
-    assert re.search(rf"uniform within ±{re.escape(band)} %", numerics)
+                     rf"thesis separator", convergence)
+    assert re.search(rf"uniform within ±{re.escape(band)} %", convergence)
 
 
 def _first_mode_share(n_modes):
