@@ -1,4 +1,4 @@
-"""The convergence study of docs/chatter.md (a few minutes):
+"""The convergence study of docs/convergence.md (a few minutes):
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/chatter_convergence.py
 
@@ -307,7 +307,7 @@ def threshold_study() -> None:
               flush=True)
 
 
-#: The tolerance band of the Newton open time (docs/chatter.md, "The
+#: The tolerance band of the Newton open time (docs/convergence.md, "The
 #: Newton open time over a tolerance band"): L2 uniform within a relative
 #: BAND (+-0.0125 in), BAND_SAMPLES designs, through the product's own
 #: sweep.  A band of 1e-3 is too narrow at N = 4: its mean moves with dt

@@ -1,5 +1,5 @@
 """Convergence in N of the Hertz chatter answers with and without the
-static correction (docs/numerics.md, "The static correction").
+static correction (docs/static-correction.md).
 
 For every design of tests/design_family.py's FAMILY (and the steel relay
 preloaded as in issue 25) and N = 4 ... 256 modes per member, the

@@ -6,7 +6,7 @@ Every number the model gives depends on N, the modes kept per member.
 Before quoting one, show that it has settled (or that it does not):
 here the single impact of eq. 23 on the thesis rig (d = 0.25 in) for
 N = 1 to 512, and the three-beam Hertz simulation's largest lower gap
-for N = 4 to 32.  ``docs/model.md`` and ``docs/chatter.md`` ("Convergence")
+for N = 4 to 32.  ``docs/model.md`` and ``docs/convergence.md``
 carry the full studies.
 """
 

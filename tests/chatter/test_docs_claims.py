@@ -1,8 +1,9 @@
-"""The numbers docs/chatter.md quotes that are cheap to rerun, rerun
-(issue 26): each is asserted to the digits the page prints, so that the
-page cannot drift from the code.  Every simulate call goes through
-package_call.run with its settings explicit (the page's: the thesis rig,
-d = 0.25 in, the 0.06 s window, dt 5e-8 s)."""
+"""The numbers docs/circuit-opening.md and docs/convergence.md quote
+that are cheap to rerun, rerun (issue 26): each is asserted to the
+digits the page prints, so that the page cannot drift from the code.
+Every simulate call goes through package_call.run with its settings
+explicit (the page's: the thesis rig, d = 0.25 in, the 0.06 s window,
+dt 5e-8 s)."""
 
 from __future__ import annotations
 
@@ -11,8 +12,8 @@ import pytest
 import contactsep
 from package_call import run
 
-#: The pages of the claims: the models and their numerics.
-DOCS = ("docs/chatter.md", "docs/numerics.md")
+#: The pages of the claims: the models side by side and their convergence.
+DOCS = ("docs/circuit-opening.md", "docs/convergence.md")
 
 
 def _printed(value: float, claim: str) -> bool:

@@ -244,9 +244,9 @@ def compare(seed, n_max=4, static=False, intervals=True):
             if static and not ok.all():
                 # with the correction, a crossing in a step where a force
                 # acts at either end is found on the grid's physical gaps,
-                # linear between them (docs/numerics.md, "The static
-                # correction"): its instant is good to that step, not to
-                # the gap tolerance (seed 1: the first closing, 0.06 dt)
+                # linear between them (docs/static-correction.md): its
+                # instant is good to that step, not to the gap tolerance
+                # (seed 1: the first closing, 0.06 dt)
                 piece = (t[-1] - t[0]) * (len(t) + 1) / (len(t) - 1)
                 assert piece <= dt, (seed, contact, t, piece / dt, a, r)
                 continue

@@ -1,8 +1,8 @@
 """The Newton model's defaults converged in dt (issue 16, item 5).
 
 Error model.  One run's largest lower gap and first impulse are smooth
-in the step until a branch point (docs/numerics.md, "The Newton open
-time"): at the default 5e-8 s the gap lies within 0.25 % of the same
+in the step until a branch point (docs/convergence.md, "The Newton
+open time"): at the default 5e-8 s the gap lies within 0.25 % of the same
 stepper at 3.125e-9 s for N = 4 and 16 and within 0.22 % at N = 32 for
 d >= 0.35 in (a convergence study: the fine steps among themselves
 agree to 0.2 %), the first impulse within 8e-6; the other code,

@@ -1,4 +1,4 @@
-"""The static correction (docs/numerics.md, "The static correction"): the
+"""The static correction (docs/static-correction.md): the
 truncated modes' residual flexibility in series with each Hertz contact
 and in the preload's static state."""
 

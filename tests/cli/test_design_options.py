@@ -20,7 +20,7 @@ from contactsep.model import Design, evaluate, thesis_design
 from contactsep.model import fields
 
 DESIGN_FIELDS = [f.name for f in dataclasses.fields(Design)]
-#: The unit suffixes of docs/studies.md, "Names and units".
+#: The unit suffixes of docs/names-and-units.md, "The names".
 UNIT_KEY = re.compile(r"[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
                       r"cps|lb_s2_in|lb_in_rad|lb_per_in)")
 

@@ -1,4 +1,4 @@
-"""docs/chatter.md's tables of the thesis's conclusions against circuit
+"""docs/circuit-opening.md's tables of the thesis's conclusions against circuit
 opening ("The thesis's conclusions and circuit opening") quote the
 committed studies (docs/studies/conclusion3|5|6|7.csv, `contactsep study
 conclusionN --csv`), row for row: the datum roles that draw each row's
@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGE = ROOT / "docs" / "chatter.md"
+PAGE = ROOT / "docs" / "circuit-opening.md"
 STUDIES = ROOT / "docs" / "studies"
 
 #: Each study's table: its header start, the column its rows are

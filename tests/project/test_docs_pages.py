@@ -1,4 +1,5 @@
-"""The numbers docs/studies.md and docs/model.md quote come from the
+"""The numbers docs/studies.md, docs/sweeps.md, docs/names-and-units.md,
+docs/howto/resume.md and docs/model.md quote come from the
 code (issue 30, item 8): each is read off the page by the sentence that
 quotes it and compared, to the digits the page prints, with a committed
 CSV of docs/studies (which tests/studies/test_committed_outputs.py holds
@@ -148,7 +149,7 @@ def test_figure_23_numbers_are_fig23_csv():
 
 
 def test_the_new_convergence_value_is_convergence_csv():
-    says("studies.md", "N = 50: max y3 0.105479 → "
+    says("records/2026-12-history.md", "N = 50: max y3 0.105479 → "
          + role("convergence", "y3_max_in", ".6f", N=50) + " in")
 
 
@@ -241,10 +242,10 @@ def test_the_formulas_constant_against_the_materials():
     check([off, constant], [100 * (1.3e6 / material - 1), material])
 
 
-# -- docs/studies.md, sweeps --------------------------------------------------
+# -- docs/sweeps.md --------------------------------------------------------
 
 def test_wilsons_z_and_the_largest_preload():
-    (z,) = quoted("studies.md", rf"with z = {NUMBER} ")
+    (z,) = quoted("sweeps.md", rf"with z = {NUMBER} ")
     from scipy.stats import norm
     check([z], [norm.ppf(0.975)])
     from contactsep.studies.stats import wilson_interval
@@ -253,7 +254,7 @@ def test_wilsons_z_and_the_largest_preload():
     assert low == 0 and high == pytest.approx(norm.ppf(0.975) ** 2
                                               / (100 + norm.ppf(0.975)
                                                  ** 2), rel=1e-5)
-    (limit,) = quoted("studies.md", rf"by its length: {NUMBER} lb for the "
+    (limit,) = quoted("sweeps.md", rf"by its length: {NUMBER} lb for the "
                       rf"thesis rig\)")
     from contactsep.chatter import DEFAULT_MODES
     from contactsep.chatter.simulate import largest_preload
@@ -265,7 +266,7 @@ def test_the_million_design_tolerance_sweep():
     """The second sweep example's summary (1e6 designs of eq. 23 as
     printed, seed 0): about 10 s on one core."""
     n, mean, sd, p, low, high, closed = quoted(
-        "studies.md", rf"prints n = ([\d,]+), mean max y3 = {NUMBER} in, "
+        "sweeps.md", rf"prints n = ([\d,]+), mean max y3 = {NUMBER} in, "
         rf"sd {NUMBER} in, and p_exceed = {NUMBER} with its 95 % Wilson "
         rf"interval \[{NUMBER}, {NUMBER}\].*?closed in {NUMBER} % of builds")
     result = contactsep.sweep(sample=["d=normal(0.25,0.01)",
@@ -429,7 +430,7 @@ def test_the_searchs_limits_give_status_4(field, value, claim):
 
 
 def test_the_sweep_limits_are_the_codes():
-    """The limits docs/studies.md states in words are the constants the
+    """The limits docs/sweeps.md states in words are the constants the
     code uses (a changed constant fails here until the page says it)."""
     from contactsep.runs import dask_run, pool
     from contactsep.studies import stats
@@ -437,27 +438,28 @@ def test_the_sweep_limits_are_the_codes():
     from contactsep.studies.sweep import run as runner
     from contactsep.studies.sweep import spec as sweep
     from contactsep.studies.sweep import writers
-    default, most = quoted("studies.md", r"`--chunk-size` \(default "
+    default, most = quoted("sweeps.md", r"`--chunk-size` \(default "
                            r"([\d,]+), at most ([\d,]+)\)")
     assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
                                f"{sweep.MAX_CHUNK_SIZE:,}")
     restarts, designs, workers = quoted(
-        "studies.md", r"up to (\d+) times a sweep.*?a sweep has at most "
+        "sweeps.md", r"up to (\d+) times a sweep.*?a sweep has at most "
         r"(1e\d+) designs and (\d+) workers a usable core")
     assert int(restarts) == runner.MAX_POOL_RESTARTS
     assert float(designs) == sweep.MAX_DESIGNS
     assert int(workers) == pool.WORKERS_PER_CORE
-    (group,) = quoted("studies.md", r"row groups of a fixed ([\d,]+) rows")
+    (group,) = quoted("howto/resume.md",
+                      r"row groups of a fixed ([\d,]+) rows")
     assert group == f"{writers.ROW_GROUP:,}"
-    (block,) = quoted("studies.md", r"the summary's sums are taken "
+    (block,) = quoted("howto/resume.md", r"the summary's sums are taken "
                       r"([\d,]+) values at a time")
     assert block == f"{stats.BLOCK:,}"
-    probe, lost = quoted("studies.md", r"refused in one line within (\d+) "
+    probe, lost = quoted("sweeps.md", r"refused in one line within (\d+) "
                          r"s .*? a scheduler lost mid-sweep is one line "
                          r"within about (\d+) s")
     assert (int(probe), int(lost)) == (dask_run.PROBE_TIMEOUT_S,
                                        dask_run.SCHEDULER_LOST_S)
-    (chunk,) = quoted("studies.md", r"\*\*Chunks\*\* are at most (\d+) "
+    (chunk,) = quoted("sweeps.md", r"\*\*Chunks\*\* are at most (\d+) "
                       r"designs by default")
     assert int(chunk) == chatter_sweep.CHUNK_SIZE
 
@@ -749,23 +751,23 @@ def test_the_chatter_and_unit_limits_are_the_codes():
     # the module (the package's attribute of that name is the function)
     simulate = importlib.import_module("contactsep.chatter.simulate")
     steps, work, coarse = quoted(
-        "studies.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
+        "sweeps.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
         r"modes\) is refused before any work, one more than (\d+) times "
         r"the default is warned")
     assert (float(steps), float(work)) == (simulate.MAX_STEPS,
                                            simulate.MAX_WORK)
     assert float(coarse) == simulate.COARSE_DT
-    (min_open,) = quoted("studies.md", r"`min_open_s`, default ([\d.e-]+) "
+    (min_open,) = quoted("sweeps.md", r"`min_open_s`, default ([\d.e-]+) "
                          r"s\)")
     assert float(min_open) == circuit.MIN_OPEN
-    (most,) = quoted("studies.md", r"d ≤ 0, N > (\d+),")
+    (most,) = quoted("sweeps.md", r"d ≤ 0, N > (\d+),")
     assert int(most) == simulate.MAX_MODES
-    (forked,) = quoted("studies.md", r"steps × modes ≥ (\de\d), goes to a "
+    (forked,) = quoted("sweeps.md", r"steps × modes ≥ (\de\d), goes to a "
                        r"forked child")
     assert float(forked) == simulate.FORKED_WORK
     modulus, density, length = quoted(
-        "studies.md", r"a modulus below (1e\d) psi .*? a weight density "
-        r"above (\d+) lb/in³ .*? a member longer than (\d+) in")
+        "names-and-units.md", r"a modulus below (1e\d) psi .*? a weight "
+        r"density above (\d+) lb/in³ .*? a member longer than (\d+) in")
     assert (float(modulus), float(density), float(length)) == (
         design_options.SOFTEST_PSI, design_options.DENSEST_LB_IN3,
         design_options.LONGEST_IN)
@@ -818,8 +820,8 @@ def test_a_converted_value_as_the_page_says():
     pytest.importorskip("pint")
     from contactsep import units
     digits, typed, exact = quoted(
-        "studies.md", r"a converted value is rounded to (\d+) significant "
-        r"digits \(`(\w+)` is exactly ([\d.e-]+) s\)")
+        "names-and-units.md", r"a converted value is rounded to (\d+) "
+        r"significant digits \(`(\w+)` is exactly ([\d.e-]+) s\)")
     assert units.convert(typed, "s", "--min-open") == float(exact)
     inches = units.convert("30.5mm", "in", "--L1")
     assert inches == float(f"{30.5 / 25.4:.{digits}g}")

@@ -33,7 +33,8 @@ SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
 COMMAND_TIMEOUT_S = 1700
 #: Pages whose commands belong to a layer that changes them often (the
 #: chatter layer's own page): run in the slow set.
-SLOW_PAGES = {"chatter.md", "numerics.md", "preload.md",
+SLOW_PAGES = {"chatter.md", "circuit-opening.md", "numerics.md",
+              "convergence.md", "static-correction.md", "preload.md",
               "preload-family.md"}
 ACTIVATE = ". .venv/bin/activate"
 

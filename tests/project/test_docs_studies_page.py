@@ -1,9 +1,9 @@
-"""docs/studies.md's remaining numbers (issue 30, item 8), beside
-test_docs_pages.py: the bytes a resumable sweep keeps a design, the
-failed-designs message of the page's command, the Dask chunking's
-constants, osmium's density, and the Newton band claim's source.  Each
-number is found by the sentence that quotes it; a reworded sentence
-fails."""
+"""The remaining numbers of docs/studies.md and the pages split from
+it (issue 30, item 8), beside test_docs_pages.py: the bytes a resumable
+sweep keeps a design, the failed-designs message of the page's command,
+the Dask chunking's constants, osmium's density, and the Newton band
+claim's source.  Each number is found by the sentence that quotes it; a
+reworded sentence fails."""
 
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
     import numpy as np
 
     from contactsep.runs import journal as resume
-    (claim,) = quoted("studies.md", r"in binary \(~(\d+) bytes a design "
+    (claim,) = quoted("howto/resume.md", r"in binary \(~(\d+) bytes a design "
                       r"for an eq23 sweep of one varied field\)")
     monkeypatch.setattr(resume.ChunkStore, "remove", lambda self: None)
     out = tmp_path / "out.csv"
@@ -46,7 +46,7 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
 def test_the_failed_designs_message_is_the_commands(capsys):
     """The one-line warning the page quotes is what its command prints."""
     sample, samples, failed, total, invalid = quoted(
-        "studies.md", r"named in one line \(`--sample '([^']+)' --samples "
+        "sweeps.md", r"named in one line \(`--sample '([^']+)' --samples "
         r"(\d+)`: `contactsep: warning: ([\d,]+) of ([\d,]+) designs failed "
         r"\(([\d,]+) invalid input\); ...`\)")
     assert cli_main(["sweep", "--sample", sample, "--samples", samples,
@@ -60,11 +60,11 @@ def test_the_dask_chunking_is_the_codes():
     from contactsep.runs import chunks
     from contactsep.studies.sweep import chunk_runs
     a_worker, smallest = quoted(
-        "studies.md", r"every worker gets at least (\d+) of what is left "
+        "sweeps.md", r"every worker gets at least (\d+) of what is left "
         r"\(down to ([\d.]+) s of work a chunk\)")
     assert int(a_worker) == chunks.CHUNKS_PER_WORKER
     assert float(smallest) == chunks.MIN_CHUNK_S
-    quoted("studies.md", r"twice as many chunks as the cluster has "
+    quoted("sweeps.md", r"twice as many chunks as the cluster has "
            r"threads, plus two, are in flight")
     assert "2 * bounds.workers + 2" in inspect.getsource(chunk_runs)
 
@@ -72,23 +72,23 @@ def test_the_dask_chunking_is_the_codes():
 def test_osmiums_density():
     """'osmium is 0.816' lb/in^3: 22.59 g/cm^3 (CRC Handbook)."""
     pint = pytest.importorskip("pint")
-    (claim,) = quoted("studies.md", rf"osmium is {NUMBER}\)")
+    (claim,) = quoted("names-and-units.md", rf"osmium is {NUMBER}\)")
     value = (22.59 * pint.UnitRegistry()("g/cm^3")).to("lb/in^3").magnitude
     assert printed(value, claim), value
 
 
-def test_the_newton_band_claim_is_the_numerics_pages():
-    """studies.md quotes docs/numerics.md's tolerance-band convergence
+def test_the_newton_band_claim_is_the_convergence_pages():
+    """studies.md quotes docs/convergence.md's tolerance-band convergence
     (whose table is benchmarks/chatter_convergence.py band's run): the
     same 1 % at the default step and the same ±0.5 % band."""
-    within, band = quoted("studies.md", r"converged to (\d+) % at the "
+    within, band = quoted("sweeps.md", r"converged to (\d+) % at the "
                           r"default step for L2 within ±([\d.]+) %: "
-                          r"docs/numerics.md, \"The Newton open time over a "
-                          r"tolerance band\"")
-    numerics = page("numerics.md")
+                          r"docs/convergence.md, \"The Newton open time "
+                          r"over a tolerance band\"")
+    convergence = page("convergence.md")
     assert re.search(rf"The default 5e-8 s is within {within} % for every "
-                     rf"thesis separator", numerics)
-    assert re.search(rf"uniform within ±{re.escape(band)} %", numerics)
+                     rf"thesis separator", convergence)
+    assert re.search(rf"uniform within ±{re.escape(band)} %", convergence)
 
 
 def _first_mode_share(n_modes):

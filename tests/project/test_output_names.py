@@ -1,7 +1,7 @@
 """One name per quantity in every output (issue 30 item 5): a walk over
 the JSON, CSV, Parquet, to_dict() and DataFrame outputs of every command
 and result type, every key checked against one table — the unit
-suffixes of docs/studies.md ("Names and units"), the dimensionless names
+suffixes of docs/names-and-units.md ("The names"), the dimensionless names
 listed there, and the structures (interval lists) named there — and the
 same quantity under the same name wherever it appears."""
 
@@ -23,7 +23,7 @@ from contactsep.cli import main
 from contactsep.model import Design, evaluate, fields
 
 ROOT = Path(__file__).resolve().parents[2]
-#: The table (docs/studies.md, "Names and units").
+#: The table (docs/names-and-units.md, "The names").
 SUFFIX = re.compile(r"^[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
                     r"cps|lb_s2_in|in_lb|lbin|s_per_in|lb_per_in|lb_in_rad|hz|pct)$")
 DIMENSIONLESS = {

@@ -112,7 +112,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                            help="hertz: the truncated modes' residual "
                                 "flexibility in series with each contact "
                                 "(default on; off: the plain N-mode "
-                                "truncation; docs/chatter.md)")
+                                "truncation; docs/static-correction.md)")
     run_group.add_argument("--nu", type=finite(), default=DEFAULT_NU,
                            help="Poisson's ratio of the Hertz constant "
                                 f"(default {DEFAULT_NU:g})")
@@ -343,7 +343,7 @@ def summary_text(result, listed: int | None = 10, si: bool = False) -> str:
                      f"{result.changes['verify_status']})")
     if result.model == "newton":
         lines.append("  (one Newton run's open time is ill-conditioned: "
-                     "docs/chatter.md)")
+                     "docs/convergence.md)")
     if result.rigid_stop is not None:
         r = result.rigid_stop
         lines.append(f"  {'impacts, rests':<28} {len(r.impact_t):>12} "

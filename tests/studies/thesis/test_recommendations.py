@@ -175,10 +175,10 @@ def _csv_rows(name):
 
 
 def _doc_table(heading):
-    """The first Markdown table after ``heading`` in docs/chatter.md:
+    """The first Markdown table after ``heading`` in docs/circuit-opening.md:
     {row label: [cells]}."""
     from conftest import ROOT
-    text = (ROOT / "docs" / "chatter.md").read_text().split(heading, 1)[1]
+    text = (ROOT / "docs" / "circuit-opening.md").read_text().split(heading, 1)[1]
     rows = [line for line in text.split("\n\n| ", 1)[1].split("\n\n")[0]
             .splitlines()]
     out = {}
@@ -189,7 +189,7 @@ def _doc_table(heading):
 
 
 def test_the_docs_tables_are_the_committed_studies():
-    """docs/chatter.md's two tables (gap in 0.001 in / open ms at 6 lb)
+    """docs/circuit-opening.md's two tables (gap in 0.001 in / open ms at 6 lb)
     against docs/studies/contact-points.csv and materials.csv."""
     table = _doc_table("open time at 6 lb (ms), upper contact's x2 across")
     rows = _csv_rows("contact-points")
