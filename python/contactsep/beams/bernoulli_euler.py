@@ -247,7 +247,7 @@ def residual_flexibility(end: str, n: int, xi) -> np.ndarray:
     Times L^3 / (EI) = 1 / (M p_j^2 / (k_jL)^4) it is the flexibility
     (in/lb) of a massless spring that, in series with the n-mode model at
     that point, gives its exact static deflection under a point load (the
-    "static correction", docs/chatter.md).  Falls like n^-3 (the terms
+    "static correction", docs/static-correction.md).  Falls like n^-3 (the terms
     X_j^2/(k_jL)^4 like j^-4); summed with compensation (math.fsum), so
     that its absolute error is a few ulps of G, not n of them.
     """

@@ -1,6 +1,6 @@
 """``--units us|si`` on the commands that take design options: the unit
 system of the command line's bare numbers and of every output
-(docs/studies.md, "Names and units").
+(docs/names-and-units.md).
 
 With ``si`` a bare number is read in m, N, s, Pa, kg/m^3 (a value typed
 with its unit is read as typed), and every key of the JSON with a unit

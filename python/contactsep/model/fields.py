@@ -1,6 +1,6 @@
 """The Design's fields as inputs and outputs name them, in one place:
 each field's name, unit, meaning, other names, output column, words, and
-its value read from text (docs/studies.md, "Names and units").
+its value read from text (docs/names-and-units.md).
 
 One convention for every JSON, CSV, Parquet, ``to_dict()`` and DataFrame
 the package writes: a key or column is the quantity's snake_case name

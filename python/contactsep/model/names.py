@@ -1,6 +1,5 @@
 """One name per quantity in every output: the model's results under
-their snake_case name and unit suffix (docs/studies.md, "Names and
-units"), for every JSON, CSV, Parquet, ``to_dict()`` and DataFrame the
+their snake_case name and unit suffix (docs/names-and-units.md), for every JSON, CSV, Parquet, ``to_dict()`` and DataFrame the
 package writes, and the same keys in SI (``--units si``).  The Design's
 fields and their names: :mod:`contactsep.model.fields`.
 

@@ -26,7 +26,7 @@ class SweepResult:
         ``p_exceed`` and ``p_exceed_ci95`` with a threshold; a chatter
         model's ``n_open``, ``p_open``, ``p_open_ci95``,
         ``max_lower_gap_mean_in``, ...), ``elapsed_s`` and ``inputs``
-        (docs/studies.md, "Sweeps and tolerance studies").
+        (docs/sweeps.md).
     columns : dict of str to numpy.ndarray, or None
         The rows, one array per CSV column, in the CSV's order and under
         its names (the varied and sampled fields as ``d_in``, ``ys_in``,

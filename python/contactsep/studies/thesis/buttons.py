@@ -1,5 +1,5 @@
 """The thesis's recommendation 1, the contact button (``contactsep study
-buttons``; docs/chatter.md, "The contact button"): "perhaps a contact
+buttons``; docs/circuit-opening.md, "The contact button"): "perhaps a contact
 button, other than the hemispherical shape, would be advantageous from
 an impact standpoint".
 

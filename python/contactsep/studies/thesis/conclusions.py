@@ -1,6 +1,6 @@
 """The thesis's conclusions re-examined for circuit opening
 (``contactsep study conclusion3|conclusion5|conclusion6|conclusion7``;
-docs/chatter.md, "The thesis's conclusions and circuit opening").
+docs/circuit-opening.md, "The thesis's conclusions and circuit opening").
 
 The thesis judges a design by the single-impulse displacement of the
 lower contact (eq. 23).  Each study here changes one thing the thesis

@@ -1,8 +1,8 @@
 """The thesis's recommendation 3 (``contactsep study contact-points``):
 displace the contact points along the separator.  The upper contact
 strikes the separator at x2, the lower contact touches it at x2_lower
-(Design.x2_lower; docs/chatter.md, "Contact points along the
-separator"); the study simulates the three beams on a grid of both
+(Design.x2_lower; docs/circuit-opening.md, "Contact points and
+materials"); the study simulates the three beams on a grid of both
 positions and reports how the circuit opens.
 
 Every row is one simulation of the thesis rig (y_s = 0.5 in): Hertz
@@ -42,7 +42,7 @@ from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
 #: The positions of both contacts on the separator, as x / L2.
 RATIOS = (0.2, 0.35, 0.5, 0.65, 0.8)
 #: Modes per member and step (the thesis rig's converged Hertz step:
-#: docs/numerics.md, "Convergence"; N = 32 against 64: the gaps within
+#: docs/convergence.md; N = 32 against 64: the gaps within
 #: 0.3 %, the open times without preload 0.05 %, with it 12 %).
 MODES = 32
 DT = 5e-8

@@ -10,7 +10,7 @@ emerges from the contact law, in the three-beam Hertz model, for
 * ``thornton``: elastic-perfectly-plastic with one yield pressure
   (:data:`YIELD_PRESSURE`).
 
-How e_apparent is read (docs/chatter.md, "Conclusion 4"): the thesis
+How e_apparent is read (docs/circuit-opening.md, "Conclusion 4"): the thesis
 read a velocity transducer on the upper contact (its Figure 19): e =
 CD / DB, the rebound velocity over the impact velocity at the contact.
 Here the impact velocity DB is the contact point's velocity at the
