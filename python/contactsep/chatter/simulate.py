@@ -25,7 +25,7 @@ import numpy as np
 
 from contactsep import output
 from contactsep.chatter import circuit, laws, numerics, runners
-from contactsep.chatter import stop_event
+from contactsep.chatter import stepper_registry, stop_event
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.laws import ChatterError
@@ -56,6 +56,7 @@ from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
     smallest_dt,
 )
 from contactsep.chatter.stack import _system, checked_dt, design_window
+from contactsep.chatter.stepper_registry import RunRequest
 
 #: The thesis rig's converged steps (docs/numerics.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
@@ -262,10 +263,9 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
 
     def run_at(step, stop_open=stop_event.NEVER):
         steps = max(1, int(round(t_end / step)))
-        return t_end / steps, _run(model, stepper, backend, stack, law,
-                                   design, theta, t_end / steps, steps,
-                                   max(1, steps // samples), open_threshold,
-                                   stop_open)
+        return t_end / steps, _run(RunRequest(
+            model, stepper, backend, stack, law, design, theta, t_end / steps,
+            steps, max(1, steps // samples), open_threshold, stop_open))
     refine = None if law is None else (
         lambda step: numerics.design_step(parts, law.k, preload,
                                           largest=step,
@@ -322,27 +322,13 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     return result
 
 
-def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
-         stride, open_threshold, stop_open) -> runners.Run:
-    """One run of the chosen stepper at ``dt`` over ``steps`` steps
-    (the adaptive one stopped at its first event if ``stop_open`` >= 0)."""
-    modes = stack.m.size
-    if model == "newton" and stepper == "adaptive" and backend == "compiled":
-        run, args = runners.newton_adaptive, (float(design.e), dt, steps,
-                                              stride, open_threshold,
-                                              stop_open)
-    elif model == "newton":
-        run = runners.moreau_jean if backend == "compiled" \
-            else runners.moreau_jean_numpy
-        args = (float(design.e), dt, theta, steps, stride, open_threshold)
-    elif stepper == "adaptive" and backend == "compiled":
-        run, args = runners.hertz_adaptive, (law, dt, steps, stride,
-                                             open_threshold, stop_open)
-    else:
-        run, args = runners.hertz_fixed, (law, dt, steps, stride,
-                                          open_threshold, backend)
-    return output.interruptible(steps * modes >= FORKED_WORK, run, stack,
-                                *args)
+def _run(request: RunRequest) -> runners.Run:
+    """One run of the registry's stepper for the request's (model,
+    stepper, backend) (:mod:`contactsep.chatter.stepper_registry`); a
+    long one in a child process that Ctrl-C stops."""
+    step = stepper_registry.lookup(*request.key)
+    return output.interruptible(
+        request.steps * request.stack.m.size >= FORKED_WORK, step, request)
 
 
 def _verified(result, design, model, damping, settings) -> ChatterResult:
