@@ -1,7 +1,8 @@
 """The stepper registry: every (model, stepper, backend) simulate steps in
 time runs the function, with the arguments, that simulate's former
 if/elif chose (the expected calls are written out here by hand from that
-if/elif, not read from the registry)."""
+if/elif, not read from the registry); simulate asks it for its own
+combination, and a warning of one of simulate's steps names its caller."""
 
 from __future__ import annotations
 
@@ -118,3 +119,15 @@ def test_simulate_asks_the_registry_for_its_own_combination(
     assert (request.law is None) == (model == "newton")
     assert request.steps * request.dt == pytest.approx(1e-3, rel=1e-12)
     assert request.stride == max(1, request.steps // 10)
+
+
+def test_a_coarse_step_is_warned_at_simulates_caller():
+    """The step is chosen in a step of simulate's, the warning still
+    names the line that called simulate (as a warning filter sees it)."""
+    design = contactsep.thesis_design(n_modes=4)
+    chosen = sim.simulate(design, t_end=2e-3, single_impulse=False,
+                          samples=10).numerics["design_dt_s"]
+    with pytest.warns(sim.CoarseStepWarning) as seen:
+        sim.simulate(design, t_end=2e-3, dt=4 * sim.COARSE_DT * chosen,
+                     single_impulse=False, samples=10)
+    assert [w.filename for w in seen] == [__file__]
