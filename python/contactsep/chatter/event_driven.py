@@ -25,8 +25,12 @@ exact continuation this code implements.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from contactsep.chatter import circuit
+from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.rigid_stop import ZENO_SPEED, RigidStopResult, _flow
 from contactsep.constants import LISTING_TAU_S
 
@@ -220,3 +224,33 @@ def rigid_stop_from_design(design, *, t_end=LISTING_TAU_S, **options
     upper = members(design)[0]
     return simulate_rigid_stop(upper.p, upper.x, upper.mass, upper.q0,
                                upper.v0, float(design.e), t_end, **options)
+
+
+def chatter_result(design, backend, settings, samples):
+    """appE's run as a :class:`contactsep.chatter.result.ChatterResult`:
+    the upper gap at ``samples`` intervals, the lower contact at rest,
+    the energy at the ends; ``settings`` the ones every result carries."""
+    t_end = settings["t_end_s"]
+    r = rigid_stop_from_design(
+        design, t_end=t_end,
+        backend="fortran" if backend == "compiled" else "numpy")
+    t = np.linspace(0.0, t_end, samples + 1)
+    gap_upper = r.displacement(t)
+    gap_lower = np.zeros_like(t)
+    threshold = settings["open_threshold_in"]
+    found = circuit.discontinuity(
+        circuit.open_from_samples(t, gap_upper, t_end, threshold),
+        circuit.open_from_samples(t, gap_lower, t_end, threshold),
+        settings["min_open_s"])
+    energy = np.full_like(t, np.nan)
+    energy[0], energy[-1] = r.initial_energy, r.final_energy
+    return ChatterResult(
+        model="appE", n_modes=int(design.n_modes), dt=0.0, t=t,
+        gap_upper=gap_upper, gap_lower=gap_lower, energy=energy, **found,
+        max_lower_gap_in=0.0,
+        first_impact_s=float(r.impact_t[0]) if len(r.impact_t)
+        else math.nan,
+        first_impulse_lb_s=float(r.impulse[0]) if len(r.impulse)
+        else math.nan,
+        energy_ratio=r.final_energy / r.initial_energy, dt_source="none",
+        rigid_stop=r, work={"impacts": len(r.impact_t)}, **settings)

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactsep import output
-from contactsep.chatter import circuit
+from contactsep.chatter import circuit, laws, numerics, stop_event
 from contactsep.model import fields
 
 
@@ -300,3 +300,39 @@ def blown_up(run, model, design, dt, preload, damping, stepper,
         first_impact_s=nan, first_impulse_lb_s=nan, energy_ratio=nan,
         preload_lb=float(preload), damping=damping, stepper=stepper,
         work=run.work, status=run.status, **settings)
+
+
+def from_run(checked, stack, parts, choice, status, *, model, design,
+             preload, damping, stepper, dt_source, min_open,
+             settings) -> ChatterResult:
+    """A stepped run that reached its end or its first event
+    (``checked``: :func:`numerics.checked_run`'s answer; ``stack`` and
+    ``parts`` its system, ``choice`` the design's step choice,
+    ``status`` the run's, UNCONVERGED where its energy check failed)."""
+    run = checked.run
+    found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
+    return ChatterResult(
+        model=model, n_modes=int(design.n_modes), dt=checked.dt, t=run.t,
+        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
+        energy=run.energy, **found,
+        max_lower_gap_in=run.max_lower_gap_in,
+        first_lift_in=circuit.first_lift(
+            run.t, run.gaps[:, 1], run.first[0],
+            math.pi / float(parts[2].p[0])),
+        first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
+        energy_ratio=checked.ratio, preload_lb=float(preload),
+        damping=damping, stepper=stepper, work=run.work, status=status,
+        dt_source=dt_source,
+        energy_book=laws.energy_book(run, stack, parts),
+        stopped_s=stop_event.stopped_s(status, found["events"], min_open),
+        end_state={"q": run.book["q"], "v": run.book["v"]}
+        if run.book else {},
+        numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
+                  choice.omega, "p_max_rad_s": choice.p_max,
+                  "contact_force_bound_lb": choice.force_lb,
+                  "contact_stiffness_lb_per_in": choice.stiffness_lb_in,
+                  "contact_dt_s": choice.contact_dt,
+                  "alias_share": choice.alias_share,
+                  "dt_halvings": checked.halvings,
+                  "energy_tolerance": numerics.ENERGY_TOLERANCE},
+        **settings)

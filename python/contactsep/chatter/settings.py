@@ -1,7 +1,8 @@
 """The chatter simulation's settings, every check of them in one place:
 :func:`check_settings` refuses, before any work and in one line naming
 the argument, every :func:`contactsep.chatter.simulate` setting that
-cannot run; :func:`parse_value` reads a setting as inputs name it
+cannot run (:func:`checked_arguments`: all of simulate's arguments
+checked in order, :class:`Arguments`); :func:`parse_value` reads a setting as inputs name it
 (``contactsep chatter --preload``, a chatter sweep's ``--vary
 preload=...`` or ``--set``, a sweep file's settings), or a Design field.
 
@@ -15,12 +16,13 @@ varied, not sampled).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from contactsep import units
-from contactsep.chatter import laws
+from contactsep.chatter import laws, stop_event
 from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.limits import (
     APPE_MAX_MODES,
@@ -177,3 +179,64 @@ def check_settings(design, model, damping, backend, preload, samples,
     if damping == "flores" and not float(design.e) > 0.0:
         refuse("e: found 0.0, expected e > 0 with Flores damping (its "
                "constant is 8(1 - e)/(5 e V))")
+
+
+@dataclasses.dataclass(frozen=True)
+class Arguments:
+    """:func:`contactsep.chatter.simulate`'s arguments, by name (its
+    docstring documents each); :func:`checked_arguments` checks them."""
+
+    design: object
+    model: str
+    damping: str
+    dt: object
+    t_end: object
+    open_threshold: object
+    min_open: object
+    preload: object
+    nu: object
+    button_radius: object
+    backend: str
+    samples: object
+    theta: object
+    stepper: str
+    single_impulse: object
+    verify: object
+    static_correction: object
+    alpha: object
+    contact: str
+    yield_pressure: object
+    button: str
+    button_length: object
+    stop_at_event: object
+
+
+def checked_arguments(a: Arguments) -> Arguments:
+    """``a`` checked before any work, in this order (a bad input is told
+    of its first bad setting): the static correction's flag, every
+    setting (:func:`check_settings`), the law, the button, verify, the
+    stop at an event.  Returned with the law's checked ``alpha``,
+    ``yield_pressure`` and ``button_length``, the static correction as
+    it acts (hertz only) and ``stop_at_event`` as the run takes it."""
+    if not isinstance(a.static_correction, (bool, np.bool_)):
+        raise ChatterError(f"static_correction: found "
+                           f"{a.static_correction!r}, expected True or "
+                           f"False")
+    static_correction = bool(a.static_correction) and a.model == "hertz"
+    check_settings(a.design, a.model, a.damping, a.backend, a.preload,
+                   a.samples, a.theta, a.nu, a.button_radius, a.t_end,
+                   a.open_threshold, a.min_open, a.stepper)
+    alpha, yield_pressure = laws.check_law(a.model, a.damping, a.alpha,
+                                           a.contact, a.yield_pressure,
+                                           static_correction)
+    button_length = laws.check_button(a.model, a.button, a.button_length,
+                                      a.contact)
+    if not isinstance(a.verify, (bool, np.bool_)):
+        raise ChatterError(f"verify: found {a.verify!r}, expected True or "
+                           f"False")
+    stop = stop_event.check(a.stop_at_event, a.model, a.stepper, a.backend,
+                            a.verify)
+    return dataclasses.replace(a, static_correction=static_correction,
+                               alpha=alpha, yield_pressure=yield_pressure,
+                               button_length=button_length,
+                               stop_at_event=stop)

@@ -18,18 +18,17 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 import warnings
-
-import numpy as np
+from typing import NamedTuple
 
 from contactsep import output
 from contactsep.chatter import circuit, laws, numerics, runners
-from contactsep.chatter import stop_event
+from contactsep.chatter import stepper_registry, stop_event
 from contactsep.chatter import status as chatter_status
 from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.event_driven import chatter_result
 from contactsep.chatter.laws import ChatterError
-from contactsep.chatter.result import ChatterResult, blown_up
+from contactsep.chatter.result import ChatterResult, blown_up, from_run
 from contactsep.chatter.system import members
 from contactsep.errors import ContactsepWarning
 from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
@@ -47,7 +46,7 @@ from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
     MODELS,
     STEPPERS,
 )
-from contactsep.chatter.settings import check_settings as _check
+from contactsep.chatter.settings import Arguments, checked_arguments
 from contactsep.chatter.single_impulse import single_impulse as _single_impulse
 from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
     COARSE_DT,
@@ -56,6 +55,7 @@ from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
     smallest_dt,
 )
 from contactsep.chatter.stack import _system, checked_dt, design_window
+from contactsep.chatter.stepper_registry import RunRequest
 
 #: The thesis rig's converged steps (docs/numerics.md, "Convergence"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
@@ -203,200 +203,182 @@ def simulate(design, model="hertz", damping="none", dt=None, *,
     >>> r.status, r.static_correction
     (0, True)
     """
-    if not isinstance(static_correction, (bool, np.bool_)):
-        raise ChatterError(f"static_correction: found "
-                           f"{static_correction!r}, expected True or False")
-    static_correction = bool(static_correction) and model == "hertz"
-    _check(design, model, damping, backend, preload, samples, theta, nu,
-           button_radius, t_end, open_threshold, min_open, stepper)
-    alpha, yield_pressure = laws.check_law(model, damping, alpha, contact,
-                                           yield_pressure,
-                                           static_correction)
-    button_length = laws.check_button(model, button, button_length,
-                                      contact)
-    if not isinstance(verify, (bool, np.bool_)):
-        raise ChatterError(f"verify: found {verify!r}, expected True or "
-                           f"False")
-    stop = stop_event.check(stop_at_event, model, stepper, backend, verify)
+    a = checked_arguments(Arguments(
+        design=design, model=model, damping=damping, dt=dt, t_end=t_end,
+        open_threshold=open_threshold, min_open=min_open, preload=preload,
+        nu=nu, button_radius=button_radius, backend=backend,
+        samples=samples, theta=theta, stepper=stepper,
+        single_impulse=single_impulse, verify=verify,
+        static_correction=static_correction, alpha=alpha, contact=contact,
+        yield_pressure=yield_pressure, button=button,
+        button_length=button_length, stop_at_event=stop_at_event))
+    # eq. 23 runs here, not in a step, so that its warning names the caller
     single = _single_impulse(design) if single_impulse else {}
-    t_end_source = "given" if t_end is not None else "design"
-    if t_end is None:
-        t_end = design_window(design, min_open)
-    settings = dict(t_end_s=float(t_end),
-                    open_threshold_in=float(open_threshold),
-                    min_open_s=float(min_open), design=design,
-                    single_impulse=single, t_end_source=t_end_source,
-                    static_correction=static_correction, contact=contact,
-                    alpha_s_per_in=alpha, yield_pressure_psi=yield_pressure,
-                    button=button, button_radius_in=float(button_radius))
+    a, settings = _gathered(a, single)
     if model == "appE":
-        if dt is not None:
-            raise ChatterError(f"dt: found {dt!r}, expected None: appE is "
-                               f"event-driven (the exact modal flow "
-                               f"between impacts) and takes no step")
-        return output.interruptible(
-            int(design.n_modes) > FORKED_APPE_MODES, _appendix_e, design,
-            backend, settings)
-    law = None
-    if model == "hertz":
-        flores = dict(e=float(design.e), v_ref=(
-            single or _single_impulse(design))["v_impact_in_s"]) \
-            if damping == "flores" else {}
-        law = HertzLaw.for_materials(float(design.E1), nu, button_radius,
-                                     alpha=alpha,
-                                     yield_pressure=yield_pressure,
-                                     button=button, length=button_length,
-                                     **flores)
-    stack = _system(design, preload, law, static_correction)
-    parts = members(design)
-    choice = numerics.design_step(parts,
-                                  None if law is None else law.k, preload,
-                                  linear=law is not None and law.linear)
-    dt_source = "given" if dt is not None else "design"
-    dt = choice.dt if dt is None else laws.real("dt", dt, "s")
-    least = checked_dt(design, dt, dt_source, t_end, t_end_source,
-                       choice.dt, stack.m.size)
-    damped = (model == "hertz" and (damping != "none"
-                                    or contact != "hertz")) or (
-        model == "newton" and float(design.e) < 1.0)
-
-    def run_at(step, stop_open=stop_event.NEVER):
-        steps = max(1, int(round(t_end / step)))
-        return t_end / steps, _run(model, stepper, backend, stack, law,
-                                   design, theta, t_end / steps, steps,
-                                   max(1, steps // samples), open_threshold,
-                                   stop_open)
-    refine = None if law is None else (
-        lambda step: numerics.design_step(parts, law.k, preload,
-                                          largest=step,
-                                          linear=law.linear).dt)
-    checked = (functools.partial(stop_event.checked_run, min_open=min_open)
-               if stop else numerics.checked_run)(
-        run_at, dt, dt_source, damped, least, refine,
-        book=model == "hertz" and (damping == "hunt-crossley"
-                                   or contact == "thornton"))
-    run, ratio, halvings = checked.run, checked.ratio, checked.halvings
-    if run.status not in (chatter_status.OK,
-                          chatter_status.STOPPED_AT_EVENT):
-        return blown_up(run, model, design, checked.dt, preload, damping,
-                        stepper if backend == "compiled" else "fixed",
-                        dict(settings, dt_source=dt_source))
-    status = run.status if checked.converged \
+        return _appendix_e_run(a, settings)
+    law = _law(a, (single or _single_impulse(design))
+               if model == "hertz" and damping == "flores" else {})
+    plan = _plan(a, law, settings["t_end_source"])
+    checked = _checked_run(a, law, plan)
+    if checked.run.status not in (chatter_status.OK,
+                                  chatter_status.STOPPED_AT_EVENT):
+        return blown_up(checked.run, model, design, checked.dt, preload,
+                        damping, _stepper(a),
+                        dict(settings, dt_source=plan.dt_source))
+    status = checked.run.status if checked.converged \
         else chatter_status.UNCONVERGED
     if not checked.converged:
         warnings.warn(checked.message(), UnconvergedWarning, stacklevel=2)
-    found = circuit.discontinuity(run.upper_open, run.lower_open, min_open)
-    result = ChatterResult(
-        model=model, n_modes=int(design.n_modes), dt=checked.dt, t=run.t,
-        gap_upper=run.gaps[:, 0], gap_lower=run.gaps[:, 1],
-        energy=run.energy, **found,
-        max_lower_gap_in=run.max_lower_gap_in,
-        first_lift_in=circuit.first_lift(
-            run.t, run.gaps[:, 1], run.first[0],
-            math.pi / float(parts[2].p[0])),
-        first_impact_s=run.first[0], first_impulse_lb_s=run.first[1],
-        energy_ratio=ratio, preload_lb=float(preload), damping=damping,
-        stepper=stepper if backend == "compiled" else "fixed",
-        work=run.work, status=status, dt_source=dt_source,
-        energy_book=laws.energy_book(run, stack, parts),
-        stopped_s=stop_event.stopped_s(status, found["events"], min_open),
-        end_state={"q": run.book["q"], "v": run.book["v"]}
-        if run.book else {},
-        numerics={"design_dt_s": choice.dt, "omega_bound_rad_s":
-                  choice.omega, "p_max_rad_s": choice.p_max,
-                  "contact_force_bound_lb": choice.force_lb,
-                  "contact_stiffness_lb_per_in": choice.stiffness_lb_in,
-                  "contact_dt_s": choice.contact_dt,
-                  "alias_share": choice.alias_share,
-                  "dt_halvings": halvings,
-                  "energy_tolerance": numerics.ENERGY_TOLERANCE},
-        **settings)
-    if verify:
-        result = _verified(result, design, model, damping, dict(
-            t_end=t_end, open_threshold=open_threshold, min_open=min_open,
-            preload=preload, nu=nu, button_radius=button_radius,
-            backend=backend, samples=samples, theta=theta, stepper=stepper,
-            single_impulse=False, static_correction=static_correction,
-            alpha=alpha, contact=contact, yield_pressure=yield_pressure,
-            button=button, button_length=button_length))
-    return result
+    result = from_run(checked, plan.stack, plan.parts, plan.choice, status,
+                      model=model, design=design, preload=preload,
+                      damping=damping, stepper=_stepper(a),
+                      dt_source=plan.dt_source, min_open=min_open,
+                      settings=settings)
+    return _verified(result, a) if verify else result
 
 
-def _run(model, stepper, backend, stack, law, design, theta, dt, steps,
-         stride, open_threshold, stop_open) -> runners.Run:
-    """One run of the chosen stepper at ``dt`` over ``steps`` steps
-    (the adaptive one stopped at its first event if ``stop_open`` >= 0)."""
-    modes = stack.m.size
-    if model == "newton" and stepper == "adaptive" and backend == "compiled":
-        run, args = runners.newton_adaptive, (float(design.e), dt, steps,
-                                              stride, open_threshold,
-                                              stop_open)
-    elif model == "newton":
-        run = runners.moreau_jean if backend == "compiled" \
-            else runners.moreau_jean_numpy
-        args = (float(design.e), dt, theta, steps, stride, open_threshold)
-    elif stepper == "adaptive" and backend == "compiled":
-        run, args = runners.hertz_adaptive, (law, dt, steps, stride,
-                                             open_threshold, stop_open)
-    else:
-        run, args = runners.hertz_fixed, (law, dt, steps, stride,
-                                          open_threshold, backend)
-    return output.interruptible(steps * modes >= FORKED_WORK, run, stack,
-                                *args)
+class _Plan(NamedTuple):
+    """A stepped run's system and step: the stacked system, its members,
+    the design's step choice (numerics.design_step), the step that runs
+    (s), whether it was given or chosen, and the least step allowed."""
+
+    stack: object
+    parts: tuple
+    choice: object
+    dt: float
+    dt_source: str
+    least: float
 
 
-def _verified(result, design, model, damping, settings) -> ChatterResult:
+def _gathered(a: Arguments, single: dict) -> tuple:
+    """``a`` with its window (the design's unless given) and the
+    settings every result carries."""
+    t_end_source = "given" if a.t_end is not None else "design"
+    t_end = a.t_end if a.t_end is not None else design_window(a.design,
+                                                              a.min_open)
+    settings = dict(t_end_s=float(t_end),
+                    open_threshold_in=float(a.open_threshold),
+                    min_open_s=float(a.min_open), design=a.design,
+                    single_impulse=single, t_end_source=t_end_source,
+                    static_correction=a.static_correction,
+                    contact=a.contact, alpha_s_per_in=a.alpha,
+                    yield_pressure_psi=a.yield_pressure, button=a.button,
+                    button_radius_in=float(a.button_radius))
+    return dataclasses.replace(a, t_end=t_end), settings
+
+
+def _appendix_e_run(a: Arguments, settings: dict) -> ChatterResult:
+    """appE: no step to take (dt must be None); a run of many modes in a
+    child process that Ctrl-C stops."""
+    if a.dt is not None:
+        raise ChatterError(f"dt: found {a.dt!r}, expected None: appE is "
+                           f"event-driven (the exact modal flow between "
+                           f"impacts) and takes no step")
+    return output.interruptible(
+        int(a.design.n_modes) > FORKED_APPE_MODES, chatter_result, a.design,
+        a.backend, settings, DEFAULT_SAMPLES)
+
+
+def _law(a: Arguments, impact: dict):
+    """The Hertz family's contact law (None for newton); Flores damping
+    calibrated to e and ``impact``'s speed (eq. 23's first impact)."""
+    if a.model != "hertz":
+        return None
+    flores = dict(e=float(a.design.e), v_ref=impact["v_impact_in_s"]) \
+        if a.damping == "flores" else {}
+    return HertzLaw.for_materials(float(a.design.E1), a.nu, a.button_radius,
+                                  alpha=a.alpha,
+                                  yield_pressure=a.yield_pressure,
+                                  button=a.button, length=a.button_length,
+                                  **flores)
+
+
+def _plan(a: Arguments, law, t_end_source: str) -> _Plan:
+    """The stacked system and the step: the given one, or the design's;
+    a step too coarse warns (at simulate's caller), one too fine for the
+    window is refused."""
+    stack = _system(a.design, a.preload, law, a.static_correction)
+    parts = members(a.design)
+    choice = numerics.design_step(parts,
+                                  None if law is None else law.k, a.preload,
+                                  linear=law is not None and law.linear)
+    dt_source = "given" if a.dt is not None else "design"
+    dt = choice.dt if a.dt is None else laws.real("dt", a.dt, "s")
+    least = checked_dt(a.design, dt, dt_source, a.t_end, t_end_source,
+                       choice.dt, stack.m.size, stacklevel=3)
+    return _Plan(stack, parts, choice, dt, dt_source, least)
+
+
+def _checked_run(a: Arguments, law, plan: _Plan) -> numerics.CheckedRun:
+    """The run at the plan's step with its energy checked (a chosen step
+    that fails halved), or stopped at its first event when asked."""
+    damped = (a.model == "hertz" and (a.damping != "none"
+                                      or a.contact != "hertz")) or (
+        a.model == "newton" and float(a.design.e) < 1.0)
+    t_end = a.t_end
+
+    def run_at(step, stop_open=stop_event.NEVER):
+        steps = max(1, int(round(t_end / step)))
+        return t_end / steps, _run(RunRequest(
+            a.model, a.stepper, a.backend, plan.stack, law, a.design,
+            a.theta, t_end / steps, steps, max(1, steps // a.samples),
+            a.open_threshold, stop_open))
+    refine = None if law is None else (
+        lambda step: numerics.design_step(plan.parts, law.k, a.preload,
+                                          largest=step,
+                                          linear=law.linear).dt)
+    return (functools.partial(stop_event.checked_run, min_open=a.min_open)
+            if a.stop_at_event else numerics.checked_run)(
+        run_at, plan.dt, plan.dt_source, damped, plan.least, refine,
+        book=a.model == "hertz" and (a.damping == "hunt-crossley"
+                                     or a.contact == "thornton"))
+
+
+def _run(request: RunRequest) -> runners.Run:
+    """One run of the registry's stepper for the request's (model,
+    stepper, backend) (:mod:`contactsep.chatter.stepper_registry`); a
+    long one in a child process that Ctrl-C stops."""
+    step = stepper_registry.lookup(*request.key)
+    return output.interruptible(
+        request.steps * request.stack.m.size >= FORKED_WORK, step, request)
+
+
+def _stepper(a: Arguments) -> str:
+    """The stepper that ran: the NumPy backend's is the fixed one."""
+    return a.stepper if a.backend == "compiled" else "fixed"
+
+
+def _verified(result, a: Arguments) -> ChatterResult:
     """``result`` with ``changes``: the relative change of each headline
     quantity at half the step and twice the modes (moved down off the
     2N design's resonances: a step free of them for N modes need not be
     for 2N)."""
+    design = a.design
     n = 2 * int(design.n_modes)
     if n > MAX_MODES:
         raise ChatterError(f"verify: twice N = {int(design.n_modes)} is "
                            f"more than {MAX_MODES} modes")
     finer = design.replace(n_modes=n)
-    law = None if model != "hertz" else HertzLaw.for_materials(
-        float(design.E1), settings["nu"], settings["button_radius"],
-        button=settings["button"], length=settings["button_length"])
+    law = None if a.model != "hertz" else HertzLaw.for_materials(
+        float(design.E1), a.nu, a.button_radius, button=a.button,
+        length=a.button_length)
     step = numerics.design_step(
-        members(finer), None if law is None else law.k,
-        settings["preload"], largest=result.dt / 2.0,
-        linear=law is not None and law.linear).dt
+        members(finer), None if law is None else law.k, a.preload,
+        largest=result.dt / 2.0, linear=law is not None and law.linear).dt
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnconvergedWarning)
-        check = simulate(finer, model=model, damping=damping, dt=step,
-                         **settings)
+        check = simulate(
+            finer, model=a.model, damping=a.damping, dt=step, t_end=a.t_end,
+            open_threshold=a.open_threshold, min_open=a.min_open,
+            preload=a.preload, nu=a.nu, button_radius=a.button_radius,
+            backend=a.backend, samples=a.samples, theta=a.theta,
+            stepper=a.stepper, single_impulse=False,
+            static_correction=a.static_correction, alpha=a.alpha,
+            contact=a.contact, yield_pressure=a.yield_pressure,
+            button=a.button, button_length=a.button_length)
     changes = numerics.changes(result, check)
     changes["verify_dt_s"] = check.dt
     changes["verify_n_modes"] = n
     changes["verify_status"] = check.status
     return dataclasses.replace(result, changes=changes)
-
-
-def _appendix_e(design, backend, settings) -> ChatterResult:
-    from contactsep.chatter.event_driven import rigid_stop_from_design
-
-    t_end = settings["t_end_s"]
-    r = rigid_stop_from_design(
-        design, t_end=t_end,
-        backend="fortran" if backend == "compiled" else "numpy")
-    t = np.linspace(0.0, t_end, DEFAULT_SAMPLES + 1)
-    gap_upper = r.displacement(t)
-    gap_lower = np.zeros_like(t)
-    threshold = settings["open_threshold_in"]
-    found = circuit.discontinuity(
-        circuit.open_from_samples(t, gap_upper, t_end, threshold),
-        circuit.open_from_samples(t, gap_lower, t_end, threshold),
-        settings["min_open_s"])
-    energy = np.full_like(t, np.nan)
-    energy[0], energy[-1] = r.initial_energy, r.final_energy
-    return ChatterResult(
-        model="appE", n_modes=int(design.n_modes), dt=0.0, t=t,
-        gap_upper=gap_upper, gap_lower=gap_lower, energy=energy, **found,
-        max_lower_gap_in=0.0,
-        first_impact_s=float(r.impact_t[0]) if len(r.impact_t)
-        else math.nan,
-        first_impulse_lb_s=float(r.impulse[0]) if len(r.impulse)
-        else math.nan,
-        energy_ratio=r.final_energy / r.initial_energy, dt_source="none",
-        rigid_stop=r, work={"impacts": len(r.impact_t)}, **settings)
