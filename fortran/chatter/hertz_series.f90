@@ -1,5 +1,5 @@
 !> Hertz contacts in series with the residual flexibility of the
-!> truncated modes (the static correction, docs/chatter.md).
+!> truncated modes (the static correction, docs/static-correction.md).
 !>
 !> The gaps of the modal contact points are g = H q + g0; the contact
 !> forces lambda >= 0 add the quasi-static displacements C lambda of the
@@ -41,6 +41,35 @@ module chatter_hertz_series
   integer, parameter :: max_newton = 100
 
 contains
+
+  !> The approach a_i = -g_i - sum_{j /= i} C_ij lambda_j that element i
+  !> takes up with the other elements' forces as they stand: one step of
+  !> the coordinate descent of every series solve (series_forces,
+  !> series_law_forces), summed in j's order.
+  pure function element_approach(k, i, cmat, g, force) result(a)
+    integer, intent(in) :: k, i
+    real(wp), intent(in) :: cmat(k, k), g(k), force(k)
+    real(wp) :: a
+    integer :: j
+
+    a = -g(i)
+    do j = 1, k
+      if (j /= i) a = a - cmat(i, j) * force(j)
+    end do
+  end function element_approach
+
+  !> Whether a sweep of the coordinate descent is the last: one contact
+  !> is solved exactly by its one root; two are settled when the sweep
+  !> moved no force by more than 4 ulps of it.
+  pure function settled(k, force, old) result(done)
+    integer, intent(in) :: k
+    real(wp), intent(in) :: force(k), old(k)
+    logical :: done
+
+    done = k == 1
+    if (.not. done) done = all(abs(force - old) <= 4.0_wp * epsilon(1.0_wp) &
+        * force)
+  end function settled
 
   !> The root delta >= 0 of delta + b delta^{3/2} = a (a > 0, b >= 0):
   !> Newton's method from the upper bound min(a, (a/b)^{2/3}); the
@@ -89,7 +118,7 @@ contains
     logical, intent(in), optional :: linear
     ! fixed size (k <= max_contacts): no heap traffic in a step
     real(wp) :: a, depth, old(max_contacts), solved(max_contacts)
-    integer :: sweep, i, j
+    integer :: sweep, i
     logical :: line
 
     line = .false.
@@ -102,10 +131,7 @@ contains
     do sweep = 1, max_sweeps
       old(1:k) = force
       do i = 1, k
-        a = -g(i)
-        do j = 1, k
-          if (j /= i) a = a - cmat(i, j) * force(j)
-        end do
+        a = element_approach(k, i, cmat, g, force)
         if (a > 0.0_wp .and. stiff(i) > 0.0_wp .and. line) then
           force(i) = stiff(i) * a / (1.0_wp + cmat(i, i) * stiff(i))
         else if (a > 0.0_wp .and. stiff(i) > 0.0_wp) then
@@ -119,9 +145,7 @@ contains
           solved(i) = 0.0_wp
         end if
       end do
-      if (k == 1) exit
-      if (all(abs(force - old(1:k)) <= 4.0_wp * epsilon(1.0_wp) * force)) &
-          exit
+      if (settled(k, force, old(1:k))) exit
     end do
   end subroutine series_forces
 
@@ -208,7 +232,7 @@ contains
     real(wp), intent(in) :: factor(k), cmat(k, k), g(k)
     real(wp), intent(out) :: force(k), depth(k)
     real(wp) :: a, old(max_contacts), solved(max_contacts)
-    integer :: sweep, i, j
+    integer :: sweep, i
 
     force = 0.0_wp
     depth = 0.0_wp
@@ -217,10 +241,7 @@ contains
     do sweep = 1, max_sweeps
       old(1:k) = force
       do i = 1, k
-        a = -g(i)
-        do j = 1, k
-          if (j /= i) a = a - cmat(i, j) * force(j)
-        end do
+        a = element_approach(k, i, cmat, g, force)
         if (a > 0.0_wp .and. factor(i) > 0.0_wp) then
           if (a /= solved(i)) then
             depth(i) = law_depth(law, i, a, cmat(i, i) * factor(i))
@@ -234,9 +255,7 @@ contains
           solved(i) = 0.0_wp
         end if
       end do
-      if (k == 1) exit
-      if (all(abs(force - old(1:k)) <= 4.0_wp * epsilon(1.0_wp) * force)) &
-          exit
+      if (settled(k, force, old(1:k))) exit
     end do
   end subroutine series_law_forces
 
