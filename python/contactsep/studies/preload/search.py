@@ -150,117 +150,160 @@ def search(n_rows: int, has_event, tolerance: float = TOLERANCE,
                                        and band_batch >= 1):
         raise ValueError(f"band_batch: found {band_batch!r}, expected None "
                          f"or a positive integer")
-    limits = list(ceilings) if ceilings else [math.inf] * n_rows
-    tops = [top_index(c) for c in limits]
-    # a row's first octave lies below its top (at least one preload)
-    firsts = [min(start_index(s) if s is not None else FIRST_K,
-                  top - PER_OCTAVE + 1)
-              for s, top in zip(starts or [None] * n_rows, tops)]
-    scans = [{} for _ in range(n_rows)]
-    zeros = [None] * n_rows
-    tested = [{} for _ in range(n_rows)]
-
-    def run(tasks, on_grid=False, ahead=()):
-        if not tasks:
-            return
-        if speculate is not None and ahead:
-            speculate(len(tasks), ahead)
-        for (row, preload), event in zip(tasks, has_event(tasks)):
-            tested[row][preload] = bool(event)
-            if on_grid and preload == 0.0:
-                zeros[row] = bool(event)
-            elif on_grid:
-                k = round(PER_OCTAVE * math.log2(preload))
-                scans[row][k] = bool(event)
-
-    def first_octave():
-        return [(row, grid(k)) for row in range(n_rows)
-                if not scans[row].get(tops[row])
-                for k in range(firsts[row], firsts[row] + PER_OCTAVE)
-                if k <= tops[row] and k not in scans[row]]
-
-    if ceiling_first:
-        # the scan's last preload, tried first: an event there is the
-        # row's answer (none), whatever lies below it
-        first = first_octave()
-        run([(row, grid(tops[row])) for row in range(n_rows)
-             if math.isfinite(limits[row])], on_grid=True,
-            ahead=first + scan_ahead(scans, zeros, tops, first))
-    tasks = first_octave()
+    state = _Search(n_rows, has_event, ceilings, starts, band, band_below,
+                    speculate)
+    state.scan(ceiling_first)
     while True:
-        run(tasks, on_grid=True, ahead=scan_ahead(scans, zeros, tops,
-                                                   tasks))
-        tasks = [(row, p) for row in range(n_rows)
-                 for p in next_scan(scans[row], zeros[row], tops[row])]
-        if not tasks:
-            break
-    brackets = [list(scan_bracket(scans[row], zeros[row]))
-                for row in range(n_rows)]
-    # where the scan saw a closed grid value below its highest event,
-    # closed windows may lie below the answer: the band looks there too
-    below = [band_below or _not_monotone(scans[row])
-             for row in range(n_rows)]
-    checked = [None] * n_rows
-
-    def band_ahead(row, lo, hi):
-        # the fine band's preloads for any answer in (lo, hi]
-        if band is not True:
-            return []
-        low = BAND_LOW * hi if below[row] else hi
-        return [(row, p) for p in fine_grid(low, BAND_HIGH * lo)
-                if p <= limits[row] and p not in tested[row]]
-
-    while True:
-        _bisect(brackets, tested, has_event, tolerance,
-                None if speculate is None else
-                lambda asked, mids: speculate(asked, [
-                    task for row, (lo, hi), _ in mids
-                    for task in band_ahead(row, lo, hi)] +
-                    midpoints_ahead(mids, tolerance)))
+        state.bisect(tolerance)
         if not band:
             break
-        # the band around each new answer: an event above it moves the
-        # bracket up to it (every tested preload above stays closed)
         # (not below the grid's floor, 2^-20 lb: a preload that small
         # is none, and a band there would creep down a band at a time)
-        rows = [row for row, (lo, hi) in enumerate(brackets)
-                if lo > 0.0 and math.isfinite(hi) and checked[row] != hi]
+        rows = [row for row, (lo, hi) in enumerate(state.brackets)
+                if lo > 0.0 and math.isfinite(hi)
+                and state.checked[row] != hi]
         if not rows:
             break
+        state.check_bands(rows, band_batch)
+    return state.results()
+
+
+class _Search:
+    """The state of one search of ``n_rows`` designs (:func:`search`'s
+    arguments): what each row's scan saw, every preload tested, the
+    brackets, and the steps that move them, one batch a call."""
+
+    def __init__(self, n_rows, has_event, ceilings, starts, band,
+                 band_below, speculate):
+        self.n_rows, self.has_event = n_rows, has_event
+        self.band, self.speculate = band, speculate
+        self.band_below = band_below
+        self.limits = list(ceilings) if ceilings else [math.inf] * n_rows
+        self.tops = [top_index(c) for c in self.limits]
+        # a row's first octave lies below its top (at least one preload)
+        self.firsts = [min(start_index(s) if s is not None else FIRST_K,
+                           top - PER_OCTAVE + 1)
+                       for s, top in zip(starts or [None] * n_rows,
+                                         self.tops)]
+        self.scans = [{} for _ in range(n_rows)]
+        self.zeros = [None] * n_rows
+        self.tested = [{} for _ in range(n_rows)]
+        self.brackets = self.below = None
+        self.checked = [None] * n_rows
+
+    def run(self, tasks, on_grid=False, ahead=()):
+        """One batch: ``has_event`` on ``tasks`` ((row, preload) each),
+        the runs ``ahead`` named to ``speculate`` first; on the scan's
+        grid (``on_grid``) the scan records each too."""
+        if not tasks:
+            return
+        if self.speculate is not None and ahead:
+            self.speculate(len(tasks), ahead)
+        for (row, preload), event in zip(tasks, self.has_event(tasks)):
+            self.tested[row][preload] = bool(event)
+            if on_grid and preload == 0.0:
+                self.zeros[row] = bool(event)
+            elif on_grid:
+                k = round(PER_OCTAVE * math.log2(preload))
+                self.scans[row][k] = bool(event)
+
+    def _first_octave(self):
+        return [(row, grid(k)) for row in range(self.n_rows)
+                if not self.scans[row].get(self.tops[row])
+                for k in range(self.firsts[row],
+                               self.firsts[row] + PER_OCTAVE)
+                if k <= self.tops[row] and k not in self.scans[row]]
+
+    def _scan_ahead(self, tasks):
+        return scan_ahead(self.scans, self.zeros, self.tops, tasks)
+
+    def scan(self, ceiling_first):
+        """Steps 0 and 1 (module docstring): the ceiling if asked, then
+        the scan; then each row's bracket and whether its band looks
+        below the answer."""
+        if ceiling_first:
+            # the scan's last preload, tried first: an event there is
+            # the row's answer (none), whatever lies below it
+            first = self._first_octave()
+            self.run([(row, grid(self.tops[row]))
+                      for row in range(self.n_rows)
+                      if math.isfinite(self.limits[row])], on_grid=True,
+                     ahead=first + self._scan_ahead(first))
+        tasks = self._first_octave()
+        while True:
+            self.run(tasks, on_grid=True, ahead=self._scan_ahead(tasks))
+            tasks = [(row, p) for row in range(self.n_rows)
+                     for p in next_scan(self.scans[row], self.zeros[row],
+                                        self.tops[row])]
+            if not tasks:
+                break
+        self.brackets = [list(scan_bracket(self.scans[row], self.zeros[row]))
+                         for row in range(self.n_rows)]
+        # where the scan saw a closed grid value below its highest
+        # event, closed windows may lie below the answer: the band
+        # looks there too
+        self.below = [self.band_below or _not_monotone(self.scans[row])
+                      for row in range(self.n_rows)]
+
+    def _band_ahead(self, row, lo, hi):
+        # the fine band's preloads for any answer in (lo, hi]
+        if self.band is not True:
+            return []
+        low = BAND_LOW * hi if self.below[row] else hi
+        return [(row, p) for p in fine_grid(low, BAND_HIGH * lo)
+                if p <= self.limits[row] and p not in self.tested[row]]
+
+    def bisect(self, tolerance):
+        """Step 2: every bracket bisected to ``tolerance``."""
+        _bisect(self.brackets, self.tested, self.has_event, tolerance,
+                None if self.speculate is None else
+                lambda asked, mids: self.speculate(asked, [
+                    task for row, (lo, hi), _ in mids
+                    for task in self._band_ahead(row, lo, hi)] +
+                    midpoints_ahead(mids, tolerance)))
+
+    def check_bands(self, rows, band_batch):
+        """Step 3 for ``rows``: the band around each new answer; an event
+        above it moves the bracket up to it (every tested preload above
+        stays closed)."""
+        brackets, tested = self.brackets, self.tested
         # (from the bracket's event, not from the answer: a fine step
         # between them, closed, is the answer the whole band gives)
-        checks = band if callable(band) else (
-            lambda row, answer: fine_band(answer) if below[row] else
+        checks = self.band if callable(self.band) else (
+            lambda row, answer: fine_band(answer) if self.below[row] else
             fine_grid(brackets[row][0], BAND_HIGH * answer))
         bands = {row: [p for p in checks(row, brackets[row][1])
-                       if p not in tested[row] and p <= limits[row]]
+                       if p not in tested[row] and p <= self.limits[row]]
                  for row in rows}
         if band_batch is None:
-            run([(row, p) for row in rows for p in bands[row]])
+            self.run([(row, p) for row in rows for p in bands[row]])
         else:
-            _run_from_the_top(bands, tested, run, band_batch)
+            _run_from_the_top(bands, tested, self.run, band_batch)
         # an event the band found near its top: the scan's grid values
         # to an octave above it are tested too (as the scan did above
         # its last event), until they are all closed
         while True:
             tasks = [(row, p) for row in rows
-                     for p in _octave_above(tested[row], tops[row])]
+                     for p in _octave_above(tested[row], self.tops[row])]
             if not tasks:
                 break
-            run(tasks)
+            self.run(tasks)
         for row in rows:
-            checked[row] = brackets[row][1]
+            self.checked[row] = brackets[row][1]
             # the highest event now (above the answer if the band found
             # one), and the smallest tested preload above it (the band
             # may have put one between the bisection's ends)
             top = max(p for p, event in tested[row].items() if event)
             above = [p for p in tested[row] if p > top]
             brackets[row] = [top, min(above) if above else math.nan]
-    return [PreloadSearch(min_preload_lb=hi,
-                          tested=tuple(sorted(tested[row].items())),
-                          ceiling_lb=limits[row],
-                          band_low=BAND_LOW if below[row] else 1.0)
-            for row, (_, hi) in enumerate(brackets)]
+
+    def results(self) -> list:
+        """Each row's :class:`PreloadSearch`."""
+        return [PreloadSearch(min_preload_lb=hi,
+                              tested=tuple(sorted(self.tested[row].items())),
+                              ceiling_lb=self.limits[row],
+                              band_low=BAND_LOW if self.below[row] else 1.0)
+                for row, (_, hi) in enumerate(self.brackets)]
 
 
 def _not_monotone(scan: dict) -> bool:
