@@ -11,6 +11,7 @@ import time
 import warnings
 
 from contactsep import output
+from contactsep.cli import chatter_options
 from contactsep.cli.design_options import (
     add_design_options,
     damping_law,
@@ -19,7 +20,6 @@ from contactsep.cli.design_options import (
 )
 from contactsep.cli.guards import drop_echoes
 from contactsep.cli.unit_system import in_units, si_shown
-from contactsep.cli.values import finite, integer
 from contactsep.errors import ContactsepWarning, InputError
 from contactsep.model.names import shown, shown_key, units_shown
 
@@ -32,12 +32,7 @@ EPILOG = """examples:
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep chatter``."""
-    from contactsep.chatter import circuit
     from contactsep.chatter.numerics import DEFAULT_MODES
-    from contactsep.chatter.simulate import (
-        DEFAULT_BUTTON_RADIUS,
-        DEFAULT_NU,
-    )
 
     parser = commands.add_parser(
         "chatter", help="simulate repeated impacts and circuit opening",
@@ -53,105 +48,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                     f"(docs/chatter.md); N is {DEFAULT_MODES} unless "
                     "--n-modes gives it.")
     run_group = parser.add_argument_group("simulation")
-    run_group.add_argument("--model", choices=("appE", "newton", "hertz"),
-                           default="hertz", help="default hertz")
-    run_group.add_argument("--damping",
-                           choices=("none", "flores", "hunt-crossley"),
-                           default=None,
-                           help="Hertz damping (default: flores where e is "
-                                "given, none otherwise; none: elastic, e "
-                                "unused; flores: calibrated to --e; "
-                                "hunt-crossley: the material constant "
-                                "--alpha)")
-    run_group.add_argument("--alpha", type=finite("s/in"), default=None,
-                           metavar="S_PER_IN",
-                           help="Hunt-Crossley's constant (s/in): F = k "
-                                "delta^1.5 (1 + alpha delta'), never "
-                                "calibrated to the design")
-    run_group.add_argument("--contact", choices=("hertz", "thornton"),
-                           default="hertz",
-                           help="the law's elastic part: hertz (default) "
-                                "or thornton (elastic-perfectly-plastic; "
-                                "with --yield-pressure)")
-    run_group.add_argument("--yield-pressure", type=finite("psi"),
-                           default=None, metavar="PSI",
-                           help="Thornton's yield pressure (psi)")
-    run_group.add_argument(
-        "--dt", type=finite("s"), default=None, metavar="S",
-        help="time step (s; default: the design's own, from its stiffest "
-             "contact and highest mode, halved until the energy check "
-             "passes; docs/chatter.md)")
-    run_group.add_argument("--t-end", type=finite("s"), default=None,
-                           metavar="S", help="window from the release (s; "
-                           "default: the first impact and "
-                           "several periods of the slowest member's first "
-                           "mode)")
-    run_group.add_argument("--verify", action="store_true",
-                           help="rerun at half the step and twice the "
-                                "modes and report the relative change of "
-                                "each headline quantity (*_change)")
-    run_group.add_argument("--preload", type=finite("lb"), default=0.0,
-                           metavar="LB",
-                           help="force pressing the lower contact against "
-                                "the separator at the start (lb; default 0)")
-    run_group.add_argument("--open-threshold", type=finite("in"),
-                           default=circuit.OPEN_THRESHOLD, metavar="IN",
-                           help="gap above which a contact is open (in; "
-                                f"default {circuit.OPEN_THRESHOLD:g})")
-    run_group.add_argument("--min-open", type=finite("s"),
-                           default=circuit.MIN_OPEN, metavar="S",
-                           help="shortest circuit opening that counts as a "
-                                "discontinuity event (s; default "
-                                f"{circuit.MIN_OPEN:g}; 0: every opening)")
-    run_group.add_argument("--stepper", choices=("adaptive", "fixed"),
-                           default="adaptive",
-                           help="adaptive (default) or the fixed-step "
-                                "reference (Moreau-Jean, Hertz splitting)")
-    run_group.add_argument("--static-correction", choices=("on", "off"),
-                           default="on",
-                           help="hertz: the truncated modes' residual "
-                                "flexibility in series with each contact "
-                                "(default on; off: the plain N-mode "
-                                "truncation; docs/static-correction.md)")
-    run_group.add_argument("--nu", type=finite(), default=DEFAULT_NU,
-                           help="Poisson's ratio of the Hertz constant "
-                                f"(default {DEFAULT_NU:g})")
-    run_group.add_argument("--button-radius", type=finite("in"),
-                           default=DEFAULT_BUTTON_RADIUS, metavar="IN",
-                           help="contact button radius of the Hertz "
-                                f"constant (in; default "
-                                f"{DEFAULT_BUTTON_RADIUS:g})")
-    run_group.add_argument("--button", choices=("sphere", "cylinder"),
-                           default="sphere",
-                           help="contact button: sphere on a flat (Hertz, "
-                                "default) or cylinder across it (line "
-                                "contact, force proportional to the "
-                                "penetration; docs/chatter.md)")
-    run_group.add_argument("--button-length", type=finite("in"),
-                           default=None, metavar="IN",
-                           help="cylinder button's length (in; default "
-                                "its diameter)")
-    out_group = parser.add_argument_group("output")
-    out_group.add_argument("--progress", choices=("auto", "always",
-                                                  "never"), default="auto",
-                           help="the elapsed time of a long run on stderr: "
-                                "auto (on a terminal, after a second), "
-                                "always, never")
-    out_group.add_argument("--events", type=_event_count, default=10,
-                           metavar="N|all",
-                           help="circuit openings listed after the "
-                                "summary (default 10; all: every one; "
-                                "--csv and --json have them all)")
-    out_group.add_argument("--json", action="store_true",
-                           help="print the inputs and the summary as JSON")
-    out_group.add_argument("--csv", metavar="FILE",
-                           help="write the gap histories: t_s, "
-                                "gap_upper_in, gap_lower_in, circuit_open")
-    out_group.add_argument("--png", metavar="FILE",
-                           help="plot both gaps, each on its own axis, "
-                                "the open circuit shaded")
-    out_group.add_argument("--dpi", type=integer(10, 1200), default=100,
-                           help="resolution of --png (default 100)")
+    chatter_options.add_law_options(run_group)
+    chatter_options.add_run_options(run_group)
+    chatter_options.add_button_options(run_group)
+    chatter_options.add_output_options(parser)
     add_design_options(parser)
     parser.set_defaults(handler=run)
 
@@ -277,13 +177,6 @@ def _g(value, digits=6) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "-"
     return f"{value:.{digits}g}"
-
-
-def _event_count(text: str):
-    """--events: 'all' (None) or a count >= 0."""
-    if text.strip() == "all":
-        return None
-    return integer(0, 10**9)(text)
 
 
 def summary_text(result, listed: int | None = 10, si: bool = False) -> str:
