@@ -149,19 +149,19 @@ from contactsep.constants import (
     LISTING_TAU_S,
 )
 from contactsep.restored.dataset import DataSet
-from contactsep.restored.reference_amplitudes import (  # public ones re-exported
+# the amplitudes and the first-impact search are the twin's own
+# procedures, public here (__all__) as the reference's API
+from contactsep.restored.reference_amplitudes import (
     AMPLITUDE_METHODS,
     _choice,
     initial_amplitudes,
     mode_values,
 )
-from contactsep.restored.reference_search import (  # noqa: F401  (re-exported)
+from contactsep.restored.reference_search import (
     _SAMPLES_PER_PERIOD,
-    MAX_SEARCH_SAMPLES,
     _as_output,
     _bisect,
     _cos_sum,
-    _minima_between,
     _sin_sum,
     first_impact,
 )
