@@ -28,9 +28,7 @@ _OPTIONS = ("dt", "t_end", "open_threshold", "min_open", "damping")
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep preload``."""
-    from contactsep.chatter.simulate import DAMPINGS
-    from contactsep.studies.preload.chart import DEFAULT_MODES, MODELS
-    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+    from contactsep.studies.preload.chart import DEFAULT_MODES
 
     parser = commands.add_parser(
         "preload", help="the smallest preload that keeps the circuit "
@@ -59,6 +57,18 @@ def register(commands: argparse._SubParsersAction) -> None:
                    "contactsep preload --d 0.5 --json",
                    "contactsep preload --tolerance 'd=normal(0.25,0.005)' "
                    "--samples 300 --csv preload.csv --resume"))
+    _add_simulation_options(parser)
+    _add_output_options(parser)
+    add_design_options(parser)
+    parser.set_defaults(handler=run)
+
+
+def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
+    """The "simulation" group: the model, its law and the search's
+    numerics."""
+    from contactsep.chatter.simulate import DAMPINGS
+    from contactsep.studies.preload.chart import MODELS
+
     run_group = parser.add_argument_group("simulation")
     run_group.add_argument("--model", choices=MODELS, default="hertz",
                            help="default hertz")
@@ -110,6 +120,12 @@ def register(commands: argparse._SubParsersAction) -> None:
              "the scan saw a closed preload below its last event, or with "
              "--tolerance): the closed windows below the answer; the same "
              "answer")
+
+
+def _add_output_options(parser: argparse.ArgumentParser) -> None:
+    """The "output" group: JSON, CSV, resume, workers, cluster, progress."""
+    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",
                            help="print the answer as JSON")
@@ -134,8 +150,6 @@ def register(commands: argparse._SubParsersAction) -> None:
                            default="auto",
                            help="progress bar on stderr: auto (on a "
                                 "terminal), always (needs tqdm), never")
-    add_design_options(parser)
-    parser.set_defaults(handler=run)
 
 
 def add_robust_options(parser: argparse.ArgumentParser) -> None:

@@ -45,10 +45,8 @@ DEFAULT_DPI = 100
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep study``, then ``contactsep sweep``."""
-    from contactsep.chatter.simulate import DAMPINGS
     from contactsep.studies import STUDIES
     from contactsep.studies.preload.chart import DEFAULT_MODES as PRELOAD_MODES
-    from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
 
     study = commands.add_parser(
         "study", help="regenerate a thesis figure or table",
@@ -91,6 +89,16 @@ def register(commands: argparse._SubParsersAction) -> None:
                    "each",
                    "contactsep study preload --csv preload.csv "
                    "--png preload.png"))
+    _add_output_options(study)
+    _add_simulation_options(study)
+    _add_run_options(study)
+    add_design_options(study)
+    study.set_defaults(handler=run_study)
+    sweep.register(commands)
+
+
+def _add_output_options(study: argparse.ArgumentParser) -> None:
+    """The study's name and its outputs (CSV, PNG, a folder)."""
     study.add_argument("name", metavar="NAME")
     study.add_argument("--csv", metavar="FILE", help="write the CSV here")
     study.add_argument("--png", metavar="FILE",
@@ -102,6 +110,13 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help=f"PNG resolution, dots per inch of the 6 x 4 in "
                             f"figure (default {DEFAULT_DPI})")
     add_backend_option(study)
+
+
+def _add_simulation_options(study: argparse.ArgumentParser) -> None:
+    """The simulating studies' model, law and checks."""
+    from contactsep.chatter.simulate import DAMPINGS
+    from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
+
     study.add_argument("--model", choices=PRELOAD_MODELS, default=None,
                        help="preload and conclusionN only: the contact "
                             "model (default hertz)")
@@ -127,6 +142,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                        metavar="S",
                        help="conclusion4 only: when e_apparent is read "
                             "after the first impact (default 0.02 s)")
+
+
+def _add_run_options(study: argparse.ArgumentParser) -> None:
+    """Where the simulations run, resume and progress."""
     study.add_argument("--workers", type=integer(1, max_workers()),
                        default=None,
                        help=f"preload, conclusionN, contact-points and "
@@ -149,9 +168,6 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="chatter, preload and conclusionN: a progress "
                             "bar of the simulations on stderr: auto (on a "
                             "terminal, after a second), always, never")
-    add_design_options(study)
-    study.set_defaults(handler=run_study)
-    sweep.register(commands)
 
 
 def _write_csv(path, study) -> None:
