@@ -110,6 +110,28 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
             "yield_pressure": min(c.yield_pressure_psi,
                                   s.yield_pressure_psi)}))
     settings = {"t_end": LISTING_TAU_S}
+    tasks, rows = _tasks(laws, preloads, pairs, designs, settings)
+    with Simulations(workers, progress=progress,
+                     journal=journal) as sims:
+        # (design, preload, law, settings): the preloaded runs first
+        answers = sims.map(_run, tasks, cost=lambda task: task[1])
+        found = min_preloads(designs, "hertz", settings, simulations=sims) \
+            if min_preload else []
+    columns = _columns(answers, rows, len(laws) > 1)
+    if min_preload:
+        columns["min_preload_lb"] = np.tile(
+            [r.min_preload_lb for r in found], len(rows) // len(designs))
+    notes = _notes(pairs, designs, found, n_modes, len(laws) > 1,
+                   sims.runs)
+    return Study("materials", f"Recommendation 4: circuit opening against "
+                 f"the materials of the contacts and the separator "
+                 f"(N = {n_modes})", columns, tuple(notes))
+
+
+def _tasks(laws, preloads, pairs, designs, settings):
+    """The simulations (design, preload, law, settings) and their rows
+    (law, preload, contact material, separator material): each law, then
+    each preload, then each pair of materials."""
     tasks, rows = [], []
     for law, extra in laws:
         for preload in preloads:
@@ -117,15 +139,16 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
                 tasks.append((design, preload, {**extra(c, s), "nu": c.nu},
                               settings))
                 rows.append((law, preload, c, s))
-    with Simulations(workers, progress=progress,
-                     journal=journal) as sims:
-        # (design, preload, law, settings): the preloaded runs first
-        answers = sims.map(_run, tasks, cost=lambda task: task[1])
-        found = min_preloads(designs, "hertz", settings, simulations=sims) \
-            if min_preload else []
+    return tasks, rows
+
+
+def _columns(answers, rows, with_law: bool) -> dict:
+    """The study's columns from each simulation's (open time, events,
+    largest lower gap) and its row; ``with_law``: the law's columns
+    first (Thornton's rows beside Hertz's)."""
     open_s, events, gap = (np.array(v, dtype=float) for v in zip(*answers))
     columns = {}
-    if len(laws) > 1:
+    if with_law:
         columns["law"] = np.array([law for law, _, _, _ in rows])
         columns["yield_pressure_psi"] = np.array(
             [min(c.yield_pressure_psi, s.yield_pressure_psi)
@@ -140,9 +163,12 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
         "preload_lb": np.array([p for _, p, _, _ in rows]),
         "circuit_open_s": open_s, "n_events": events.astype(np.int64),
         "max_lower_gap_in": gap})
-    if min_preload:
-        columns["min_preload_lb"] = np.tile(
-            [r.min_preload_lb for r in found], len(rows) // len(designs))
+    return columns
+
+
+def _notes(pairs, designs, found, n_modes, with_law, runs) -> list:
+    """The study's notes: the thesis's recommendation, the presets, the
+    simulations, Thornton's rows, each pair's limits and the design."""
     presets = "; ".join(f"{m.name}: {m.alloy}, E {m.E_psi:.3g} psi, "
                         f"{m.gamma_lb_in3:g} lb/in^3, nu {m.nu:g}, yield "
                         f"{m.yield_strength_psi:.3g} psi"
@@ -162,15 +188,13 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
              "Thornton's law (law, yield_pressure_psi: the lower of the two "
              "materials' 1.60 x yield strength) "
              + ("included, without the static correction (the law's "
-                "memory is not in the series solve)" if len(laws) > 1 else
+                "memory is not in the series solve)" if with_law else
                 "not in this build of the chatter layer: Hertz rows only"),
-             f"{sims.runs} simulations",
+             f"{runs} simulations",
              *(note for (c, s), r in zip(pairs, found)
                for note in limit_notes(f"{c.name} on {s.name}", r)),
              *design_lines(designs[0], per_row=tuple(FIXED))]
-    return Study("materials", f"Recommendation 4: circuit opening against "
-                 f"the materials of the contacts and the separator "
-                 f"(N = {n_modes})", columns, tuple(notes))
+    return notes
 
 
 def draw(axes, study: Study) -> None:
