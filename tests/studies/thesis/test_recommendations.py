@@ -10,6 +10,8 @@ values converted by pint (contactsep.units), and the command line's
 from __future__ import annotations
 
 import json
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,6 +23,9 @@ from contactsep.studies.thesis import contact_points as cp
 from contactsep.studies.thesis import materials as mat
 from contactsep.studies.plots import save_png
 from contactsep import units
+
+# the committed studies' comparison lives one folder up (tests/studies)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 
 def test_the_contact_points_study_is_its_own_mirror():
