@@ -204,17 +204,18 @@ def test_tables_1_to_3_are_their_csvs():
                     ".3f", ".2f", ".2f", ".2f")), "mode") + r" \| "
                 + roles("table1", "printed_theoretical_cps",
                         [(m, ".1f") for m in (1, 2, 3, 4)], "mode")
-                + rf" \| \*\*disagree by {NUMBER}–{NUMBER} %\*\*: the "
-                rf"printed theory implies E/γ = {NUMBER} in, Table II "
-                rf"{NUMBER} in")
+                + r" \| \*\*disagree by "
+                + re.escape(role("table1", "min(relative_difference)", ".1%")
+                            + "–" + role("table1", "max(relative_difference)",
+                                         ".1%"))
+                + rf"\*\*: the printed theory implies E/γ = {NUMBER} in, "
+                rf"Table II {NUMBER} in")
     model = column("table1", "model_cps")
-    relative = 100 * column("table1", "relative_difference")
-    check(t1[:2], [relative.min(), relative.max()])
     # E/gamma the printed frequencies imply: frequencies go as its root
     material = 10.0e6 / 0.100
     implied = material * (column("table1", "printed_theoretical_cps")
                           / model) ** 2
-    check(t1[2:], [implied.mean(), material])
+    check(t1, [implied.mean(), material])
     t2 = quoted("studies.md", r"\| II, separator frequency \(cps\) \| "
                 + roles("table2", "model_cps", [(d, ".0f") for d in ds],
                         "d_in") + r" \| "
@@ -228,6 +229,21 @@ def test_tables_1_to_3_are_their_csvs():
                 "d_in", bold_last=True) + r" \| "
         + roles("table3", "printed_Lc_in", [(d, ".2f") for d in ds],
                 "d_in", bold_last=True), page("studies.md"))
+
+
+def test_table_1s_model_is_above_the_printed_theory_for_every_mode():
+    """The data behind the page's range of the Table I disagreement:
+    relative_difference is model / printed - 1, and the model is above
+    the printed theory for every mode by 3-4 % (one material ratio: the
+    frequencies of one beam scale alike, so the spread is rounding of
+    the printed values)."""
+    model = column("table1", "model_cps")
+    printed_cps = column("table1", "printed_theoretical_cps")
+    relative = column("table1", "relative_difference")
+    assert np.allclose(relative, model / printed_cps - 1, rtol=1e-9)
+    assert np.all((relative > 0.03) & (relative < 0.04)), relative
+    # the printed values carry 3 digits: the spread is within their step
+    assert np.ptp(relative) < 0.1 / 10.6 + 1e-12
 
 
 def test_the_formulas_constant_against_the_materials():
