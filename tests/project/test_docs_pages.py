@@ -204,17 +204,18 @@ def test_tables_1_to_3_are_their_csvs():
                     ".3f", ".2f", ".2f", ".2f")), "mode") + r" \| "
                 + roles("table1", "printed_theoretical_cps",
                         [(m, ".1f") for m in (1, 2, 3, 4)], "mode")
-                + rf" \| \*\*disagree by {NUMBER}–{NUMBER} %\*\*: the "
-                rf"printed theory implies E/γ = {NUMBER} in, Table II "
-                rf"{NUMBER} in")
+                + r" \| \*\*disagree by "
+                + re.escape(role("table1", "min(relative_difference)", ".1%")
+                            + "–" + role("table1", "max(relative_difference)",
+                                         ".1%"))
+                + rf"\*\*: the printed theory implies E/γ = {NUMBER} in, "
+                rf"Table II {NUMBER} in")
     model = column("table1", "model_cps")
-    relative = 100 * column("table1", "relative_difference")
-    check(t1[:2], [relative.min(), relative.max()])
     # E/gamma the printed frequencies imply: frequencies go as its root
     material = 10.0e6 / 0.100
     implied = material * (column("table1", "printed_theoretical_cps")
                           / model) ** 2
-    check(t1[2:], [implied.mean(), material])
+    check(t1, [implied.mean(), material])
     t2 = quoted("studies.md", r"\| II, separator frequency \(cps\) \| "
                 + roles("table2", "model_cps", [(d, ".0f") for d in ds],
                         "d_in") + r" \| "
@@ -228,6 +229,21 @@ def test_tables_1_to_3_are_their_csvs():
                 "d_in", bold_last=True) + r" \| "
         + roles("table3", "printed_Lc_in", [(d, ".2f") for d in ds],
                 "d_in", bold_last=True), page("studies.md"))
+
+
+def test_table_1s_model_is_above_the_printed_theory_for_every_mode():
+    """The data behind the page's range of the Table I disagreement:
+    relative_difference is model / printed - 1, and the model is above
+    the printed theory for every mode by 3-4 % (one material ratio: the
+    frequencies of one beam scale alike, so the spread is rounding of
+    the printed values)."""
+    model = column("table1", "model_cps")
+    printed_cps = column("table1", "printed_theoretical_cps")
+    relative = column("table1", "relative_difference")
+    assert np.allclose(relative, model / printed_cps - 1, rtol=1e-9)
+    assert np.all((relative > 0.03) & (relative < 0.04)), relative
+    # the printed values carry 3 digits: the spread is within their step
+    assert np.ptp(relative) < 0.1 / 10.6 + 1e-12
 
 
 def test_the_formulas_constant_against_the_materials():
@@ -317,15 +333,45 @@ def check_rows(table, ns, computed) -> None:
             assert printed(value, claim), (n, claim, value)
 
 
+#: model.md's columns of the convergence table the study writes, and the
+#: page's formats (ψ·N, a product of two columns, is typed).
+CONVERGENCE_COLUMNS = (("t1_s", ".6g"), ("v_impact_in_s", ".3f"),
+                       ("psi_lb_s", ".4e"), (None, None),
+                       ("v0_in_s", ".3f"), ("y3_max_in", ".6f"))
+
+
 def test_the_convergence_table_to_n_50_is_convergence_csv():
+    """Each row of the study (N <= 50): its values the roles that select
+    the row, ψ·N the row's product as text."""
     table = convergence_table()
     assert sorted(table) == [1, 2, 3, 4, 8, 16, 32, 50, 100, 200, 400, 800,
                              1600]
-    committed = {int(r["N"]): [float(r[k]) for k in (
-        "t1_s", "v_impact_in_s", "psi_lb_s")] + [
-        float(r["psi_lb_s"]) * int(r["N"])] + [float(r[k]) for k in (
-            "v0_in_s", "y3_max_in")] for r in rows("convergence")}
-    check_rows(table, [n for n in table if n <= 50], committed)
+    for r in rows("convergence"):
+        n = int(r["N"])
+        if n not in table:
+            continue
+        assert table[n] == [
+            role("convergence", key, fmt, N=n) if key else
+            f"{float(r['psi_lb_s']) * n:.4e}"
+            for key, fmt in CONVERGENCE_COLUMNS], n
+
+
+def test_the_convergence_study_converges_but_its_impulse_does_not():
+    """What the page says of the table, on the committed study: t1 is
+    settled to 1e-6 from N = 16, ψ falls like 1/N (ψ·N grows from N = 3
+    on and stays within 10 % from N = 16), max y3 falls monotonically from
+    N = 4, its falls over N = 4, 8, 16, 32 shrinking at least as 0.6 a
+    doubling (O(1/N) halves them)."""
+    n = column("convergence", "N")
+    t1 = column("convergence", "t1_s")
+    psi_n = column("convergence", "psi_lb_s") * n
+    y3 = column("convergence", "y3_max_in")
+    assert np.all(np.abs(t1[n >= 16] / t1[-1] - 1) < 1e-6)
+    assert np.all(np.diff(psi_n[n >= 3]) > 0)
+    assert np.all(psi_n[n >= 16] / psi_n[-1] > 0.9)
+    assert np.all(np.diff(y3[n >= 4]) < 0)
+    falls = -np.diff(y3[np.isin(n, (4, 8, 16, 32))])
+    assert np.all(falls[1:] < 0.6 * falls[:-1]), falls
 
 
 @pytest.mark.slow
@@ -526,12 +572,14 @@ def test_the_separator_fit_prose_is_separator_fit_csv():
     mass = fits[("timoshenko-kr2-mass2", "last-9000")]
     rms = re.escape(role("separator-fit", "rms_pct", ".1f",
                          model="timoshenko-kr2-mass2", data="last-9000"))
-    within, last, grams = quoted(
-        "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last −{NUMBER} "
+    last = re.escape(role("separator-fit", "res_0750_pct", ".1f",
+                          model="timoshenko-kr2-mass2", data="last-9000"))
+    within, grams = quoted(
+        "studies.md", rf"\(rows 1–4 within {NUMBER} %, the last {last} "
         rf"% against the analysis's −4.8 %, rms {rms} % against 2.3 %, "
         rf"{NUMBER} g\)")
     res = residuals(mass)
-    check([within, last], [max(abs(r) for r in res[:4]), -res[4]])
+    check([within], [max(abs(r) for r in res[:4])])
     check([grams], [float(re.search(r"\(([\d.]+) g\)",
                                     mass["parameters"]).group(1))])
     low, high = (role("separator-fit", "rms_pct", ".1f",
@@ -559,6 +607,18 @@ def test_the_separator_fit_prose_is_separator_fit_csv():
                     rf"same fitted model is {NUMBER} % low in the last row")
     model_cps = 9000 * (1 + res[4] / 100)
     check([off], [100 * (1 - model_cps / 11100)])
+
+
+def test_the_sensor_mass_fit_misses_the_last_row_as_the_analysis_did():
+    """The data behind the page's last-row residual of the sensor-mass
+    fit (9,000 cps version): low, within 0.5 % of the analysis's
+    -4.8 %, and the fit's rms below every one-stiffness fit's."""
+    fits = fit_rows()
+    last = residuals(fits[("timoshenko-kr2-mass2", "last-9000")])[4]
+    assert last < 0 and abs(last - (-4.8)) < 0.5, last
+    mass_rms = float(fits[("timoshenko-kr2-mass2", "last-9000")]["rms_pct"])
+    assert all(mass_rms < float(fits[("timoshenko-kr2", d)]["rms_pct"])
+               for d in ("last-9000", "printed"))
 
 
 def test_the_bare_separator_and_table_1_lines():

@@ -67,18 +67,75 @@ def test_the_study_perturbs_ys_alone_as_it_says(path):
             assert r["n_modes"] == "32"
 
 
+#: The perturbed copies' ys_change, in the table's column order.
+COPIES = ("1e-09", "-1e-09", "1e-06", "-1e-06")
+
+
+def datum(path, column: str, design: str, change: str = "0",
+          fmt: str | None = None) -> str:
+    """The role that shows ``column`` of ``design``'s copy ``change``."""
+    return (f"{{datum}}`studies/{path.name}:{column}@design={design},"
+            f"ys_change={change}" + (f":{fmt}`" if fmt else "`"))
+
+
 def test_the_table_is_the_study():
+    """Row for row: N, the answer and each copy's change the roles that
+    select the design's copy (a dash where the study has no answer);
+    the largest change, derived, as text."""
     quoted = table(section(TITLE), HEADER)
     expected = []
     for window, path in STUDIES.items():
         for name, runs in by_design(path).items():
             big = largest(runs)
+            assert [float(r["ys_change"]) for r in runs[1:]] == \
+                [float(c) for c in COPIES]
             expected.append(
-                [name, window, runs[0]["n_modes"],
-                 g4(runs[0]["min_preload_lb"]),
-                 *[pct(r["change_from_unperturbed"]) for r in runs[1:]],
-                 "—" if big is None else f"{100 * big:.2f} %"])
+                [name, window, datum(path, "n_modes", name),
+                 "—" if g4(runs[0]["min_preload_lb"]) == "—" else
+                 datum(path, "min_preload_lb", name, fmt=".4g"),
+                 *["—" if pct(r["change_from_unperturbed"]) == "—" else
+                   datum(path, "change_from_unperturbed", name, c, "+.2%")
+                   for r, c in zip(runs[1:], COPIES)],
+                 "—" if big is None else f"{100 * big:.2f}%"])
     assert quoted == expected
+
+
+def test_the_readings_quote_the_study():
+    """The readings below the table: the steel relay's change at a part
+    per billion, the beryllium-copper relay's at ±1e-6, the thesis rigs'
+    answers at the chart's window: the roles that select those rows."""
+    own, chart = STUDIES["own"], STUDIES["0.06 s, 5e-8 s"]
+    text = " ".join(section(TITLE).split())
+    change = "change_from_unperturbed"
+    for claim in (
+            "**The steel relay moves by "
+            + datum(own, change, "steel_relay", "1e-09", ".1%")
+            + " for a part per billion**",
+            "moves by " + datum(own, change, "becu_light", "1e-06", ".1%")
+            + " and " + datum(own, change, "becu_light", "-1e-06", ".1%")
+            + " at ±1e-6**",
+            "(rows of the chart: " + ", ".join(
+                datum(chart, "min_preload_lb", d, fmt=".4g")
+                for d in ("thesis", "thesis_thin")) + " and "
+            + datum(chart, "min_preload_lb", "thesis_thick", fmt=".4g")
+            + " lb)"):
+        assert claim in text, claim
+
+
+def test_the_chart_rigs_do_not_move_and_match_the_preload_chart():
+    """The data behind "the thesis rigs at the chart's window and step
+    do not move at all": every copy's answer is the unperturbed one,
+    and the thesis rig's is the preload chart's at d = 0.25, y_s = 0.5
+    (a separate run of the same search)."""
+    chart = by_design(STUDIES["0.06 s, 5e-8 s"])
+    for name, runs in chart.items():
+        assert all(float(r["change_from_unperturbed"]) == 0.0
+                   for r in runs[1:]), name
+    preload = rows(ROOT / "docs" / "studies" / "preload.csv")
+    (rig,) = [r for r in preload if float(r["d_in"]) == 0.25
+              and float(r["ys_in"]) == 0.5]
+    assert f"{float(chart['thesis'][0]['min_preload_lb']):.4g}" == \
+        f"{float(rig['min_preload_lb']):.4g}"
 
 
 def test_the_relays_that_would_not_settle_with_n():
