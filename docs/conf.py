@@ -103,6 +103,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "cli_reference",
     "data_values",
+    "benchmark_runs",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}

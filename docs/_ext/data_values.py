@@ -10,6 +10,9 @@ The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
 ``FILE``
     a CSV file, relative to ``docs/``; its lines that start with ``#``
     (the comments every CSV the package writes carries) are skipped.
+    Or a committed benchmark run, ``../benchmarks/results/NAME.md#K``:
+    the K-th Markdown table of the run (benchmark_runs.py; 1 without
+    ``#K``).
 ``COLUMN``
     the column whose value is shown, or an aggregate over the rows the
     filters select: ``max(col)``, ``min(col)``, ``sum(col)`` (NaN cells
@@ -22,6 +25,10 @@ The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
 ``FORMAT``
     a Python format spec (``.2f``, ``.4g``, ``,d``); without one the
     cell is shown as written in the file.
+
+Or ``=EXPR[:FORMAT]``, arithmetic on such values, each written
+``[FILE:COLUMN@...]`` (data_expressions.py): a ratio, a difference, a
+change of unit.
 
 :func:`resolve` is the whole lookup, a pure function without Sphinx, so
 the tests run it on every use in the pages; every way it can fail
@@ -46,6 +53,11 @@ _AGGREGATE = re.compile(rf"^({'|'.join(AGGREGATES)})\((.*)\)$")
 _INTEGER_TYPES = set("bcdoxX")
 
 
+#: Separators written with a backslash inside a name or value (a table
+#: row label "hertz N=16, summary only"), hidden while the text is split.
+_ESCAPES = {"\\,": "\ue000", "\\:": "\ue001", "\\@": "\ue002"}
+
+
 class DatumError(ValueError):
     """A ``datum`` that cannot be shown; its message is one line."""
 
@@ -68,7 +80,7 @@ class Datum:
         return text
 
 
-def _one_line(text: str) -> str:
+def one_line(text: str) -> str:
     """``text`` with white space runs as one space and any other
     unprintable character escaped, so a message stays one line."""
     text = " ".join(str(text).split())
@@ -92,10 +104,12 @@ def parse(spec: str) -> Datum:
     DatumError
         If a part is missing or a filter is not ``KEY=VALUE``.
     """
-    text = _one_line(spec).strip()
+    text = one_line(spec).strip()
+    for escaped, hidden in _ESCAPES.items():
+        text = text.replace(escaped, hidden)
     file, sep, rest = text.partition(":")
     if not sep or not file.strip() or not rest.strip():
-        raise DatumError(f"datum {text!r}: expected "
+        raise DatumError(f"datum {_shown(text)!r}: expected "
                          "FILE:COLUMN[@KEY=VALUE,...][:FORMAT]")
     selector, sep, fmt = rest.partition(":")
     column, _, filter_text = selector.partition("@")
@@ -105,12 +119,29 @@ def parse(spec: str) -> Datum:
     for item in filter_text.split(",") if filter_text.strip() else ():
         key, eq, value = item.partition("=")
         if not eq or not key.strip():
-            raise DatumError(f"{file}: {column}: filter {item.strip()!r} "
+            raise DatumError(f"{_shown(file)}: {_shown(column)}: filter "
+                             f"{_shown(item.strip())!r} "
                              "is not KEY=VALUE")
-        filters.append((key.strip(), value.strip()))
+        filters.append((_shown(key.strip()), _shown(value.strip())))
     if not column:
-        raise DatumError(f"{file}: no column in datum {text!r}")
-    return Datum(file, column, tuple(filters), fmt.strip() if sep else None)
+        raise DatumError(f"{file}: no column in datum {_shown(text)!r}")
+    return Datum(_shown(file), _shown(column), tuple(filters),
+                 fmt.strip() if sep else None)
+
+
+def _shown(text: str) -> str:
+    """``text`` with each escaped separator back as itself."""
+    for escaped, hidden in _ESCAPES.items():
+        text = text.replace(hidden, escaped[1])
+    return text
+
+
+def _column(name: str, header: list[str]) -> str:
+    """The column ``name`` names: itself, or ``$K`` the K-th (from 1)."""
+    if name.startswith("$") and name[1:].isdigit() and \
+            1 <= int(name[1:]) <= len(header):
+        return header[int(name[1:]) - 1]
+    return name
 
 
 def _number(text: str):
@@ -149,12 +180,12 @@ def read_rows(path: Path, label: str) -> tuple[list[str], list[dict]]:
         raise DatumError(f"{label}: no such file") from None
     except (OSError, UnicodeDecodeError) as error:
         raise DatumError(f"{label}: cannot read it "
-                         f"({_one_line(error)})") from None
+                         f"({one_line(error)})") from None
     try:
         table = list(csv.reader(lines))
     except csv.Error as error:
         raise DatumError(f"{label}: not a CSV table "
-                         f"({_one_line(error)})") from None
+                         f"({one_line(error)})") from None
     if not table:
         raise DatumError(f"{label}: no header line")
     header = [name.strip() for name in table[0]]
@@ -166,6 +197,26 @@ def read_rows(path: Path, label: str) -> tuple[list[str], list[dict]]:
                              f"{len(header)}")
         rows.append(dict(zip(header, (c.strip() for c in cells))))
     return header, rows
+
+
+def _rows(base: Path, datum: Datum) -> tuple[list[str], list[dict]]:
+    """The header and rows ``datum.file`` names: a CSV, or the K-th
+    table of a committed benchmark run, ``NAME.md#K``
+    (benchmark_runs.py)."""
+    file, hash_, table = datum.file.partition("#")
+    if not file.endswith(".md"):
+        if hash_:
+            raise DatumError(f"{datum.where()}: #K selects a table of a "
+                             "benchmark run (.md), not of a CSV")
+        return read_rows(base / file, datum.where())
+    import benchmark_runs
+
+    try:
+        number = int(table) if hash_ else 1
+    except ValueError:
+        raise DatumError(f"{datum.where()}: #{table} is not a table "
+                         "number") from None
+    return benchmark_runs.table_rows(base / file, number, datum.where())
 
 
 def _matches(cell: str, wanted: str) -> bool:
@@ -192,7 +243,7 @@ def _format(value, datum: Datum) -> str:
         return format(number, fmt)
     except (ValueError, TypeError) as error:
         raise DatumError(f"{datum.where()}: bad format {fmt!r} "
-                         f"({_one_line(error)})") from None
+                         f"({one_line(error)})") from None
 
 
 def resolve(spec: str, base: str | Path) -> str:
@@ -218,12 +269,18 @@ def resolve(spec: str, base: str | Path) -> str:
         value that is not a number where one is needed; a bad format.  One printable line
         naming the file, column and filters.
     """
+    if one_line(spec).strip().startswith("="):
+        return _expression(spec, base)
     datum = parse(spec)
     if Path(datum.file).is_absolute():
         raise DatumError(f"{datum.file}: FILE must be relative to docs/")
-    header, rows = read_rows(Path(base) / datum.file, datum.where())
+    header, rows = _rows(Path(base), datum)
+    datum = Datum(datum.file, datum.column,
+                  tuple((_column(k, header), v) for k, v in datum.filters),
+                  datum.fmt)
     aggregate = _AGGREGATE.match(datum.column)
     name = aggregate.group(2).strip() if aggregate else datum.column
+    name = _column(name, header)
     needed = [k for k, _ in datum.filters]
     if datum.column != "rows":
         needed.append(name)
@@ -268,6 +325,32 @@ def resolve(spec: str, base: str | Path) -> str:
     return _format(best, datum)
 
 
+def _expression(spec: str, base: str | Path) -> str:
+    """The text of an expression ``=EXPR[:FORMAT]`` (data_expressions)."""
+    import data_expressions
+
+    def value(inner: str):
+        text = resolve(inner, base)
+        number = _number(text.replace(",", ""))
+        if number is None:
+            raise DatumError(f"{inner}: {text!r} is not a number")
+        return number
+
+    number = data_expressions.evaluate(spec, value)
+    fmt = data_expressions.split(spec)[2]
+    return _format(number, Datum(one_line(spec).strip(), "=", (), fmt))
+
+
+def files(spec: str) -> list[str]:
+    """The files (relative to docs/) a use of the role reads."""
+    if one_line(spec).strip().startswith("="):
+        import data_expressions
+
+        return [parse(inner).file.partition("#")[0]
+                for inner in data_expressions.split(spec)[1]]
+    return [parse(spec).file.partition("#")[0]]
+
+
 def source_line(source: str, text: str, lineno: int) -> int:
     """The line of ``source`` (a file) where the role's ``text`` is,
     the first at or after ``lineno``; ``lineno`` if it is not found.
@@ -293,9 +376,9 @@ def datum_role(name, rawtext, text, lineno, inliner, options=None,
     env = getattr(document.settings, "env", None)
     base = Path(env.srcdir) if env is not None else Path(__file__).parents[1]
     try:
-        datum = parse(text)
         if env is not None:      # a changed CSV rebuilds the page
-            env.note_dependency(str(base / datum.file))
+            for file in files(text):
+                env.note_dependency(str(base / file))
         value = resolve(text, base)
     except DatumError as error:
         line = source_line(document.get("source", ""), text, lineno)
