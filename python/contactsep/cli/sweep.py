@@ -41,8 +41,8 @@ from contactsep.studies.sweep.checks import MODELS as SWEEP_MODELS
 
 
 def register(commands: argparse._SubParsersAction) -> None:
-    """Add ``contactsep sweep``."""
-
+    """Add ``contactsep sweep``: its options one group a function, in
+    the order ``--help`` lists them."""
     sweep = commands.add_parser(
         "sweep", help="sweep or sample design parameters",
         description="Evaluate the thesis design with fields varied "
@@ -66,6 +66,17 @@ def register(commands: argparse._SubParsersAction) -> None:
                    "contactsep sweep --model hertz --n-modes 16 "
                    "--preload 20 --sample 'd=normal(0.25,0.01)' "
                    "--samples 1000"))
+    _add_space_options(sweep)
+    _add_chatter_options(sweep)
+    _add_output_options(sweep)
+    _add_run_options(sweep)
+    add_design_options(sweep)
+    sweep.set_defaults(handler=run_sweep)
+
+
+def _add_space_options(sweep: argparse.ArgumentParser) -> None:
+    """The model and the design space: --model, --vary, --sample,
+    --samples, --seed, --threshold."""
     sweep.add_argument("--model", choices=SWEEP_MODELS,
                        default="eq23",
                        help="eq23: the general model's single impulse "
@@ -90,6 +101,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                        metavar="T",
                        help="report p_exceed = P(max y3 > T) and its 95 %% "
                             "Wilson interval (T in inches; eq23)")
+
+
+def _add_chatter_options(sweep: argparse.ArgumentParser) -> None:
+    """The chatter settings' group (--model hertz or newton)."""
     chatter = sweep.add_argument_group(
         "chatter settings (--model hertz or newton; each may instead be "
         "varied or sampled)")
@@ -113,6 +128,11 @@ def register(commands: argparse._SubParsersAction) -> None:
         chatter.add_argument("--" + name.replace("_", "-"),
                              metavar=metavar,
                              help=f"{SETTINGS[name][2]} ({default})")
+
+
+def _add_output_options(sweep: argparse.ArgumentParser) -> None:
+    """Where the rows and the summary go: --csv, --parquet, --resume,
+    --json."""
     sweep.add_argument("--csv", metavar="FILE",
                        help="one row per design, written as the sweep goes "
                             "to a temporary file beside FILE that replaces "
@@ -129,6 +149,11 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "as an uninterrupted run")
     sweep.add_argument("--json", action="store_true",
                        help="print the summary as JSON")
+
+
+def _add_run_options(sweep: argparse.ArgumentParser) -> None:
+    """How the chunks run: --chunk-size, --workers, the cluster,
+    --progress, --backend."""
     sweep.add_argument("--chunk-size", type=integer(1, MAX_CHUNK_SIZE),
                        default=None,
                        help=f"most designs per chunk (default {CHUNK_SIZE}, "
@@ -147,8 +172,6 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="progress bar on stderr: auto (on a terminal),"
                             " always (needs tqdm), never")
     add_backend_option(sweep)
-    add_design_options(sweep)
-    sweep.set_defaults(handler=run_sweep)
 
 
 def _failures(summary: dict, model: str) -> str:
@@ -227,6 +250,33 @@ def run_sweep(args: argparse.Namespace) -> int:
 def _run_sweep(args: argparse.Namespace) -> int:
     from contactsep.model.names import shown_data
     from contactsep.studies.sweep import run as runner
+
+    spec = _checked_spec(args, runner)
+    resume = journals.Resume(args.resume, args.csv or args.parquet,
+                             kept="chunks", give="--csv or --parquet")
+    # every option checked: only now the scheduler and the files
+    check_cluster(args, workers=False)
+    summary = _run_into_files(args, spec, runner, resume)
+    resume.finished()
+    if args.json:
+        output.write_json(sys.stdout, shown_data(summary))
+    else:
+        _print_summary(shown_data(summary), spec)
+    if summary["n_failed"]:
+        if not summary["n"]:
+            sys.stdout.flush()
+            raise InputError(f"{_failures(summary, args.model)}: every "
+                             f"one; nothing to summarise"
+                             f"{_first_refusal(args, spec, summary)}")
+        warnings.warn(f"{_failures(summary, args.model)}; the statistics "
+                      f"are over the other {summary['n']:,}",
+                      ContactsepWarning)
+    return 0
+
+
+def _checked_spec(args: argparse.Namespace, runner):
+    """The sweep's spec from the options (its bare numbers in --units),
+    every option that needs no file or scheduler checked."""
     from contactsep.studies.sweep.spec import make_spec
     from contactsep.studies.sweep.axes import (
         parse_sample,
@@ -257,11 +307,14 @@ def _run_sweep(args: argparse.Namespace) -> int:
     if args.parquet:
         runner.require_pyarrow()
     check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
+    return spec
+
+
+def _run_into_files(args: argparse.Namespace, spec, runner,
+                    resume) -> dict:
+    """The sweep's summary, its rows written to --csv and --parquet; a
+    sweep that does not finish leaves the old outputs and its chunks."""
     progress = {"auto": None, "always": True, "never": False}[args.progress]
-    resume = journals.Resume(args.resume, args.csv or args.parquet,
-                             kept="chunks", give="--csv or --parquet")
-    # every option checked: only now the scheduler and the files
-    check_cluster(args, workers=False)
     scheduler = cluster.connect(args)
     writers, store = [], None
     try:
@@ -280,7 +333,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
         # its old outputs as they were and its chunks for --resume (a
         # sweep started afresh drops an earlier one's)
         store = resume.open_chunks(spec)
-        summary = runner.run_sweep(
+        return runner.run_sweep(
             spec, writers=writers, threshold=args.threshold,
             chunk_size=args.chunk_size, workers=args.workers,
             scheduler=scheduler, progress=progress, store=store)
@@ -293,22 +346,13 @@ def _run_sweep(args: argparse.Namespace) -> int:
         if scheduler is not None:
             with contextlib.suppress(Exception):
                 scheduler.close()
-    resume.finished()
-    if args.json:
-        output.write_json(sys.stdout, shown_data(summary))
-    else:
-        _print_summary(shown_data(summary), spec)
-    if summary["n_failed"]:
-        if not summary["n"]:
-            sys.stdout.flush()
-            why = ""
-            if args.model != "eq23" and 2 in summary["n_failed_by_status"]:
-                from contactsep.studies.sweep.chatter import first_refusal
-                first = first_refusal(spec)
-                why = f"; the first design: {first}" if first else ""
-            raise InputError(f"{_failures(summary, args.model)}: every "
-                             f"one; nothing to summarise{why}")
-        warnings.warn(f"{_failures(summary, args.model)}; the statistics "
-                      f"are over the other {summary['n']:,}",
-                      ContactsepWarning)
-    return 0
+
+
+def _first_refusal(args: argparse.Namespace, spec, summary: dict) -> str:
+    """'; the first design: ...' when every chatter design was refused
+    (status 2), else ''."""
+    if args.model == "eq23" or 2 not in summary["n_failed_by_status"]:
+        return ""
+    from contactsep.studies.sweep.chatter import first_refusal
+    first = first_refusal(spec)
+    return f"; the first design: {first}" if first else ""
