@@ -16,6 +16,8 @@ separator; V, psi and v0 are magnitudes.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from contactsep import beams
@@ -170,77 +172,26 @@ def mass_ratio(m2, s2, m3, s3):
 
 
 def evaluate_packed(packed: Packed) -> dict:
-    """Evaluate a packed batch; returns the contract's dict of arrays."""
-    real, ints = packed.real, packed.ints
-    col = {name: real[:, k] for k, name in enumerate(REAL_COLUMNS)}
-    m = packed.size
-    counts = [ints[:, 3 + i].astype(np.int64) for i in range(3)]
-    n_max = int(max((c.max() for c in counts), default=1)) if m else 1
-    code = np.full(m, status.OK, dtype=np.int32)
-    bad = invalid_rows(real, ints)
-    code[bad] = status.INVALID_INPUT
-    safe = {k: np.where(bad, 1.0, v) for k, v in col.items()}
-    ends = [np.where(bad, 1, ints[:, i]) for i in range(3)]
-    counts = [np.where(bad, 1, c) for c in counts]
+    """Evaluate a packed batch; returns the contract's dict of arrays.
+
+    The thesis's steps in its order, each on every row at once: the
+    members' constants and mode tables, the frequencies, the release
+    from the static deflection, the first impact and its impulse
+    (eq. 23), the lower contact's response and its extremes.  A row's
+    status is the first of these steps that failed it.
+    """
+    rows = _checked_rows(packed)
+    safe, code = rows.safe, rows.code
     impact_option, lower_option, lc_option, release_option = (
         int(v) for v in packed.options)
-
-    masses, consts, xi = [], [], []
-    for i in "123":
-        mass, a = member_constants(safe["L" + i], safe["b" + i],
-                                   safe["h" + i], safe["gamma" + i],
-                                   safe["E" + i])
-        masses.append(mass)
-        consts.append(a)
-        xi.append(safe["x" + i] / safe["L" + i])
-    given = packed.modes
-    if given is None:
-        kl1, x1v = mode_table(ends[0], xi[0], counts[0], n_max)
-        kl2, x2v = mode_table(ends[1], xi[1], counts[1], n_max)
-        kl3, x3v = mode_table(ends[2], xi[2], counts[2], n_max)
-    else:
-        given = given.rows(0, m, n_max)
-        code[given.failed & (code == status.OK)] = status.INVALID_INPUT
-        # b_j = (k_jL)^2 given (model/given.py): kl = sqrt(b_j) only
-        # where a closed form needs k_jL; the release uses b_j^2 itself
-        # rows without modes computed on ones, their results NaN below
-        b_given = np.where(given.failed[:, None, None], 1.0, given.b)
-        x_given = np.where(given.failed[:, None, None], 1.0, given.values)
-        kl1, kl2, kl3 = (np.sqrt(b_given[:, k]) for k in range(3))
-        x1v, x2v, x3v = (x_given[:, k] for k in range(3))
-    p1 = frequencies(kl1, consts[0], safe["L1"])
-    p3 = frequencies(kl3, consts[2], safe["L3"])
-    lc = safe["Lc"]
-    has_lc = lc > 0.0
-    l2_freq = np.where(has_lc & (lc_option in (1, 2)), lc, safe["L2"])
-    p2 = frequencies(kl2, consts[1], l2_freq)
-    if given is not None:
-        p1, p2, p3 = (b_given[:, k] * (c / length**2)[:, None]
-                      for k, (c, length) in enumerate(zip(
-                          consts, (safe["L1"], l2_freq, safe["L3"]))))
+    masses, consts, xi = _members(safe)
+    modes = _modes(packed, rows, xi)
+    p1, p2, p3 = _frequencies(safe, modes, consts, lc_option)
     m1, m2, m3 = masses
-    m2_psi = np.where(has_lc & (lc_option == 2), m2 * lc / safe["L2"], m2)
-    m2_v0 = np.where(has_lc & (lc_option in (0, 2)), m2 * lc / safe["L2"],
-                     m2)
+    m2_psi, m2_v0 = _separator_masses(safe, m2, lc_option)
+    amplitudes = _release(rows, modes, xi, release_option)
+    x1v, x2v, x3v = modes.values
 
-    tip_release = (release_option == 0) & (ends[0] == 1)
-    xi_load = np.where(tip_release, 1.0, xi[0])
-    if given is None:
-        flex = np.zeros(m)
-        for c, end in enumerate(beams.END_CONDITIONS, 1):
-            rows = ends[0] == c
-            flex[rows] = beams.static_flexibility(end, xi_load[rows])
-        _, load_values = mode_table(ends[0], xi_load, counts[0], n_max)
-    else:
-        flex, load_values = given.flex, x_given[:, 3]
-    zero_flex = ~(flex > 0.0)
-    code[zero_flex & (code == status.OK)] = status.INVALID_INPUT
-    flex = np.where(zero_flex, 1.0, flex)
-    if given is None:
-        amplitudes = release_amplitudes(safe["ys"], load_values, kl1, flex)
-    else:
-        amplitudes = release_amplitudes_b(safe["ys"], load_values,
-                                          b_given[:, 0], flex)
     a_coef = amplitudes * x1v
     horizon = 2.0 * np.pi / p1[:, 0]
     t1, missed = first_impact(a_coef, p1, safe["gap"], horizon)
@@ -260,7 +211,144 @@ def evaluate_packed(packed: Packed) -> dict:
     out = dict(t1=t1, v_impact=v, psi=psi, v0=v0, R=r, y3_max=y_max,
                t_max=t_max, y3_min=y_min, t_min=t_min, M1=m1, M2=m2_psi,
                M3=m3)
-    finite = np.ones(m, dtype=bool)
+    return _results(out, code, (at_end, max_tied, min_tied),
+                    (("p1", p1), ("p2", p2), ("p3", p3), ("c3", c3)))
+
+
+@dataclass
+class _Rows:
+    """A batch's inputs with the invalid rows replaced by ones (their
+    results NaN at the end), and every row's status so far."""
+    safe: dict
+    ends: list
+    counts: list
+    n_max: int
+    code: np.ndarray
+
+
+def _checked_rows(packed: Packed) -> _Rows:
+    real, ints = packed.real, packed.ints
+    col = {name: real[:, k] for k, name in enumerate(REAL_COLUMNS)}
+    m = packed.size
+    counts = [ints[:, 3 + i].astype(np.int64) for i in range(3)]
+    n_max = int(max((c.max() for c in counts), default=1)) if m else 1
+    code = np.full(m, status.OK, dtype=np.int32)
+    bad = invalid_rows(real, ints)
+    code[bad] = status.INVALID_INPUT
+    safe = {k: np.where(bad, 1.0, v) for k, v in col.items()}
+    ends = [np.where(bad, 1, ints[:, i]) for i in range(3)]
+    counts = [np.where(bad, 1, c) for c in counts]
+    return _Rows(safe, ends, counts, n_max, code)
+
+
+def _members(safe: dict) -> tuple[list, list, list]:
+    """Each member's mass, frequency constant and contact point x/L."""
+    masses, consts, xi = [], [], []
+    for i in "123":
+        mass, a = member_constants(safe["L" + i], safe["b" + i],
+                                   safe["h" + i], safe["gamma" + i],
+                                   safe["E" + i])
+        masses.append(mass)
+        consts.append(a)
+        xi.append(safe["x" + i] / safe["L" + i])
+    return masses, consts, xi
+
+
+@dataclass
+class _Modes:
+    """The three members' k_jL and mode values at the contact points;
+    ``given``: the batch's given modes (model/given.py) or None, with
+    ``b`` their (k_jL)^2 and ``table`` their values, the failed rows'
+    replaced by ones."""
+    kl: tuple
+    values: tuple
+    given: object = None
+    b: np.ndarray | None = None
+    table: np.ndarray | None = None
+
+
+def _modes(packed: Packed, rows: _Rows, xi: list) -> _Modes:
+    if packed.modes is None:
+        tables = [mode_table(rows.ends[k], xi[k], rows.counts[k],
+                             rows.n_max) for k in range(3)]
+        return _Modes(tuple(t[0] for t in tables),
+                      tuple(t[1] for t in tables))
+    code = rows.code
+    given = packed.modes.rows(0, code.size, rows.n_max)
+    code[given.failed & (code == status.OK)] = status.INVALID_INPUT
+    # b_j = (k_jL)^2 given (model/given.py): kl = sqrt(b_j) only
+    # where a closed form needs k_jL; the release uses b_j^2 itself
+    # rows without modes computed on ones, their results NaN below
+    b_given = np.where(given.failed[:, None, None], 1.0, given.b)
+    x_given = np.where(given.failed[:, None, None], 1.0, given.values)
+    return _Modes(tuple(np.sqrt(b_given[:, k]) for k in range(3)),
+                  tuple(x_given[:, k] for k in range(3)),
+                  given, b_given, x_given)
+
+
+def _frequencies(safe: dict, modes: _Modes, consts: list,
+                 lc_option: int) -> tuple:
+    """p1, p2, p3; the separator's on its contact length Lc where the
+    option says so."""
+    kl1, kl2, kl3 = modes.kl
+    p1 = frequencies(kl1, consts[0], safe["L1"])
+    p3 = frequencies(kl3, consts[2], safe["L3"])
+    lc = safe["Lc"]
+    has_lc = lc > 0.0
+    l2_freq = np.where(has_lc & (lc_option in (1, 2)), lc, safe["L2"])
+    p2 = frequencies(kl2, consts[1], l2_freq)
+    if modes.given is not None:
+        p1, p2, p3 = (modes.b[:, k] * (c / length**2)[:, None]
+                      for k, (c, length) in enumerate(zip(
+                          consts, (safe["L1"], l2_freq, safe["L3"]))))
+    return p1, p2, p3
+
+
+def _separator_masses(safe: dict, m2, lc_option: int) -> tuple:
+    """The separator's mass in the impulse and in its velocity (on its
+    contact length Lc where the option says so)."""
+    lc = safe["Lc"]
+    has_lc = lc > 0.0
+    m2_psi = np.where(has_lc & (lc_option == 2), m2 * lc / safe["L2"], m2)
+    m2_v0 = np.where(has_lc & (lc_option in (0, 2)), m2 * lc / safe["L2"],
+                     m2)
+    return m2_psi, m2_v0
+
+
+def _release(rows: _Rows, modes: _Modes, xi: list,
+             release_option: int):
+    """The upper contact's modal amplitudes released from the static
+    deflection ys (at its tip, or at the contact point); a zero static
+    flexibility is invalid input."""
+    safe, ends, code = rows.safe, rows.ends, rows.code
+    m = code.size
+    tip_release = (release_option == 0) & (ends[0] == 1)
+    xi_load = np.where(tip_release, 1.0, xi[0])
+    if modes.given is None:
+        flex = np.zeros(m)
+        for c, end in enumerate(beams.END_CONDITIONS, 1):
+            where = ends[0] == c
+            flex[where] = beams.static_flexibility(end, xi_load[where])
+        _, load_values = mode_table(ends[0], xi_load, rows.counts[0],
+                                    rows.n_max)
+    else:
+        flex, load_values = modes.given.flex, modes.table[:, 3]
+    zero_flex = ~(flex > 0.0)
+    code[zero_flex & (code == status.OK)] = status.INVALID_INPUT
+    flex = np.where(zero_flex, 1.0, flex)
+    if modes.given is None:
+        return release_amplitudes(safe["ys"], load_values, modes.kl[0],
+                                  flex)
+    return release_amplitudes_b(safe["ys"], load_values, modes.b[:, 0],
+                                flex)
+
+
+def _results(out: dict, code: np.ndarray, flags: tuple,
+             per_mode: tuple) -> dict:
+    """The contract's dict: a row whose results are not finite is
+    NOT_FINITE; a failed row's results NaN (its flags False)."""
+    at_end, max_tied, min_tied = flags
+    finite = np.ones(code.size, dtype=bool)
     for value in out.values():
         finite &= np.isfinite(value) | (code != status.OK)
     code[~finite] = status.NOT_FINITE
@@ -271,7 +359,7 @@ def evaluate_packed(packed: Packed) -> dict:
     out["t_max_tied"] = np.where(failed, False, max_tied)
     out["t_min_tied"] = np.where(failed, False, min_tied)
     out["status"] = code
-    for key, value in (("p1", p1), ("p2", p2), ("p3", p3), ("c3", c3)):
+    for key, value in per_mode:
         out[key] = np.where(failed[:, None], np.nan, value)
     out["c3"] = np.where(np.isnan(out["p3"]), np.nan, out["c3"])
     return out
