@@ -1,5 +1,5 @@
 """How close `contactsep preload`'s estimate of its time comes to the
-time its runs take (docs/performance.md, "The preload search's time,
+time its runs take (docs/performance-contact.md, "The search's time,
 estimated before it starts").
 
 The command estimates a run as its window over its step, in steps, at

@@ -1,7 +1,7 @@
 """Does the robust preload converge in N where the nominal one cannot?
 The robust answer (``contactsep preload --tolerance``) of the relays
 whose nominal threshold is ill-conditioned, searched at N and 2N on the
-same tolerance draws (docs/preload.md, "How well-posed the answer is";
+same tolerance draws (docs/preload-family.md, "How well-posed the answer is";
 issue 25):
 
     OPENBLAS_NUM_THREADS=1 nice python benchmarks/robust_convergence.py \\

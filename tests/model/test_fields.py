@@ -45,7 +45,7 @@ def test_every_word_of_a_field_is_one_the_design_takes():
     ("kr1", "kr1_lb_in_rad"), ("preload", "preload_lb"),
     ("alpha", "alpha_s_per_in"), ("damping", "damping")])
 def test_column_names_are_the_documented_keys(name, column):
-    # docs/studies.md, "Names and units"; both directions
+    # docs/names-and-units.md, "The names"; both directions
     assert fields.column_name(name) == column
     assert fields.field_name(column, settings=True) == name
 

@@ -264,7 +264,7 @@ def series_forces(stiff, c_matrix, gap, linear=False) -> np.ndarray:
     no force) in series with the flexibilities ``c_matrix`` (in/lb) at
     modal gaps ``gap`` (in): the minimiser over lambda >= 0 of
     sum (3/5) s^{-2/3} lambda^{5/3} + lambda^T C lambda / 2 + lambda^T g
-    (docs/numerics.md, "The static correction"), by exact coordinate
+    (docs/static-correction.md, "The static correction"), by exact coordinate
     descent to 4 ulps (twin of hertz_series.f90's series_forces)."""
     k = len(gap)
     force = [0.0] * k

@@ -44,7 +44,7 @@ import numpy as np
 #: converging headline quantity (first impact, first impulse, circuit
 #: open time) of the family's default runs is within 1 % of a fine-step
 #: N = 128 run (benchmarks/default_modes.py: 2.4e-3 at N = 64; at N = 32
-#: becu_light's first impulse is 77 % off; docs/chatter.md, "The
+#: becu_light's first impulse is 77 % off; docs/numerics.md, "The
 #: default N").
 DEFAULT_MODES = 64
 #: Newton's step as a fraction of 2 / p_max (its velocity-level impulses

@@ -167,7 +167,7 @@ def check_settings(design, model, damping, backend, preload, samples,
         refuse(f"n_modes: found {int(design.n_modes)}, expected at most "
                f"{limit} modes per member for {model} (a run costs steps x "
                f"3N, appE's event search more; N = 64 converges the Hertz "
-               f"answers, docs/chatter.md)")
+               f"answers, docs/numerics.md)")
     if float(design.gap) != 0.0:
         refuse(f"gap: found {float(design.gap)!r}, expected 0: the "
                f"simulation releases the upper contact ys above the "

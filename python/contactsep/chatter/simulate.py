@@ -57,7 +57,8 @@ from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
 from contactsep.chatter.stack import _system, checked_dt, design_window
 from contactsep.chatter.stepper_registry import RunRequest
 
-#: The thesis rig's converged steps (docs/numerics.md, "Convergence"):
+#: The thesis rig's converged steps (docs/convergence.md, "The
+#: thesis rig in dt and N"):
 #: Hertz 5e-8 s (the thesis rig's first impulse, max lower gap and open
 #: time within 1e-6 of the dt -> 0 limit); Newton 5e-8 s (max lower gap
 #: within 1 % for d <= 0.75 in, N <= 32).  The thesis studies pass them

@@ -104,7 +104,7 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "yield_pressure": ("psi", "psi", "Thornton's yield pressure (contact "
                                      "thornton)"),
     "dt": ("s", "s", "the adaptive stepper's time step (a convergence "
-                     "check: docs/chatter.md)"),
+                     "check: docs/convergence.md)"),
     "static_correction": ("", "", "hertz: the truncated modes' residual "
                                   "flexibility in series with each contact "
                                   "(on or off)"),

@@ -202,8 +202,9 @@ def converged_fields(design, model, settings, sims, found, verify_found,
                      f"its check at N = {row.check_n_modes}, which tries "
                      f"the preloads {MARGIN:.0%} either side of it (and "
                      f"between, below) only: a window of events further "
-                     f"above it there is not seen (docs/chatter.md, \"The "
-                     f"preload command on the family\"); a whole search at "
+                     f"above it there is not seen "
+                     f"(docs/preload-family.md, \"The preload command on "
+                     f"the family\"); a whole search at "
                      f"N = {row.check_n_modes} is the stronger test")
     return dict(converged_min_preload_lb=row.min_preload_lb,
                 converged_n_modes=row.n_modes, converged_dt_s=row.dt_s,

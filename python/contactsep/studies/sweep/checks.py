@@ -155,7 +155,7 @@ def check_dt(steps, max_modes: int, option: str, model: str) -> None:
         warnings.warn(f"{option}: {max(coarse):g} s is more than "
                       f"{COARSE_DT:g} times the converged default "
                       f"{DEFAULT_DT[model]:g} s: the answers may be far "
-                      f"from converged (docs/chatter.md)",
+                      f"from converged (docs/convergence.md)",
                       CoarseStepWarning, stacklevel=3)
 
 
