@@ -256,19 +256,26 @@ def test_the_twin_uses_the_kernels_constants():
     import re
 
     from conftest import ROOT
-    from contactsep.model import twin_extremes
+    from contactsep.model import twin_extremes, twin_extremes_cells
 
     text = "".join(path.read_text() for path in sorted(
         (ROOT / "fortran" / "model").glob("extremes*.f90")))
     found = dict(re.findall(
         r"parameter(?:, public)? :: (\w+) = ([-+.\w*]+)\n", text))
-    for name in ("tie", "converged", "phi_low", "phi_polish",
-                 "polish_steps", "work_budget", "block_cell_budget",
-                 "cell_budget", "max_depth", "max_segment_levels"):
+    # the search's constants, and those of one level's cells
+    homes = {"tie": twin_extremes, "converged": twin_extremes_cells,
+             "phi_low": twin_extremes_cells,
+             "phi_polish": twin_extremes_cells,
+             "polish_steps": twin_extremes_cells,
+             "work_budget": twin_extremes,
+             "block_cell_budget": twin_extremes,
+             "cell_budget": twin_extremes, "max_depth": twin_extremes,
+             "max_segment_levels": twin_extremes}
+    for name, home in homes.items():
         value = found[name].replace("_wp", "").replace("_int64", "")
         base, _, power = value.partition("**")
         number = float(base) ** int(power) if power else float(base)
-        assert number == getattr(twin_extremes, name.upper()), name
+        assert number == getattr(home, name.upper()), name
 
 
 def test_the_twins_segments_find_the_same_extremes(monkeypatch):

@@ -30,7 +30,7 @@ from design_family import FAMILY
 from scipy import integrate, optimize
 
 import contactsep
-from contactsep.beams import timoshenko
+from contactsep.beams import timoshenko_modes
 from contactsep.model import compiled, evaluate, given, physics, twin
 from contactsep.model.design import pack
 from contactsep.model.energy import EnergyBoundWarning
@@ -103,7 +103,7 @@ def _own_modes(design, member, xi):
     tests/shared checks against a finite-element beam)."""
     beam = physics.member_beam(design, member).dimensionless()
     n = design.n_modes
-    return timoshenko.modes(beam, n, np.asarray(xi, dtype=float))
+    return timoshenko_modes.modes(beam, n, np.asarray(xi, dtype=float))
 
 
 def _quadrature(panels=60, order=12):

@@ -7,14 +7,14 @@ points (issue 28, item 4).
 Independent paths: the beam equation solved here (two cubics joined at
 the load, 8 conditions) and read at another point; the modal series
 summed to many modes; the transfer-matrix solution (contactsep.beams.
-timoshenko) of the same Bernoulli-Euler beam; Maxwell's reciprocity of
+timoshenko_static) of the same Bernoulli-Euler beam; Maxwell's reciprocity of
 two separate load cases of a Timoshenko beam on elastic supports."""
 
 import numpy as np
 import pytest
 
 from contactsep import beams
-from contactsep.beams import member, timoshenko
+from contactsep.beams import member, timoshenko, timoshenko_static
 
 ENDS = ("clamped-free", "clamped-clamped", "clamped-pinned",
         "pinned-pinned")
@@ -78,7 +78,8 @@ def test_residual_cross_is_the_tail_of_the_modal_series(end, xi, eta):
 @pytest.mark.parametrize("end", ENDS)
 @pytest.mark.parametrize("xi,eta", PAIRS)
 def test_transfer_matrices_agree_with_the_closed_form(end, xi, eta):
-    got = timoshenko.static_influence(timoshenko.Beam(end), xi, eta)
+    got = timoshenko_static.static_influence(timoshenko.Beam(end), xi,
+                                             eta)
     assert got == pytest.approx(beams.static_influence(end, xi, eta),
                                 rel=1e-9, abs=1e-15)
 

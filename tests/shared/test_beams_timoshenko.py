@@ -1,4 +1,5 @@
-"""The general beam (contactsep.beams.timoshenko) against other methods:
+"""The general beam (contactsep.beams.timoshenko, its modes and static
+flexibility: timoshenko_modes, timoshenko_static) against other methods:
 a finite-element beam of the tests' own (fe_beam.py), closed-form
 frequency equations (the simply supported Timoshenko beam's two
 branches, the cantilever with a tip mass), the Bernoulli-Euler closed
@@ -15,6 +16,8 @@ import fe_beam as fe
 from contactsep import beams
 from contactsep.beams import member as mb
 from contactsep.beams import timoshenko as T
+from contactsep.beams import timoshenko_modes as TM
+from contactsep.beams import timoshenko_static as TS
 
 #: A stubby aluminium beam, h/L = 0.3 (the thickest separator): its
 #: second branch starts below the third mode.
@@ -40,7 +43,7 @@ def quadrature(panels=64, points=16):
 @pytest.mark.parametrize("end", beams.END_CONDITIONS)
 def test_bernoulli_euler_limit_reproduces_the_closed_form(end):
     xi = np.linspace(0.0, 1.0, 21)
-    b, x, psi = T.modes(T.Beam(end), 10, xi)
+    b, x, psi = TM.modes(T.Beam(end), 10, xi)
     kl = beams.eigenvalues(end, 10)
     assert np.max(np.abs(np.sqrt(b) / kl - 1.0)) < 1e-13
     assert np.max(np.abs(x - beams.mode_shapes(end, 10, xi))) < 1e-12
@@ -113,22 +116,22 @@ def test_spring_limits_rigid_and_pinned(theory):
 def test_static_flexibility_against_closed_form_beams():
     kr, kt = 7.0, 40.0
     # cantilever, tip load: bending + shear + root rotation + root spring
-    got = T.static_flexibility(T.Beam("clamped-free", R2, S2, kr, kt), 1.0)
+    got = TS.static_flexibility(T.Beam("clamped-free", R2, S2, kr, kt), 1.0)
     assert got == pytest.approx(1 / 3 + S2 + 1 / kr + 1 / kt, rel=1e-12)
     # simply supported, mid-span: bending + shear + the two springs
-    got = T.static_flexibility(T.Beam("pinned-pinned", R2, S2, None, kt),
-                               0.5)
+    got = TS.static_flexibility(T.Beam("pinned-pinned", R2, S2, None, kt),
+                                0.5)
     assert got == pytest.approx(1 / 48 + S2 / 4 + 1 / (2 * kt), rel=1e-12)
     # clamped-clamped with rotational springs, mid-span (Bernoulli-Euler):
     # end moment from the slope condition, 1/48 - kr/(64 (2 + kr))
-    got = T.static_flexibility(T.Beam("clamped-clamped", kr=kr), 0.5)
+    got = TS.static_flexibility(T.Beam("clamped-clamped", kr=kr), 0.5)
     assert got == pytest.approx(1 / 48 - kr / (64 * (2 + kr)), rel=1e-12)
-    got = T.static_flexibility(T.Beam("clamped-clamped", R2, S2), 0.5)
+    got = TS.static_flexibility(T.Beam("clamped-clamped", R2, S2), 0.5)
     assert got == pytest.approx(1 / 192 + S2 / 4, rel=1e-12)
     # off mid-span, rigid ends: the classical formulas
     for end in beams.END_CONDITIONS:
         np.testing.assert_allclose(
-            T.static_flexibility(T.Beam(end), [0.2, 0.7]),
+            TS.static_flexibility(T.Beam(end), [0.2, 0.7]),
             beams.static_flexibility(end, [0.2, 0.7]), rtol=1e-12)
 
 
@@ -136,7 +139,7 @@ def test_static_flexibility_against_the_finite_element_beam():
     for end in beams.END_CONDITIONS:
         for xi in (0.3, 0.5, 0.85):
             options = {"s2": S2, "kr": 3.0, "kt": 90.0}
-            exact = T.static_flexibility(T.Beam(end, **options), xi)
+            exact = TS.static_flexibility(T.Beam(end, **options), xi)
             assert exact == pytest.approx(
                 fe.static_deflection(end, xi, **options), rel=1e-9)
 
@@ -146,11 +149,11 @@ def test_modes_are_orthonormal_with_rotary_inertia_and_masses(case):
     options = CASES[case]
     beam = T.Beam("clamped-clamped", **options)
     qx, qw = quadrature()
-    b, x, psi = T.modes(beam, 8, qx)
+    b, x, psi = TM.modes(beam, 8, qx)
     gram = np.einsum("p,ip,jp->ij", qw, x, x) + \
         beam.r2 * np.einsum("p,ip,jp->ij", qw, psi, psi)
     for xi, mu in beam.masses:
-        _, at, _ = T.modes(beam, 8, [xi])
+        _, at, _ = TM.modes(beam, 8, [xi])
         gram += mu * at @ at.T
     np.testing.assert_allclose(gram, np.eye(8), atol=1e-10)
 
@@ -165,9 +168,9 @@ def test_mode_sum_is_the_static_flexibility(case):
     come within that (with shear the terms fall as j^-2: the
     orthogonality test covers that normalisation)."""
     beam = T.Beam("clamped-clamped", **CASES[case])
-    b, x, _ = T.modes(beam, 30, [0.37])
+    b, x, _ = TM.modes(beam, 30, [0.37])
     total = np.sum(x[:, 0] ** 2 / b**2)
-    exact = T.static_flexibility(beam, 0.37)
+    exact = TS.static_flexibility(beam, 0.37)
     assert 0.0 < exact - total < 8.0 / (3.0 * np.pi**4 * 30**3)
 
 

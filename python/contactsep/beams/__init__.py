@@ -11,7 +11,12 @@ One module per concern:
   unchanged.
 * :mod:`~contactsep.beams.timoshenko`: the general beam (Timoshenko or
   Bernoulli-Euler, elastic supports, point masses) in dimensionless form,
-  solved exactly by transfer matrices on [w, psi, M, Q].
+  solved exactly by transfer matrices on [w, psi, M, Q]: its
+  multiple-shooting system and frequency equation (the eigenvalues).
+* :mod:`~contactsep.beams.timoshenko_modes`: the general beam's normal
+  modes, normalised with the whole mass.
+* :mod:`~contactsep.beams.timoshenko_static`: the general beam's static
+  flexibility and influence (deflection under a point load).
 * :mod:`~contactsep.beams.member`: a member in the design's units (in,
   lb, psi): its theory, supports and masses made dimensionless, and its
   modal model (frequencies in rad/s, mode values at given points).

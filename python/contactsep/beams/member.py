@@ -1,6 +1,8 @@
 """One member in the design's units (in, lb, psi, s): its beam theory,
 supports and added masses, made dimensionless for
-:mod:`~contactsep.beams.timoshenko`, and its modal model.
+:mod:`~contactsep.beams.timoshenko`, and its modal model (from
+:mod:`~contactsep.beams.timoshenko_modes`) and static flexibility (from
+:mod:`~contactsep.beams.timoshenko_static`).
 
 Conventions (docs/model.md, "Beam theories, supports and masses"):
 
@@ -32,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactsep.beams import bernoulli_euler as be
-from contactsep.beams import timoshenko
+from contactsep.beams import timoshenko, timoshenko_modes, timoshenko_static
 from contactsep.constants import GRAVITY_IN_PER_S2
 
 #: Beam theories, the default first.
@@ -150,8 +152,8 @@ def _dimensionless_modes(beam: timoshenko.Beam, n: int, xi: tuple):
         b = be.eigenvalues(beam.end, n)**2
         values = be.mode_shapes(beam.end, n, list(xi))
     else:
-        b, values, _ = timoshenko.modes(beam, n, list(xi),
-                                        b=_general_eigenvalues(beam, n))
+        b, values, _ = timoshenko_modes.modes(
+            beam, n, list(xi), b=_general_eigenvalues(beam, n))
     b.flags.writeable = values.flags.writeable = False
     return b, values
 
@@ -177,7 +179,7 @@ def static_flexibility(beam: timoshenko.Beam, xi) -> np.ndarray:
     if beam.r2 == 0.0 and beam.s2 == 0.0 and beam.kr is None and \
             beam.kt is None:
         return be.static_flexibility(beam.end, xi)
-    return timoshenko.static_flexibility(beam, xi)
+    return timoshenko_static.static_flexibility(beam, xi)
 
 
 def static_influence(beam: timoshenko.Beam, xi: float, eta: float) -> float:
@@ -187,4 +189,4 @@ def static_influence(beam: timoshenko.Beam, xi: float, eta: float) -> float:
     if beam.r2 == 0.0 and beam.s2 == 0.0 and beam.kr is None and \
             beam.kt is None:
         return float(be.static_influence(beam.end, xi, eta))
-    return timoshenko.static_influence(beam, xi, eta)
+    return timoshenko_static.static_influence(beam, xi, eta)

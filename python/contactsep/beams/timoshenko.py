@@ -1,6 +1,9 @@
 """The general uniform beam: Timoshenko or Bernoulli-Euler, rigid or
-elastic supports, point masses; exact normal modes and static
-flexibility, in dimensionless form.
+elastic supports, point masses, in dimensionless form: the beam, its
+multiple-shooting system and its frequency equation (the eigenvalues).
+On this system, its normal modes are
+:mod:`~contactsep.beams.timoshenko_modes` and its static flexibility
+:mod:`~contactsep.beams.timoshenko_static`.
 
 Variables (x = xi L; w the deflection, psi the rotation of the section,
 M = EI psi' the bending moment, Q = kappa G A (w' - psi) the shear force):
@@ -32,13 +35,6 @@ A L); x = 0 left, x = L right):
   psi = 0 or, elastic, M = +kr psi (left) / -kr psi (right);
 * pinned end: w as a clamped end's; M = 0;  free end: M = 0, Q = 0;
 * point mass at xi_m: Q(xi_m+) - Q(xi_m-) = -mu b^2 w(xi_m).
-
-Normalisation (the package's convention, int X^2 dx = L, with the whole
-mass): int_0^1 (X_i X_j + r2 Psi_i Psi_j) dxi + sum_m mu_m X_i X_j(xi_m)
-= delta_ij, X = w/L and Psi = L psi per unit modal coordinate (so that
-the generalised mass of every mode is the bare beam's mass rho A L, and
-Psi = dX/dxi for Bernoulli-Euler).  Sign: the left end's moment (clamped
-end) or rotation (pinned end) is positive, as the closed-form modes'.
 """
 
 from __future__ import annotations
@@ -118,7 +114,7 @@ class Beam:
 
 # ---------------------------------------------------------------- matrices
 
-def _system_matrix(beam: Beam, b, scale):
+def system_matrix(beam: Beam, b, scale):
     """A' = D A D^-1 (..., 4, 4) of the scaled state z_i / scale^i."""
     b = np.asarray(b, dtype=np.float64)
     k = np.asarray(scale, dtype=np.float64)
@@ -132,7 +128,7 @@ def _system_matrix(beam: Beam, b, scale):
     return a
 
 
-def _expm(a):
+def expm(a):
     """exp of a stack of 4x4 matrices: scaling and squaring, Taylor to
     order 14 on a norm <= 1/4 (truncation < 1e-20)."""
     norm = float(np.max(np.sum(np.abs(a), axis=-1))) if a.size else 0.0
@@ -148,12 +144,15 @@ def _expm(a):
     return result
 
 
-def _scale(b):
+def state_scale(b):
+    """k = max(|b|, 1)^(1/2): the state's component i is scaled by k^-i
+    (:func:`system_matrix`), so that the scaled components are of one
+    size."""
     return np.sqrt(np.maximum(np.abs(np.asarray(b, dtype=np.float64)),
                               1.0))
 
 
-def _mesh(beam: Beam, b_max: float, extra=()):
+def mesh(beam: Beam, b_max: float, extra=()):
     """Nodes 0 = xi_0 < ... < xi_n = 1 (masses and ``extra`` points among
     them), each segment at most 2 / alpha_max long."""
     growth = np.sqrt(max(b_max, 1.0))
@@ -201,11 +200,11 @@ def _jump(mu, b, scale):
     return j
 
 
-def _assemble(beam: Beam, nodes, b):
+def assemble(beam: Beam, nodes, b):
     """The multiple-shooting matrix K(b) (..., 4(n+1), 4(n+1))."""
     b = np.atleast_1d(np.asarray(b, dtype=np.float64))
-    scale = _scale(b)
-    a = _system_matrix(beam, b, scale)
+    scale = state_scale(b)
+    a = system_matrix(beam, b, scale)
     n = len(nodes) - 1
     size = 4 * (n + 1)
     k = np.zeros(b.shape + (size, size))
@@ -219,7 +218,7 @@ def _assemble(beam: Beam, nodes, b):
         length = nodes[seg + 1] - nodes[seg]
         key = round(length, 15)
         if key not in cache:
-            cache[key] = _expm(a * length)
+            cache[key] = expm(a * length)
         t = cache[key]
         if nodes[seg + 1] in mass_at:
             t = _jump(mass_at[nodes[seg + 1]], b, scale) @ t
@@ -242,7 +241,7 @@ def _upper_bound(beam: Beam, n: int) -> float:
 def _sign(beam: Beam, nodes, b):
     """(sign, log |det K(b)|) for each b: the frequency function, kept
     in two parts so that no determinant overflows."""
-    sign, logabs = np.linalg.slogdet(_assemble(beam, nodes, b))
+    sign, logabs = np.linalg.slogdet(assemble(beam, nodes, b))
     return sign, logabs
 
 
@@ -266,7 +265,7 @@ def eigenvalues(beam: Beam, n: int) -> np.ndarray:
         raise ValueError(f"n must be an integer from 1 to "
                          f"{MAX_GENERAL_MODES}, got {n!r}")
     top = np.sqrt(_upper_bound(beam, n)) + 0.5
-    nodes = _mesh(beam, top**2)
+    nodes = mesh(beam, top**2)
     for refine in range(4):
         points = _scan_points(beam, top, refine)
         # in chunks from b = 0, until n sign changes are seen: the bound
@@ -323,123 +322,3 @@ def _refine(beam: Beam, nodes, lo, hi):
     at_lo = _sign(beam, nodes, lo)[1]
     at_hi = _sign(beam, nodes, hi)[1]
     return np.where(at_lo <= at_hi, lo, hi)
-
-
-# ------------------------------------------------------------------ modes
-
-def _gauss(points: int):
-    x, w = np.polynomial.legendre.leggauss(points)
-    return 0.5 * (x + 1.0), 0.5 * w
-
-
-def _states(beam: Beam, nodes, b, node_states, xi):
-    """Unscaled states (n_modes, len(xi), 4) at the points xi."""
-    scale = _scale(b)
-    a = _system_matrix(beam, b, scale)
-    seg = np.clip(np.searchsorted(nodes, xi, side="right") - 1, 0,
-                  len(nodes) - 2)
-    offset = xi - nodes[seg]
-    t = _expm(a[:, None] * offset[None, :, None, None])
-    z = np.einsum("mpij,mpj->mpi", t, node_states[:, seg, :])
-    return z * (scale[:, None, None] ** np.arange(4))
-
-
-def _null_vectors(matrix):
-    """The null vector of each matrix at a root (its last right singular
-    vector: K is not symmetric, and inverse iteration may start on a
-    vector its left null vector is orthogonal to)."""
-    return np.linalg.svd(matrix)[2][:, -1, :]
-
-
-def modes(beam: Beam, n: int, xi=(), b=None):
-    """b_j (n,), with X_j(xi) and Psi_j(xi) (n, len(xi)) normalised as
-    the module docstring says; ``b``: the eigenvalues when already known
-    (``eigenvalues(beam, n)``, the costly part)."""
-    xi = np.atleast_1d(np.asarray(xi, dtype=np.float64))
-    if np.any(~np.isfinite(xi)) or np.any((xi < 0.0) | (xi > 1.0)):
-        raise ValueError("xi must lie in [0, 1]")
-    b = eigenvalues(beam, n) if b is None else np.array(b, dtype=float)
-    nodes = _mesh(beam, float(b[-1]))
-    matrix = _assemble(beam, nodes, b)
-    node_states = _null_vectors(matrix).reshape(n, len(nodes), 4)
-    # quadrature: Gauss panels short enough for the fastest wave
-    wave = np.sqrt(b[-1] + b[-1]**2 * (beam.r2 + beam.s2))
-    panels = []
-    for lo, hi in zip(nodes[:-1], nodes[1:]):
-        count = max(1, int(np.ceil(wave * (hi - lo) / 2.0)))
-        panels.extend(zip(lo + (hi - lo) * np.arange(count) / count,
-                          lo + (hi - lo) * np.arange(1, count + 1) / count))
-    gx, gw = _gauss(20)
-    lo = np.array([p[0] for p in panels])
-    width = np.array([p[1] - p[0] for p in panels])
-    qx = (lo[:, None] + width[:, None] * gx[None, :]).ravel()
-    qw = (width[:, None] * gw[None, :]).ravel()
-    z = _states(beam, nodes, b, node_states, qx)
-    norm = np.einsum("p,mp->m", qw, z[..., 0]**2 + beam.r2 * z[..., 1]**2)
-    if beam.masses:
-        where = np.array([m[0] for m in beam.masses])
-        mu = np.array([m[1] for m in beam.masses])
-        at = _states(beam, nodes, b, node_states, where)[..., 0]
-        norm += np.einsum("m,jm->j", mu, at**2)
-    edge = _states(beam, nodes, b, node_states, np.array([0.0]))[:, 0, :]
-    lead = edge[:, 2] if ENDS[beam.end][0] == "clamped" else edge[:, 1]
-    factor = np.where(lead < 0.0, -1.0, 1.0) / np.sqrt(norm)
-    z = _states(beam, nodes, b, node_states, xi) * factor[:, None, None]
-    return b, z[..., 0], z[..., 1]
-
-
-# ------------------------------------------------------------------ static
-
-def static_flexibility(beam: Beam, xi) -> np.ndarray:
-    """G(xi) = y(a) EI/(F L^3): deflection under a point load F at a =
-    xi L (shear and supports included; masses carry no static load)."""
-    xi = np.asarray(xi, dtype=np.float64)
-    if np.any(~np.isfinite(xi)) or np.any((xi < 0.0) | (xi > 1.0)):
-        raise ValueError("xi must lie in [0, 1]")
-    plain = Beam(beam.end, 0.0, beam.s2, beam.kr, beam.kt)
-    out = np.empty(xi.shape)
-    for index, point in np.ndenumerate(xi):
-        nodes = _mesh(plain, 1.0, extra=(float(point),))
-        matrix = _assemble(plain, nodes, 0.0)[0]
-        rhs = np.zeros(matrix.shape[0])
-        at = int(np.flatnonzero(nodes == point)[0])
-        if at == 0:
-            # on the left support itself: its rows read on the state
-            # before the load, Q(0-) = kt w, so Q(0+) - kt w = -F (the
-            # row as _end_rows scaled it); a rigid support does not move
-            if plain.kt is None:
-                out[index] = 0.0
-                continue
-            rhs[0] = -1.0 / max(plain.kt, 1.0)
-        else:
-            rhs[2 + 4 * (at - 1) + 3] = -1.0    # Q(a+) - Q(a-) = -F
-        try:
-            state = np.linalg.solve(matrix, rhs)
-        except np.linalg.LinAlgError:
-            raise ValueError(f"{beam}: a mechanism (no static "
-                             f"equilibrium)") from None
-        out[index] = state[4 * at]
-    return out
-
-
-def static_influence(beam: Beam, xi: float, eta: float) -> float:
-    """G(xi, eta) = y(xi) EI/(F L^3): deflection at x = xi L under a point
-    load F at a = eta L (shear and supports included; masses carry no
-    static load), both points inside (0, 1]; on the diagonal
-    :func:`static_flexibility`."""
-    xi, eta = float(xi), float(eta)
-    if not (0.0 < xi <= 1.0 and 0.0 < eta <= 1.0):
-        raise ValueError("xi and eta must lie in (0, 1]")
-    plain = Beam(beam.end, 0.0, beam.s2, beam.kr, beam.kt)
-    nodes = _mesh(plain, 1.0, extra=(xi, eta))
-    matrix = _assemble(plain, nodes, 0.0)[0]
-    rhs = np.zeros(matrix.shape[0])
-    load = int(np.flatnonzero(nodes == eta)[0])
-    read = int(np.flatnonzero(nodes == xi)[0])
-    rhs[2 + 4 * (load - 1) + 3] = -1.0      # Q(a+) - Q(a-) = -F
-    try:
-        state = np.linalg.solve(matrix, rhs)
-    except np.linalg.LinAlgError:
-        raise ValueError(f"{beam}: a mechanism (no static "
-                         f"equilibrium)") from None
-    return float(state[4 * read])

@@ -6,7 +6,8 @@ Arrays are (M,) per design and (M, n) per design and mode; modes past a
 member's N are masked out (X = 0) and reported as NaN.  No Python loop
 runs per design: loops run over modes' end conditions, over refinement
 iterations and over search levels, each on the whole batch.  The
-extremes' branch and bound is in twin_extremes.py.
+extremes' branch and bound is in twin_extremes.py (one level's cells in
+twin_extremes_cells.py, the exact phases in twin_extremes_phases.py).
 
 Conventions (docs/model.md): displacements of the upper contact are
 positive away from the separator, so it is released at +y_s and strikes
