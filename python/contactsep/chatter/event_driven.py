@@ -80,7 +80,8 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
                         backend="numpy") -> RigidStopResult:
     """Appendix E: the beam (p_j, X_j at the contact, mass M) from state
     (q0, v0) against a rigid stop at ``stop`` (the beam above it).
-    ``backend="fortran"``: the compiled twin (event_driven_compiled.py)."""
+    ``backend="fortran"``: the compiled twin (event_driven_compiled.py).
+    The NumPy run's steps are :class:`_StopRun`'s methods."""
     if backend == "fortran":
         from contactsep.chatter.event_driven_compiled import (
             simulate_rigid_stop_compiled,
@@ -95,124 +96,199 @@ def simulate_rigid_stop(p, x, mass, q0, v0, e, t_end, *, stop=0.0,
     q, v = np.array(q0, dtype=float), np.array(v0, dtype=float)
     if stop != 0.0:
         raise ValueError("the stop is at y = 0 (shift the initial state)")
-    sx = float(x @ x)
-    energy = lambda q, v: 0.5 * mass * float(np.sum(v**2 + (p * q)**2))
-    scale = max(abs(float(q @ x)), 1e-300)
-    t = 0.0
-    e0 = energy(q, v)
-    impacts, rests = [], []
-    segments = [(0.0, "free", q.copy(), v.copy(), None)]
-    first_speed = None
-    leaving = False
+    run = _StopRun(p, x, mass, e, t_end, zeno_speed, q, v)
+    # each pass: fly to the next contact, strike it, rest if the impacts
+    # have accumulated.  A pass strikes at most once; the cap on passes
+    # also ends runs whose passes strike nothing (contacts that leave)
     events = 0
-    while t < t_end and len(impacts) < max_impacts \
+    while run.t < t_end and len(run.impacts) < max_impacts \
             and events < 4 * max_impacts:
         events += 1
-        bound = _bound("free", q, v, p, None, x)
-        q_base, v_base = q.copy(), v.copy()
+        if not run.fly_to_contact():
+            break                    # the window ended in flight
+        if run.strike() and run.rest_until_release():
+            break                    # the window ended at rest
+    return run.result()
 
-        def y(tau):
-            return float(_flow("free", q_base, v_base, p, None, tau)[0] @ x)
 
-        def yd(tau):
-            return float(_flow("free", q_base, v_base, p, None, tau)[1] @ x)
+class _StopRun:
+    """One NumPy run of :func:`simulate_rigid_stop`: the time, the modal
+    state (q, v) and the events so far, advanced by its steps."""
 
-        start = 0.0
+    def __init__(self, p, x, mass, e, t_end, zeno_speed, q, v):
+        self.p, self.x, self.mass, self.e = p, x, mass, e
+        self.t_end, self.zeno_speed = t_end, zeno_speed
+        self.q, self.v = q, v
+        self.sx = float(x @ x)
+        # the contact search's tolerances are relative to the first gap
+        self.scale = max(abs(float(q @ x)), 1e-300)
+        self.t = 0.0
+        self.e0 = self.energy(q, v)
+        self.impacts, self.rests = [], []
+        self.segments = [(0.0, "free", q.copy(), v.copy(), None)]
+        self.first_speed = None
+        # at the stop with no approach: the next flight leaves it
+        self.leaving = False
+
+    def energy(self, q, v):
+        return 0.5 * self.mass * float(np.sum(v**2 + (self.p * q)**2))
+
+    def fly_to_contact(self) -> bool:
+        """Fly free to the next contact (True) or to the window's end
+        (False)."""
+        p, x = self.p, self.x
+        bound = _bound("free", self.q, self.v, p, None, x)
+        q_base, v_base = self.q.copy(), self.v.copy()
+        y, yd = _free_gap(q_base, v_base, p, x)
+        tau = self._contact_time(y, yd, q_base, v_base, bound)
+        self.leaving = False
+        if tau is None:
+            self.q, self.v = _flow("free", q_base, v_base, p, None,
+                                   self.t_end - self.t)
+            self.t = self.t_end
+            return False
+        self.q, self.v = _flow("free", q_base, v_base, p, None, tau)
+        self.t += tau
+        return True
+
+    def _contact_time(self, y, yd, q_base, v_base, bound):
+        """The flight's time to the next contact, None past the window."""
+        x = self.x
         # approaching beyond the round-off of the modal sum u = sum X v
         closing = yd(0.0) < -64.0 * np.finfo(float).eps * float(
             np.sum(np.abs(x * v_base)))
-        if y(0.0) <= 0.0 and yd(0.0) <= 0.0 and not leaving and (
-                impacts or closing):
+        if y(0.0) <= 0.0 and yd(0.0) <= 0.0 and not self.leaving and (
+                self.impacts or closing):
             # still closing (or a start at the stop, to within rounding,
             # that approaches it): an impact now.  A start whose y is
             # -1e-18 and whose u is clearly negative would otherwise be
             # taken as leaving a rest and fly into the stop for up to
             # 1e-3 of the shortest period, while y = +1e-18 meets it at
             # once: a decision on the sign of round-off (issue 26)
-            tau = 0.0
-        else:
-            if leaving or y(0.0) <= 0.0:
-                # at the stop with (almost) no normal velocity: it leaves
-                # as y ~ tau^2 or tau^3; start where it is clear of it by
-                # more than the round-off of the modal sum (else that
-                # round-off is found as a contact with no approach)
-                noise = 64.0 * np.finfo(float).eps * float(
-                    np.sum(np.abs(x * q_base) + np.abs(x * v_base) / p))
-                start = 1e-12 * 2.0 * np.pi / p.max()
-                while y(start) <= noise and \
-                        start < 1e-3 * 2 * np.pi / p.max():
-                    start *= 2.0
-            tau = _first_root(lambda s: y(start + s), lambda s: yd(start + s),
-                              bound, scale, t_end - t - start)
-            tau = None if tau is None else start + tau
-        leaving = False
-        if tau is None:
-            q, v = _flow("free", q_base, v_base, p, None, t_end - t)
-            t = t_end
-            break
-        q, v = _flow("free", q_base, v_base, p, None, tau)
-        t += tau
-        u_minus = float(v @ x)
+            return 0.0
+        start = 0.0
+        if self.leaving or y(0.0) <= 0.0:
+            start = self._clear_start(y, q_base, v_base)
+        tau = _first_root(lambda s: y(start + s), lambda s: yd(start + s),
+                          bound, self.scale, self.t_end - self.t - start)
+        return None if tau is None else start + tau
+
+    def _clear_start(self, y, q_base, v_base):
+        """Where a flight from the stop with (almost) no normal velocity
+        is clear of it: it leaves as y ~ tau^2 or tau^3; the search
+        starts where y exceeds the round-off of the modal sum (else that
+        round-off is found as a contact with no approach)."""
+        p, x = self.p, self.x
+        noise = 64.0 * np.finfo(float).eps * float(
+            np.sum(np.abs(x * q_base) + np.abs(x * v_base) / p))
+        start = 1e-12 * 2.0 * np.pi / p.max()
+        while y(start) <= noise and start < 1e-3 * 2 * np.pi / p.max():
+            start *= 2.0
+        return start
+
+    def strike(self) -> bool:
+        """The Newton impulse at a contact that approaches; True when
+        the impacts have accumulated (the rebound below zeno_speed of
+        the first impact's speed)."""
+        x, mass = self.x, self.mass
+        u_minus = float(self.v @ x)
         if u_minus >= 0.0:
             # at the stop but not approaching it (leaving a rest, or the
             # modal sum's round-off near y = 0): no impact; fly on
-            leaving = True
-            segments.append((t, "free", q.copy(), v.copy(), None))
-            continue
-        psi = -(1.0 + e) * mass * u_minus / sx
-        v = v + x * psi / mass
-        u_plus = float(v @ x)
-        first_speed = first_speed or abs(u_minus)
-        impacts.append((t, psi, u_minus, u_plus, energy(q, v)))
-        segments.append((t, "free", q.copy(), v.copy(), None))
-        if u_plus < zeno_speed * first_speed:
-            # accumulation: close the contact and move constrained
-            v = v - x * float(v @ x) / sx
-            projector = np.eye(p.size) - np.outer(x, x) / sx
-            stiff = projector @ np.diag(p**2) @ projector
-            omega2, vectors = np.linalg.eigh(0.5 * (stiff + stiff.T))
-            omega = np.sqrt(np.clip(omega2, 0.0, None))
-            # the constrained direction X itself does not move
-            omega[np.argmax(np.abs(vectors.T @ x))] = 0.0
-            basis = (vectors, omega)
-            q = q - x * float(q @ x) / sx
-            segments.append((t, "rest", q.copy(), v.copy(), basis))
-            qr, vr = q.copy(), v.copy()
-            kx = x * p**2   # contact force = M sum X_j p_j^2 q_j / sum X^2
+            self._fly_from_here()
+            return False
+        psi = -(1.0 + self.e) * mass * u_minus / self.sx
+        self.v = self.v + x * psi / mass
+        u_plus = float(self.v @ x)
+        self.first_speed = self.first_speed or abs(u_minus)
+        self.impacts.append((self.t, psi, u_minus, u_plus,
+                             self.energy(self.q, self.v)))
+        self.segments.append((self.t, "free", self.q.copy(), self.v.copy(),
+                              None))
+        return u_plus < self.zeno_speed * self.first_speed
 
-            def force(tau):
-                return mass * float(_flow("rest", qr, vr, p, basis,
-                                          tau)[0] @ kx) / sx
+    def _fly_from_here(self):
+        # the next flight leaves the stop from the present state
+        self.leaving = True
+        self.segments.append((self.t, "free", self.q.copy(), self.v.copy(),
+                              None))
 
-            def force_rate(tau):
-                return mass * float(_flow("rest", qr, vr, p, basis,
-                                          tau)[1] @ kx) / sx
+    def rest_until_release(self) -> bool:
+        """Close the contact (accumulation) and move constrained until
+        the contact force turns tensile; True when the window ends at
+        rest."""
+        x, p, mass, sx = self.x, self.p, self.mass, self.sx
+        self.v = self.v - x * float(self.v @ x) / sx
+        basis = _constrained_basis(p, x, sx)
+        self.q = self.q - x * float(self.q @ x) / sx
+        self.segments.append((self.t, "rest", self.q.copy(), self.v.copy(),
+                              basis))
+        qr, vr = self.q.copy(), self.v.copy()
+        kx = x * p**2   # contact force = M sum X_j p_j^2 q_j / sum X^2
+        force, force_rate = _rest_force(qr, vr, p, basis, kx, mass, sx)
+        force_bound = mass * _bound("rest", qr, vr, p, basis, kx) / sx
+        if force(0.0) <= 0.0:
+            # the stop pulls: the contact opens at once, no rest
+            self.segments.pop()
+            self._fly_from_here()
+            return False
+        release = _first_root(force, force_rate, max(force_bound, 1e-300),
+                              max(abs(force(0.0)), 1e-300),
+                              self.t_end - self.t)
+        end = self.t_end if release is None else self.t + release
+        self.rests.append((self.t, end))
+        self.q, self.v = _flow("rest", qr, vr, p, basis, end - self.t)
+        self.t = end
+        if release is None:
+            return True
+        self._fly_from_here()
+        return False
 
-            force_bound = mass * _bound("rest", qr, vr, p, basis, kx) / sx
-            if force(0.0) <= 0.0:
-                # the stop pulls: the contact opens at once, no rest
-                segments.pop()
-                leaving = True
-                segments.append((t, "free", q.copy(), v.copy(), None))
-                continue
-            release = _first_root(force, force_rate,
-                                  max(force_bound, 1e-300),
-                                  max(abs(force(0.0)), 1e-300), t_end - t)
-            end = t_end if release is None else t + release
-            rests.append((t, end))
-            q, v = _flow("rest", qr, vr, p, basis, end - t)
-            t = end
-            if release is None:
-                break
-            leaving = True
-            segments.append((t, "free", q.copy(), v.copy(), None))
-    table = np.array(impacts) if impacts else np.zeros((0, 5))
-    return RigidStopResult(
-        impact_t=table[:, 0], impulse=table[:, 1], v_before=table[:, 2],
-        v_after=table[:, 3], energy_after=table[:, 4],
-        rest_intervals=np.array(rests).reshape(-1, 2),
-        initial_energy=e0, final_energy=energy(q, v), segments=segments,
-        p=p, x=x)
+    def result(self) -> RigidStopResult:
+        table = np.array(self.impacts) if self.impacts else np.zeros((0, 5))
+        return RigidStopResult(
+            impact_t=table[:, 0], impulse=table[:, 1], v_before=table[:, 2],
+            v_after=table[:, 3], energy_after=table[:, 4],
+            rest_intervals=np.array(self.rests).reshape(-1, 2),
+            initial_energy=self.e0, final_energy=self.energy(self.q, self.v),
+            segments=self.segments, p=self.p, x=self.x)
+
+
+def _free_gap(q_base, v_base, p, x):
+    """y(tau) and y'(tau) of a free flight from (q_base, v_base)."""
+
+    def y(tau):
+        return float(_flow("free", q_base, v_base, p, None, tau)[0] @ x)
+
+    def yd(tau):
+        return float(_flow("free", q_base, v_base, p, None, tau)[1] @ x)
+
+    return y, yd
+
+
+def _constrained_basis(p, x, sx):
+    """The modes of the propped system (the contact point held at the
+    stop): (vectors, omega), the constrained direction X at omega = 0."""
+    projector = np.eye(p.size) - np.outer(x, x) / sx
+    stiff = projector @ np.diag(p**2) @ projector
+    omega2, vectors = np.linalg.eigh(0.5 * (stiff + stiff.T))
+    omega = np.sqrt(np.clip(omega2, 0.0, None))
+    # the constrained direction X itself does not move
+    omega[np.argmax(np.abs(vectors.T @ x))] = 0.0
+    return vectors, omega
+
+
+def _rest_force(qr, vr, p, basis, kx, mass, sx):
+    """The contact force at rest and its rate, as functions of the time
+    since the rest began."""
+
+    def force(tau):
+        return mass * float(_flow("rest", qr, vr, p, basis, tau)[0] @ kx) / sx
+
+    def force_rate(tau):
+        return mass * float(_flow("rest", qr, vr, p, basis, tau)[1] @ kx) / sx
+
+    return force, force_rate
 
 
 def rigid_stop_from_design(design, *, t_end=LISTING_TAU_S, **options
