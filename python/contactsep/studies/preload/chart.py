@@ -201,7 +201,7 @@ class Simulations:
                 f"are kept (rerun with --resume to continue)")
 
     def _run_journaled(self, function, tasks: list, cost) -> list:
-        from contactsep.runs.journal import task_key
+        from contactsep.runs.task_keys import task_key
         journal = self.journal
         keys = [task_key(function, task) for task in tasks]
         out, missing = [None] * len(tasks), []
