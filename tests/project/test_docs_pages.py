@@ -481,7 +481,6 @@ def test_the_sweep_limits_are_the_codes():
     from contactsep.runs import dask_run, pool
     from contactsep.studies import stats
     from contactsep.studies.sweep import chatter as chatter_sweep
-    from contactsep.studies.sweep import run as runner
     from contactsep.studies.sweep import spec as sweep
     from contactsep.studies.sweep import writers
     default, most = quoted("sweeps.md", r"`--chunk-size` \(default "
@@ -491,7 +490,7 @@ def test_the_sweep_limits_are_the_codes():
     restarts, designs, workers = quoted(
         "sweeps.md", r"up to (\d+) times a sweep.*?a sweep has at most "
         r"(1e\d+) designs and (\d+) workers a usable core")
-    assert int(restarts) == runner.MAX_POOL_RESTARTS
+    assert int(restarts) == pool.MAX_POOL_RESTARTS
     assert float(designs) == sweep.MAX_DESIGNS
     assert int(workers) == pool.WORKERS_PER_CORE
     (group,) = quoted("howto/resume.md",
