@@ -12,7 +12,7 @@ import textwrap
 import pytest
 from hostile_cli import main, refusal
 
-from contactsep.chatter import simulate
+from contactsep.chatter import limits, simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
@@ -130,7 +130,7 @@ def test_the_default_run_at_the_largest_n_is_within_the_work_bound():
     step at N = 1024 over the listing's window is inside it (the design's
     own step at N = 1024 is not: test_a_design_step_past_the_budget_...)."""
     steps = LISTING_TAU_S / simulate_module.DEFAULT_DT["hertz"]
-    assert steps * 3 * simulate_module.MAX_MODES <= simulate_module.MAX_WORK
+    assert steps * 3 * limits.MAX_MODES <= limits.MAX_WORK
 
 
 def test_a_design_step_past_the_budget_is_refused_naming_what_to_change():

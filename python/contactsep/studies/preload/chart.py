@@ -76,10 +76,8 @@ def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
     simulation; runs in a worker): ``task`` a
     :class:`~contactsep.studies.preload.runs.PreloadRun`."""
-    from contactsep.chatter.simulate import (
-        CoarseStepWarning,
-        UnconvergedWarning,
-    )
+    from contactsep.chatter.simulate import UnconvergedWarning
+    from contactsep.chatter.stack import CoarseStepWarning
     design, model, settings = task.design, task.model, task.settings
     preload = task.preload_lb
     with warnings.catch_warnings():
