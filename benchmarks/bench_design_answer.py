@@ -99,7 +99,7 @@ def measure(sizes, repeats) -> dict:
     sys.path.insert(0, os.path.join(HERE, "..", "tests"))
     from design_family import FAMILY
 
-    from contactsep.chatter.simulate import largest_preload
+    from contactsep.chatter.stack import largest_preload
 
     rows = []
     yardstick = sin_ns()

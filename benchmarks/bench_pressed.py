@@ -37,7 +37,7 @@ from design_family import FAMILY  # noqa: E402
 from results import Report  # noqa: E402
 
 from contactsep.chatter import simulate  # noqa: E402
-from contactsep.chatter.simulate import largest_preload  # noqa: E402
+from contactsep.chatter.stack import largest_preload  # noqa: E402
 
 N_MODES = 16
 PRELOAD_LB = 5.0

@@ -49,6 +49,7 @@ import time
 
 import numpy as np
 
+from contactsep.runs.pool import usable_cores
 from contactsep.studies.sweep import run as runner
 
 from contactsep.studies.sweep import spec as sweep
@@ -205,7 +206,7 @@ def main() -> None:
                         help="only the yardstick and the preload chart")
     args = parser.parse_args()
     start_all = time.perf_counter()
-    cores = runner.usable_cores()
+    cores = usable_cores()
     if args.max_workers is not None:
         cores = max(1, min(cores, args.max_workers))
     ks = [1]

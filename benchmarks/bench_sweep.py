@@ -24,6 +24,7 @@ from results import Report  # this folder: run as a script
 from contactsep.studies.sweep import run as runner
 
 from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep.writers import CsvWriter, ParquetWriter
 def main(save: bool = False, cpu: bool = False) -> None:
     say = Report()
     spec = sweep.make_spec(sample=["h2=normal(0.25,0.01)",
@@ -38,9 +39,9 @@ def main(save: bool = False, cpu: bool = False) -> None:
             for output in outputs:
                 writers = {
                     "no": list,
-                    "CSV": lambda: [runner.CsvWriter(
+                    "CSV": lambda: [CsvWriter(
                         os.path.join(tmp, "s.csv"), spec)],
-                    "Parquet": lambda: [runner.ParquetWriter(
+                    "Parquet": lambda: [ParquetWriter(
                         os.path.join(tmp, "s.parquet"), spec)],
                 }[output]()
                 start = clock()

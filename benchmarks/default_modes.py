@@ -33,7 +33,7 @@ from design_family import FAMILY, UNSEEN  # noqa: E402
 
 from contactsep import chatter  # noqa: E402
 from contactsep.chatter import numerics  # noqa: E402
-from contactsep.chatter.simulate import smallest_dt  # noqa: E402
+from contactsep.chatter.stack import smallest_dt  # noqa: E402
 
 MODES = (16, 32, 64, 128)
 CONVERGING = ("first_impact_s", "first_impulse_lb_s", "circuit_open_s",

@@ -129,7 +129,7 @@ def search_at(names, n_modes, workers, path) -> None:
     check of a converged answer looks at 2 % either side only, the
     search at every 0.99 % to twice the answer."""
     from contactsep.chatter import simulate
-    from contactsep.chatter.simulate import smallest_dt
+    from contactsep.chatter.stack import smallest_dt
     for name in names:
         design = FAMILY[name].replace(n_modes=n_modes)
         with warnings.catch_warnings():

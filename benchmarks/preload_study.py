@@ -135,7 +135,7 @@ def check(path=CHART) -> None:
 def monotone(path=CHART) -> None:
     """Every 1 % step from 0.80 to 1.25 times each answer, up to the
     largest preload the simulation takes."""
-    from contactsep.chatter.simulate import largest_preload
+    from contactsep.chatter.stack import largest_preload
     rows = [r for r in read_chart(path)
             if np.isfinite(float(r["min_preload_lb"]))]
     factors = np.round(np.arange(0.80, 1.2501, 0.01), 2)

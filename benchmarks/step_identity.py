@@ -63,7 +63,7 @@ def cases(quick=False, laws=tuple(LAWS), plain=True):
     sys.path.insert(0, os.path.join(HERE, "..", "tests"))
     from design_family import FAMILY
 
-    from contactsep.chatter.simulate import largest_preload
+    from contactsep.chatter.stack import largest_preload
 
     for name, design in FAMILY.items():
         for n in (16,) if quick else (16, 32, 64):

@@ -19,6 +19,7 @@ from dask.distributed import Client, LocalCluster
 from contactsep.studies.sweep import run as runner
 
 from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep.writers import CsvWriter
 spec = sweep.make_spec(vary=["d=0.125:0.75:11"],
                        sample=["ys=uniform(0.45,0.55)"], samples=40,
                        seed=0, base={"n_modes": 8})
@@ -30,7 +31,7 @@ with tempfile.TemporaryDirectory() as scratch:
             Client(cluster) as client:
         summary = runner.run_sweep(
             spec, scheduler=client, threshold=0.115,
-            writers=[runner.CsvWriter(str(rows_csv), spec)])
+            writers=[CsvWriter(str(rows_csv), spec)])
     # every CSV the package writes starts with '#' comment lines
     rows = pd.read_csv(rows_csv, comment="#")
 

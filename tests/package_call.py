@@ -11,7 +11,7 @@ from __future__ import annotations
 import warnings
 
 from contactsep import chatter
-from contactsep.chatter.simulate import CoarseStepWarning
+from contactsep.chatter.stack import CoarseStepWarning
 
 #: Settings every call gets unless the test gives its own.
 SETTINGS = dict(model="hertz", damping="none", preload=0.0,

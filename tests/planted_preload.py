@@ -10,7 +10,7 @@ import types
 
 import pytest
 
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.studies.preload import command as design_preload
 from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload import robust as preload_robust

@@ -15,7 +15,7 @@ from contactsep.cli.chatter import elapsed
 def test_a_threaded_run_ticks_while_it_waits():
     ticks = []
     # 3e6 fixed steps x 48 modes: above the threaded size, below the
-    # forked one (runners.STOPPABLE_WORK, simulate.FORKED_WORK)
+    # forked one (runners.STOPPABLE_WORK, limits.FORKED_WORK)
     with output.stop_checks(lambda: ticks.append(1)):
         simulate(thesis_design(n_modes=16), model="hertz", stepper="fixed",
                  dt=1e-8, t_end=0.03, samples=1, single_impulse=False,

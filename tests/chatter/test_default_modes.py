@@ -24,7 +24,7 @@ from design_family import FAMILY, UNSEEN
 
 from contactsep import chatter
 from contactsep.chatter import numerics
-from contactsep.chatter.simulate import smallest_dt
+from contactsep.chatter.stack import smallest_dt
 
 pytest.importorskip("contactsep.chatter._chatter")
 

@@ -121,7 +121,7 @@ def test_default_runs_at_n32_keep_their_energy_and_converge(name):
     default = quiet(design)
     assert default.status == chatter_status.OK
     assert abs(default.energy_ratio - 1) <= 1e-6
-    from contactsep.chatter.simulate import smallest_dt
+    from contactsep.chatter.stack import smallest_dt
     step = max(default.dt / 8, 1.01 * smallest_dt(32, default.t_end_s))
     fine = quiet(design, dt=step, t_end=default.t_end_s)
     for key in ("first_impact_s", "first_impulse_lb_s", "circuit_open_s"):

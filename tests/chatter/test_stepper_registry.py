@@ -17,6 +17,7 @@ import contactsep
 from contactsep.chatter import runners, stepper_registry, stop_event
 from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.limits import MODELS, STEPPERS
+from contactsep.chatter.stack import COARSE_DT, CoarseStepWarning
 from contactsep.chatter.stepper_registry import RunRequest
 
 sim = importlib.import_module("contactsep.chatter.simulate")
@@ -127,7 +128,7 @@ def test_a_coarse_step_is_warned_at_simulates_caller():
     design = contactsep.thesis_design(n_modes=4)
     chosen = sim.simulate(design, t_end=2e-3, single_impulse=False,
                           samples=10).numerics["design_dt_s"]
-    with pytest.warns(sim.CoarseStepWarning) as seen:
-        sim.simulate(design, t_end=2e-3, dt=4 * sim.COARSE_DT * chosen,
+    with pytest.warns(CoarseStepWarning) as seen:
+        sim.simulate(design, t_end=2e-3, dt=4 * COARSE_DT * chosen,
                      single_impulse=False, samples=10)
     assert [w.filename for w in seen] == [__file__]

@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 
 from contactsep.chatter import runners, steppers
 from contactsep.chatter.contacts import HertzLaw
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.chatter.stack import _system
 from contactsep.cli import main
 

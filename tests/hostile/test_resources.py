@@ -12,10 +12,11 @@ import textwrap
 import pytest
 from hostile_cli import main, refusal
 
-from contactsep.chatter import simulate
+from contactsep.chatter import limits, simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model import thesis_design
+from contactsep.runs import pool
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep
 simulate_module = importlib.import_module("contactsep.chatter.simulate")
@@ -23,8 +24,8 @@ simulate_module = importlib.import_module("contactsep.chatter.simulate")
 
 def test_workers_are_bounded_by_the_cores(capsys):
     """--workers 100000 started ~470 processes and +1 GB in 1.5 s."""
-    most = runner.max_workers()
-    assert most == runner.WORKERS_PER_CORE * runner.usable_cores()
+    most = pool.max_workers()
+    assert most == pool.WORKERS_PER_CORE * pool.usable_cores()
     status, _, err = main(capsys, "sweep", "--vary", "h2=0.1:0.5:5",
                           "--workers", "100000")
     assert refusal(status, err) == (f"--workers: found '100000', expected "
@@ -129,7 +130,7 @@ def test_the_default_run_at_the_largest_n_is_within_the_work_bound():
     step at N = 1024 over the listing's window is inside it (the design's
     own step at N = 1024 is not: test_a_design_step_past_the_budget_...)."""
     steps = LISTING_TAU_S / simulate_module.DEFAULT_DT["hertz"]
-    assert steps * 3 * simulate_module.MAX_MODES <= simulate_module.MAX_WORK
+    assert steps * 3 * limits.MAX_MODES <= limits.MAX_WORK
 
 
 def test_a_design_step_past_the_budget_is_refused_naming_what_to_change():

@@ -273,7 +273,7 @@ def test_wilsons_z_and_the_largest_preload():
     (limit,) = quoted("sweeps.md", rf"by its length: {NUMBER} lb for the "
                       rf"thesis rig\)")
     from contactsep.chatter import DEFAULT_MODES
-    from contactsep.chatter.simulate import largest_preload
+    from contactsep.chatter.stack import largest_preload
     check([limit], [largest_preload(thesis_design(n_modes=DEFAULT_MODES))])
 
 
@@ -481,7 +481,6 @@ def test_the_sweep_limits_are_the_codes():
     from contactsep.runs import dask_run, pool
     from contactsep.studies import stats
     from contactsep.studies.sweep import chatter as chatter_sweep
-    from contactsep.studies.sweep import run as runner
     from contactsep.studies.sweep import spec as sweep
     from contactsep.studies.sweep import writers
     default, most = quoted("sweeps.md", r"`--chunk-size` \(default "
@@ -491,7 +490,7 @@ def test_the_sweep_limits_are_the_codes():
     restarts, designs, workers = quoted(
         "sweeps.md", r"up to (\d+) times a sweep.*?a sweep has at most "
         r"(1e\d+) designs and (\d+) workers a usable core")
-    assert int(restarts) == runner.MAX_POOL_RESTARTS
+    assert int(restarts) == pool.MAX_POOL_RESTARTS
     assert float(designs) == sweep.MAX_DESIGNS
     assert int(workers) == pool.WORKERS_PER_CORE
     (group,) = quoted("howto/resume.md",
@@ -804,27 +803,23 @@ def test_the_simulation_counts_of_the_long_studies():
 
 
 def test_the_chatter_and_unit_limits_are_the_codes():
-    import importlib
-
-    from contactsep.chatter import circuit
+    from contactsep.chatter import circuit, limits, stack
     from contactsep.cli import design_options
-    # the module (the package's attribute of that name is the function)
-    simulate = importlib.import_module("contactsep.chatter.simulate")
     steps, work, coarse = quoted(
         "sweeps.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
         r"modes\) is refused before any work, one more than (\d+) times "
         r"the default is warned")
-    assert (float(steps), float(work)) == (simulate.MAX_STEPS,
-                                           simulate.MAX_WORK)
-    assert float(coarse) == simulate.COARSE_DT
+    assert (float(steps), float(work)) == (limits.MAX_STEPS,
+                                           limits.MAX_WORK)
+    assert float(coarse) == stack.COARSE_DT
     (min_open,) = quoted("sweeps.md", r"`min_open_s`, default ([\d.e-]+) "
                          r"s\)")
     assert float(min_open) == circuit.MIN_OPEN
     (most,) = quoted("sweeps.md", r"d ≤ 0, N > (\d+),")
-    assert int(most) == simulate.MAX_MODES
+    assert int(most) == limits.MAX_MODES
     (forked,) = quoted("sweeps.md", r"steps × modes ≥ (\de\d), goes to a "
                        r"forked child")
-    assert float(forked) == simulate.FORKED_WORK
+    assert float(forked) == limits.FORKED_WORK
     modulus, density, length = quoted(
         "names-and-units.md", r"a modulus below (1e\d) psi .*? a weight "
         r"density above (\d+) lb/in³ .*? a member longer than (\d+) in")

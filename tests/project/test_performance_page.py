@@ -201,7 +201,6 @@ def test_the_constants_the_page_states_are_the_codes():
     from contactsep.output import pieces
     from contactsep.runs import chunks
     from contactsep.studies.sweep import chunk_runs
-    from contactsep.studies.sweep import run as runner
     from contactsep.studies.sweep import spec as sweep
     target, first, growth, piece = quoted(
         r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
@@ -229,7 +228,7 @@ def test_the_constants_the_page_states_are_the_codes():
                     r"times when only summaries come back, fetched in one "
                     r"gather\)")
     assert {"three": 3, "four": 4, "six": 6, "eight": 8}[per] == \
-        runner.DASK_WINDOW_PER_WORKER
+        chunk_runs.DASK_WINDOW_PER_WORKER
     assert "DASK_WINDOW_PER_WORKER * bounds.workers + 2" in \
         inspect.getsource(chunk_runs)
     (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "

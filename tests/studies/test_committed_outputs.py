@@ -24,6 +24,7 @@ from conftest import DECK_DIR, ROOT
 from contactsep import studies
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep.writers import CsvWriter
 COMMITTED = ROOT / "docs" / "studies"
 
 
@@ -48,7 +49,7 @@ def sweep_csv(tmp_path) -> str:
                                  "d=-0.1:0.5:3"],
                            sample=["ys=normal(0.5,0.02)"], samples=4)
     path = tmp_path / "sweep.csv"
-    runner.run_sweep(spec, writers=[runner.CsvWriter(str(path), spec)],
+    runner.run_sweep(spec, writers=[CsvWriter(str(path), spec)],
                      workers=1)
     return path.read_text()
 

@@ -30,7 +30,8 @@ from contactsep.errors import InputError
 from contactsep.studies.preload import command as design_preload
 from contactsep.studies.preload.chart import Simulations
 from contactsep.runs.journal import ResumeError
-from contactsep.runs.journal import RunJournal, task_key
+from contactsep.runs.journal import RunJournal
+from contactsep.runs.task_keys import task_key
 
 COMMAND = ["preload", "--n-modes", "8", "--workers", "1", "--json",
            "--tolerance", "d=uniform(0.2,0.3)", "--samples", "20",

@@ -11,8 +11,8 @@ Hertz contact; docs/chatter.md.
 
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.numerics import DEFAULT_MODES
+from contactsep.chatter.limits import MODELS
 from contactsep.chatter.simulate import (
-    MODELS,
     ChatterError,
     UnconvergedWarning,
     simulate,

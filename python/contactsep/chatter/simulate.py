@@ -31,29 +31,9 @@ from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.result import ChatterResult, blown_up, from_run
 from contactsep.chatter.system import members
 from contactsep.errors import ContactsepWarning
-from contactsep.chatter.limits import (  # noqa: F401 (the module's API)
-    APPE_MAX_MODES,
-    BUTTONS,
-    CONTACTS,
-    DAMPINGS,
-    FORKED_APPE_MODES,
-    FORKED_WORK,
-    MAX_MODES,
-    MAX_SAMPLES,
-    MAX_STEPS,
-    MAX_T_END,
-    MAX_WORK,
-    MODELS,
-    STEPPERS,
-)
+from contactsep.chatter.limits import FORKED_APPE_MODES, FORKED_WORK, MAX_MODES
 from contactsep.chatter.settings import Arguments, checked_arguments
 from contactsep.chatter.single_impulse import single_impulse as _single_impulse
-from contactsep.chatter.stack import (  # noqa: F401 (the module's API)
-    COARSE_DT,
-    CoarseStepWarning,
-    largest_preload,
-    smallest_dt,
-)
 from contactsep.chatter.stack import _system, checked_dt, design_window
 from contactsep.chatter.stepper_registry import RunRequest
 

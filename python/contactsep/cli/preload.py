@@ -66,7 +66,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
     """The "simulation" group: the model, its law and the search's
     numerics."""
-    from contactsep.chatter.simulate import DAMPINGS
+    from contactsep.chatter.limits import DAMPINGS
     from contactsep.studies.preload.chart import MODELS
 
     run_group = parser.add_argument_group("simulation")
@@ -124,7 +124,7 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
 
 def _add_output_options(parser: argparse.ArgumentParser) -> None:
     """The "output" group: JSON, CSV, resume, workers, cluster, progress."""
-    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+    from contactsep.runs.pool import WORKERS_PER_CORE, max_workers
 
     out_group = parser.add_argument_group("output")
     out_group.add_argument("--json", action="store_true",

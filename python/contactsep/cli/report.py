@@ -26,7 +26,7 @@ from contactsep.cli.values import integer
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``contactsep report``."""
     from contactsep.studies.preload.chart import DEFAULT_MODES
-    from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+    from contactsep.runs.pool import WORKERS_PER_CORE, max_workers
 
     parser = commands.add_parser(
         "report", help="a design report: one HTML page",

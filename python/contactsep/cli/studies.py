@@ -36,7 +36,7 @@ from contactsep.cli.study_runs import (
 )
 from contactsep.cli.values import finite, integer
 from contactsep.errors import InputError
-from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+from contactsep.runs.pool import WORKERS_PER_CORE, max_workers
 from contactsep.studies.sweep.checks import CHATTER_UNUSED
 
 #: Resolution of the PNGs (dots per inch of a 6 x 4 in figure).
@@ -114,7 +114,7 @@ def _add_output_options(study: argparse.ArgumentParser) -> None:
 
 def _add_simulation_options(study: argparse.ArgumentParser) -> None:
     """The simulating studies' model, law and checks."""
-    from contactsep.chatter.simulate import DAMPINGS
+    from contactsep.chatter.limits import DAMPINGS
     from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
 
     study.add_argument("--model", choices=PRELOAD_MODELS, default=None,

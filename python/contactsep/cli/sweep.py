@@ -32,7 +32,7 @@ from contactsep.studies.sweep.chatter import (
     CHUNK_SIZE as CHATTER_CHUNK_SIZE,
 )
 from contactsep.model.fields import SETTINGS
-from contactsep.studies.sweep.run import WORKERS_PER_CORE, max_workers
+from contactsep.runs.pool import WORKERS_PER_CORE, max_workers
 from contactsep.studies.sweep.run import kept_note as runner_note
 from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE
 from contactsep.studies.sweep.axes import MAX_DESIGNS
@@ -278,6 +278,11 @@ def _checked_spec(args: argparse.Namespace, runner):
     """The sweep's spec from the options (its bare numbers in --units),
     every option that needs no file or scheduler checked."""
     from contactsep.studies.sweep.spec import make_spec
+    from contactsep.studies.sweep.writers import (
+        CsvWriter,
+        ParquetWriter,
+        require_pyarrow,
+    )
     from contactsep.studies.sweep.axes import (
         parse_sample,
         parse_vary,
@@ -305,7 +310,7 @@ def _checked_spec(args: argparse.Namespace, runner):
                      threshold=args.threshold)
     runner.check_threshold(spec, args.threshold)
     if args.parquet:
-        runner.require_pyarrow()
+        require_pyarrow()
     check_targets(args, {"--csv": args.csv, "--parquet": args.parquet})
     return spec
 
@@ -320,12 +325,12 @@ def _run_into_files(args: argparse.Namespace, spec, runner,
     try:
         if args.parquet:
             writers.append(NamedWriter(
-                runner.ParquetWriter(args.parquet, spec,
-                                     design=args.design), "--parquet",
+                ParquetWriter(args.parquet, spec,
+                              design=args.design), "--parquet",
                 args.parquet))
         if args.csv:
             writers.append(NamedWriter(
-                runner.CsvWriter(args.csv, spec, design=args.design),
+                CsvWriter(args.csv, spec, design=args.design),
                 "--csv", args.csv))
         # the writers hold the outputs' locks: the chunks are this run's.
         # Every sweep into a file keeps its finished chunks beside it

@@ -16,7 +16,7 @@ finished work, read back by a later run of the same inputs:
 - :class:`RunJournal`, a search's or a study's (``contactsep preload
   ... --csv F --resume``, ``contactsep.preload(..., journal=DIR)``):
   ``runs.jsonl``, one line per finished simulation, a digest of its
-  task (:func:`task_key`) and its result.  A search is deterministic:
+  task (:func:`~contactsep.runs.task_keys.task_key`) and its result.  A search is deterministic:
   the same inputs ask for the same simulations in the same order, so a
   rerun takes each result the journal holds instead of simulating it,
   and its answer, notes and CSV are those of an uninterrupted run.  A
@@ -48,7 +48,7 @@ import numpy as np
 from contactsep.errors import InputError
 from contactsep.output import json_text, locks, target_info
 from contactsep.output.streams import named
-from contactsep.runs.task_keys import canonical, task_key  # noqa: F401
+from contactsep.runs.task_keys import canonical
 
 MANIFEST = "manifest.json"
 _RUNS = "runs.jsonl"

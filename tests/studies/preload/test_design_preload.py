@@ -21,7 +21,7 @@ from planted_preload import threshold as _threshold
 import contactsep
 from contactsep import output
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies.preload import command as design_preload
@@ -604,7 +604,7 @@ def test_the_command_checks_by_default_and_not_with_no_converge(planted,
 
 def test_converge_stops_where_the_work_budget_does(planted, monkeypatch):
     """A long window: a run at N = 64 and its step would exceed the
-    simulation's work budget (chatter.simulate.smallest_dt); the checks
+    simulation's work budget (chatter.stack.smallest_dt); the checks
     stop at N = 32 with a note instead of failing the whole search."""
     planted()
     plain = design_preload.simulate

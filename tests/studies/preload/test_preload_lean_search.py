@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from planted_preload import CALLS, plant_threshold
 
 import contactsep
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.errors import ContactsepWarning
 from contactsep.studies.preload.scan import grid, top_index
 from contactsep.studies.preload.search import search

@@ -20,7 +20,7 @@ from design_family import FAMILY
 
 import contactsep
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.errors import InputError
 from contactsep.studies.preload import command as design_preload

@@ -17,7 +17,8 @@ from contactsep.studies.preload import chart as preload
 
 from contactsep.studies.preload import robust as preload_robust
 from contactsep.studies.preload.runs import PreloadRun, SampleRun
-from contactsep.runs.journal import RunJournal, canonical
+from contactsep.runs.journal import RunJournal
+from contactsep.runs.task_keys import canonical
 
 SETTINGS = {"dt": 1e-8, "t_end": 0.01, "damping": "none"}
 #: The planted threshold: an event below this many lb per inch of the

@@ -19,7 +19,7 @@ from design_family import FAMILY
 from planted_preload import CALLS
 
 import contactsep
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.errors import ContactsepWarning
 from contactsep.studies.preload import command as design_preload

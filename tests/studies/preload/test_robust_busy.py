@@ -12,7 +12,7 @@ from design_family import FAMILY
 from test_runs_ahead import busy_share
 
 import planted_preload
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.studies.preload import chart
 from contactsep.studies.preload import robust
 from contactsep.studies.preload.robust_rule import FIRST_BLOCK

@@ -15,7 +15,7 @@ import pytest
 from design_family import FAMILY
 from test_preload_runs import RecordingPool
 
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload import scan as preload_scan

@@ -19,7 +19,7 @@ from sweep_collect import Collect
 
 from contactsep.chatter import simulate
 from contactsep.chatter.runners import StepperError
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.model import thesis_design
 from contactsep.studies.sweep import chatter as chatter_sweep

@@ -23,6 +23,7 @@ from contactsep.model.design_domain import SIZE_RANGE
 from contactsep.runs import stops
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep.writers import CsvWriter, ParquetWriter
 from contactsep.studies.stats import wilson_interval
 
 
@@ -156,10 +157,8 @@ def test_csv_numbers_have_twelve_digits_parquet_every_bit(tmp_path):
                            seed=3, base={"n_modes": 6})
     memory, csv_path = Collect(), tmp_path / "s.csv"
     parquet_path = tmp_path / "s.parquet"
-    runner.run_sweep(spec, writers=[memory, runner.CsvWriter(str(csv_path),
-                                                             spec),
-                                    runner.ParquetWriter(str(parquet_path),
-                                                         spec)],
+    runner.run_sweep(spec, writers=[memory, CsvWriter(str(csv_path), spec),
+                                    ParquetWriter(str(parquet_path), spec)],
                      chunk_size=128, workers=1)
     exact = memory.table()
     comments, rows = read_csv(csv_path)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from contactsep.chatter import simulate
-from contactsep.chatter.simulate import largest_preload
+from contactsep.chatter.stack import largest_preload
 from contactsep.cli import main
 from contactsep.model import evaluate
 from contactsep.studies.thesis import conclusions

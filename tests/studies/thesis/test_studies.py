@@ -27,6 +27,7 @@ from contactsep.runs import stops
 from contactsep.studies.sweep import chunk_runs
 from contactsep.studies.sweep import run as runner
 from contactsep.studies.sweep import spec as sweep
+from contactsep.studies.sweep.writers import CsvWriter, ParquetWriter
 from contactsep.studies.study import thesis_study_design
 
 
@@ -279,8 +280,7 @@ def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
     two finished chunks in the store, and a resumed sweep writes the
     bytes of an uninterrupted one."""
     path, whole = tmp_path / "s.csv", tmp_path / "whole.csv"
-    runner.run_sweep(spec(), writers=[runner.CsvWriter(str(whole),
-                                                       spec())],
+    runner.run_sweep(spec(), writers=[CsvWriter(str(whole), spec())],
                      chunk_size=10, workers=1)
     original = sweep.evaluate_chunk
     calls = []
@@ -294,14 +294,13 @@ def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):
     monkeypatch.setattr(chunk_runs, "evaluate_chunk", flaky)
     with pytest.raises(runner.SweepInterrupted,
                        match="interrupted: 20 of 200 designs"):
-        runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path),
-                                                           spec())],
+        runner.run_sweep(spec(), writers=[CsvWriter(str(path), spec())],
                          chunk_size=10, workers=1,
                          store=runner.ChunkStore(str(path), spec(),
                                                  resume=False))
     assert not path.exists() and kept_designs(path) == 20
     monkeypatch.setattr(chunk_runs, "evaluate_chunk", original)
-    runner.run_sweep(spec(), writers=[runner.CsvWriter(str(path), spec())],
+    runner.run_sweep(spec(), writers=[CsvWriter(str(path), spec())],
                      chunk_size=10, workers=1,
                      store=runner.ChunkStore(str(path), spec()))
     assert path.read_bytes() == whole.read_bytes()
@@ -338,7 +337,7 @@ def test_parquet_output_equals_the_csv(tmp_path):
     pq = pytest.importorskip("pyarrow.parquet")
     path = tmp_path / "s.parquet"
     csv_out = Collect()
-    runner.run_sweep(spec(), writers=[runner.ParquetWriter(str(path)),
+    runner.run_sweep(spec(), writers=[ParquetWriter(str(path)),
                                       csv_out], chunk_size=64, workers=1)
     table = pq.read_table(path).to_pydict()
     expected = csv_out.table()

@@ -76,10 +76,8 @@ def _simulate_event(task) -> bool:
     """Whether a design has a discontinuity event under a preload (one
     simulation; runs in a worker): ``task`` a
     :class:`~contactsep.studies.preload.runs.PreloadRun`."""
-    from contactsep.chatter.simulate import (
-        CoarseStepWarning,
-        UnconvergedWarning,
-    )
+    from contactsep.chatter.simulate import UnconvergedWarning
+    from contactsep.chatter.stack import CoarseStepWarning
     design, model, settings = task.design, task.model, task.settings
     preload = task.preload_lb
     with warnings.catch_warnings():
@@ -201,7 +199,7 @@ class Simulations:
                 f"are kept (rerun with --resume to continue)")
 
     def _run_journaled(self, function, tasks: list, cost) -> list:
-        from contactsep.runs.journal import task_key
+        from contactsep.runs.task_keys import task_key
         journal = self.journal
         keys = [task_key(function, task) for task in tasks]
         out, missing = [None] * len(tasks), []

@@ -12,7 +12,7 @@ thesis rig at N = 16: 1.3 times a free run's time at 0.1 lb, 41 times
 at 20 lb, pressed most of the window; docs/performance.md).
 
 A run is named in a resume journal
-(:func:`contactsep.runs.journal.task_key`) by
+(:func:`contactsep.runs.task_keys.task_key`) by
 :meth:`PreloadRun.key_tuple`, the tuple the searches handed to the
 workers before their tasks had names, so that a journal kept by an
 earlier version is still answered from.

@@ -20,7 +20,7 @@ resumed search does not run it again.
 
 from __future__ import annotations
 
-from contactsep.runs.journal import task_key
+from contactsep.runs.task_keys import task_key
 
 
 class RunsAhead:

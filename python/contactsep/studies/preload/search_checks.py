@@ -33,7 +33,7 @@ def check_workers(workers) -> None:
 
 def check_modes(n_modes) -> None:
     """One N per member, from 1 to the chatter simulation's limit."""
-    from contactsep.chatter.simulate import MAX_MODES
+    from contactsep.chatter.limits import MAX_MODES
     if isinstance(n_modes, (bool, np.bool_)) or not isinstance(
             n_modes, (int, np.integer)) or not 1 <= n_modes <= MAX_MODES:
         raise SearchError(f"n_modes: found {shown(n_modes)}, expected an "

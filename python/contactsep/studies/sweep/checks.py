@@ -81,7 +81,7 @@ def check_chatter_modes(model: str, fixed) -> None:
     varied or the default) within the simulation's limit, before any
     work: every design would be refused on its own.  A varied N past it
     is the status of its rows."""
-    from contactsep.chatter.simulate import MAX_MODES
+    from contactsep.chatter.limits import MAX_MODES
     if fixed is None or model == "eq23":
         return
     max_modes = max(fixed) if isinstance(fixed, tuple) else int(fixed)
@@ -134,12 +134,10 @@ def check_dt(steps, max_modes: int, option: str, model: str) -> None:
     sweep's largest N: a sweep that would fail every design is refused
     before any work.  A coarse step is warned of here, once, not by
     every design."""
-    from contactsep.chatter.simulate import (
+    from contactsep.chatter.limits import MAX_MODES, MAX_STEPS, MAX_WORK
+    from contactsep.chatter.simulate import DEFAULT_DT
+    from contactsep.chatter.stack import (
         COARSE_DT,
-        DEFAULT_DT,
-        MAX_MODES,
-        MAX_STEPS,
-        MAX_WORK,
         CoarseStepWarning,
         smallest_dt,
     )

@@ -18,13 +18,8 @@ from contactsep.runs import dask_run
 from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
-from contactsep.runs.pool import (  # noqa: F401 - the runner's API
-    MAX_POOL_RESTARTS,
-    RestartingPool,
-    died_too_often,
-)
+from contactsep.runs.pool import RestartingPool, died_too_often
 from contactsep.runs.journal import chunk_file, load_columns, save_columns
-from contactsep.runs.stops import wait_for
 from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
 

@@ -12,46 +12,16 @@ from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
 from contactsep.studies.sweep import chatter as chatter_sweep
-from contactsep.studies.sweep.chunk_runs import (  # noqa: F401 - the runner's API
-    DASK_WINDOW_PER_WORKER,
-    MAX_POOL_RESTARTS,
-    chunk_result,
-    chunk_result_on_dask,
-    evaluate,
-    evaluate_chunk_timed,
+from contactsep.studies.sweep.chunk_runs import (
     new_summary,
     results_dask,
     results_local,
 )
 from contactsep.runs.chunks import Chunks
-from contactsep.runs.dask_run import (  # noqa: F401 - the runner's API
-    SCHEDULER_TIMEOUT_S,
-    SchedulerLost,
-    connect,
-)
-from contactsep.runs.pool import (  # noqa: F401 - the runner's API
-    WORKERS_PER_CORE,
-    max_workers,
-    quiet_worker,
-    stop_pool,
-    usable_cores,
-    worker_pool,
-)
+from contactsep.runs.pool import WORKERS_PER_CORE, max_workers, usable_cores
 from contactsep.runs import journal
-from contactsep.runs.journal import (  # noqa: F401 - the runner's API
-    ResumeError,
-    load_columns,
-    save_columns,
-)
 from contactsep.runs.stops import StopRequests, progress_bar
 from contactsep.studies.sweep.spec import CHUNK_SIZE, MAX_CHUNK_SIZE, SweepSpec
-from contactsep.studies.sweep.writers import (  # noqa: F401 - the runner's API
-    COLUMNS_NOTE,
-    TITLE,
-    CsvWriter,
-    ParquetWriter,
-    require_pyarrow,
-)
 
 
 class SweepInterrupted(InputError):
@@ -73,10 +43,6 @@ class ChunkStore(journal.ChunkStore):
         super().__init__(output_path, {"model": spec.model,
                                        "inputs": spec.inputs()},
                          spec.size, resume=resume)
-
-
-#: The pool workers' set-up (the name studies.preload.chart imports).
-_quiet_worker = quiet_worker
 
 
 def default_chunk_size(spec: SweepSpec) -> int:
@@ -139,8 +105,9 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     scheduler address (or Client).  A sweep that does not finish (an
     interrupt, Ctrl-C or SIGTERM: :class:`SweepInterrupted`, SIGTERM the
     command's own exception; a dead worker; any other error) drops the
-    writers' files (:meth:`CsvWriter.abort`: the old file, or none,
-    stays under the final name); what it finished is in ``store``.
+    writers' files (:meth:`CsvWriter.abort
+    <contactsep.studies.sweep.writers.CsvWriter.abort>`: the old file, or
+    none, stays under the final name); what it finished is in ``store``.
     ``store``: a :class:`ChunkStore` that
     keeps every finished chunk (and gives those an earlier run kept),
     removed when the writers' files are in place.
