@@ -278,11 +278,7 @@ def _checked_spec(args: argparse.Namespace, runner):
     """The sweep's spec from the options (its bare numbers in --units),
     every option that needs no file or scheduler checked."""
     from contactsep.studies.sweep.spec import make_spec
-    from contactsep.studies.sweep.writers import (
-        CsvWriter,
-        ParquetWriter,
-        require_pyarrow,
-    )
+    from contactsep.studies.sweep.writers import require_pyarrow
     from contactsep.studies.sweep.axes import (
         parse_sample,
         parse_vary,
@@ -319,6 +315,8 @@ def _run_into_files(args: argparse.Namespace, spec, runner,
                     resume) -> dict:
     """The sweep's summary, its rows written to --csv and --parquet; a
     sweep that does not finish leaves the old outputs and its chunks."""
+    from contactsep.studies.sweep.writers import CsvWriter, ParquetWriter
+
     progress = {"auto": None, "always": True, "never": False}[args.progress]
     scheduler = cluster.connect(args)
     writers, store = [], None
