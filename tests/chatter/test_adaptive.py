@@ -34,7 +34,7 @@ import pytest
 
 import contactsep
 from contactsep import chatter
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 
 api = pytest.importorskip("contactsep.chatter._chatter").chatter_api
 

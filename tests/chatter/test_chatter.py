@@ -13,7 +13,8 @@ import pytest
 import contactsep
 from contactsep import chatter
 from contactsep.chatter import steppers
-from contactsep.chatter.contacts import HertzLaw, solve_lcp
+from contactsep.chatter.contacts import solve_lcp
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.event_driven import (
     rigid_stop_from_design,
     simulate_rigid_stop,

@@ -13,7 +13,7 @@ import pytest
 import contactsep
 from contactsep import chatter
 from contactsep.chatter import circuit, numerics
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.rigid_stop import ZENO_SPEED
 from contactsep.chatter.system import members
 from contactsep.cli import main

@@ -23,7 +23,7 @@ from design_family import FAMILY
 from scipy.optimize import brentq
 
 from contactsep.chatter import simulate, steppers
-from contactsep.chatter.contacts import ContactMemory, HertzLaw
+from contactsep.chatter.laws import ContactMemory, HertzLaw
 from contactsep.chatter.simulate import ChatterError
 
 E, NU, RADIUS = 30.0e6, 0.33, 0.125

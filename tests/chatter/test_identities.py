@@ -14,7 +14,7 @@ import pytest
 import contactsep
 import independent_hertz as ih
 from contactsep.chatter import circuit, runners
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from design_family import FAMILY, UNSEEN
 from package_call import run
 

@@ -22,7 +22,7 @@ from design_family import FAMILY, UNSEEN
 from contactsep import chatter
 from contactsep.chatter import numerics
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.system import flexibility, members
 from contactsep.cli import main
 from contactsep.model import evaluate

@@ -10,7 +10,8 @@ from design_family import FAMILY
 
 from contactsep import chatter
 from contactsep.chatter import _chatter, steppers, system
-from contactsep.chatter.contacts import HertzLaw, series_energy, series_forces
+from contactsep.chatter.contacts import series_energy, series_forces
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.stack import _system
 
 #: The pre-change build's answers: fortran/chatter/*.f90 of commit

@@ -21,7 +21,7 @@ from design_family import FAMILY, UNSEEN
 from contactsep import chatter
 from contactsep.chatter import numerics
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.system import members
 
 pytest.importorskip("contactsep.chatter._chatter")

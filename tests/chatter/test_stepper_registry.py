@@ -15,7 +15,7 @@ import pytest
 
 import contactsep
 from contactsep.chatter import runners, stepper_registry, stop_event
-from contactsep.chatter.laws import ChatterError
+from contactsep.chatter.settings import ChatterError
 from contactsep.chatter.limits import MODELS, STEPPERS
 from contactsep.chatter.stack import COARSE_DT, CoarseStepWarning
 from contactsep.chatter.stepper_registry import RunRequest

@@ -25,7 +25,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from contactsep.chatter import runners, steppers
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.stack import largest_preload
 from contactsep.chatter.stack import _system
 from contactsep.cli import main

@@ -18,7 +18,7 @@ from hostile_cli import main, refusal, strict_json
 
 from contactsep.chatter import simulate, status
 from contactsep.chatter import steppers as twins
-from contactsep.chatter.contacts import HertzLaw
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.stack import _system
 from contactsep.errors import InputError
 from contactsep.model import thesis_design

@@ -9,7 +9,7 @@ import re
 
 import pytest
 
-from contactsep.chatter import laws, settings
+from contactsep.chatter import settings
 from contactsep.errors import InputError
 from contactsep.model import Design, fields, thesis_design
 
@@ -64,8 +64,8 @@ def test_settings_values_are_read_by_the_chatter_layer():
     assert settings.parse_value("h2", "25.4mm", "--d") == 1.0
     assert settings.parse_value("damping", " flores ", "--damping") == \
         "flores"
-    assert settings.CHOICES["damping"] == laws.DAMPINGS
-    assert settings.CHOICES["contact"] == laws.CONTACTS
+    assert settings.CHOICES["damping"] == settings.DAMPINGS
+    assert settings.CHOICES["contact"] == settings.CONTACTS
     with pytest.raises(InputError, match=r"^--preload: found '-1', "
                        r"expected a force >= 0 lb$"):
         settings.parse_value("preload", "-1", "--preload")

@@ -12,11 +12,8 @@ Hertz contact; docs/chatter.md.
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.numerics import DEFAULT_MODES
 from contactsep.chatter.limits import MODELS
-from contactsep.chatter.simulate import (
-    ChatterError,
-    UnconvergedWarning,
-    simulate,
-)
+from contactsep.chatter.settings import ChatterError
+from contactsep.chatter.simulate import UnconvergedWarning, simulate
 
 __all__ = ["DEFAULT_MODES", "MODELS", "ChatterError", "ChatterResult",
            "UnconvergedWarning", "simulate"]

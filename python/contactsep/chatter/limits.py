@@ -3,8 +3,6 @@ samples (their checks: :mod:`contactsep.chatter.settings`)."""
 
 from __future__ import annotations
 
-from contactsep.chatter import laws
-
 #: The models simulate() runs.
 MODELS = ("appE", "newton", "hertz")
 #: Most modes per member, and most time steps, a run may take.
@@ -27,7 +25,4 @@ MAX_SAMPLES = 4_000_000
 #: SIGTERM stop it at once instead of after the compiled call returns.
 FORKED_WORK = 3e8
 FORKED_APPE_MODES = 48
-DAMPINGS = laws.DAMPINGS
-CONTACTS = laws.CONTACTS
-BUTTONS = laws.BUTTONS
 STEPPERS = ("adaptive", "fixed")

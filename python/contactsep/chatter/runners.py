@@ -15,11 +15,8 @@ import numpy as np
 from contactsep import output
 from contactsep.chatter import circuit
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import (
-    ContactMemory,
-    series_energy,
-    series_law_energy,
-)
+from contactsep.chatter.contacts import series_energy, series_law_energy
+from contactsep.chatter.laws import ContactMemory
 from contactsep.errors import InputError
 
 #: First size of the crossing tables; a run that fills one is repeated

@@ -5,6 +5,11 @@ cannot run (:func:`checked_arguments`: all of simulate's arguments
 checked in order, :class:`Arguments`); :func:`parse_value` reads a setting as inputs name it
 (``contactsep chatter --preload``, a chatter sweep's ``--vary
 preload=...`` or ``--set``, a sweep file's settings), or a Design field.
+The Hertz family's settings are here too: the dampings, buttons and
+elastic parts (:data:`DAMPINGS`, :data:`BUTTONS`, :data:`CONTACTS`) and
+their checks (:func:`check_law`, :func:`check_button`), with the stop at
+an event's (:func:`check_stop_at_event`) and :class:`ChatterError`, the
+refusal of them all.
 
 The settings' names, units and output columns are the Design's
 vocabulary's (:data:`contactsep.model.fields.SETTINGS`): every reader of
@@ -22,8 +27,6 @@ import math
 import numpy as np
 
 from contactsep import units
-from contactsep.chatter import laws, stop_event
-from contactsep.chatter.laws import ChatterError
 from contactsep.chatter.limits import (
     APPE_MAX_MODES,
     MAX_MODES,
@@ -33,17 +36,106 @@ from contactsep.chatter.limits import (
     STEPPERS,
 )
 from contactsep.constants import LISTING_TAU_S
-from contactsep.errors import InputError
+from contactsep.errors import InputError, shown
 from contactsep.model import fields
 from contactsep.model.design import Design
 from contactsep.model.design_domain import SIZE_RANGE
+
+#: The Hertz family's dampings (docs/chatter.md, "Contact laws").
+DAMPINGS = ("none", "flores", "hunt-crossley")
+#: Contact buttons: a sphere on a flat, a cylinder across it.
+BUTTONS = ("sphere", "cylinder")
+#: The Hertz family's elastic parts.
+CONTACTS = ("hertz", "thornton")
+
+
+class ChatterError(InputError):
+    """A simulation setting the chatter layer refuses."""
+
+
+def real(name: str, value, unit: str) -> float:
+    """A real number for argument ``name`` (never a bool, None or a
+    string), or a ChatterError naming it."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+            value, (int, float, np.integer, np.floating)):
+        raise ChatterError(f"{name}: found {value!r}, expected a number"
+                           + (f" ({unit})" if unit else ""))
+    try:
+        return float(value)
+    except OverflowError:
+        raise ChatterError(f"{name}: found {shown(value)}, expected a "
+                           f"finite number" + (f" ({unit})" if unit else "")
+                           ) from None
+
+
+def check_law(model, damping, alpha, contact, yield_pressure,
+               static_correction):
+    """Refuse a contact law that cannot run (the Hertz family's), in one
+    line naming the argument; returns alpha and the yield pressure as
+    floats (or None)."""
+    if contact not in CONTACTS:
+        raise ChatterError(f"contact: found {contact!r}, expected one of "
+                           f"{', '.join(CONTACTS)}")
+    hertz = model == "hertz"
+    if alpha is not None:
+        alpha = real("alpha", alpha, "s/in")
+        if damping != "hunt-crossley":
+            raise ChatterError(f"alpha: found {alpha!r}, expected none "
+                               f"without damping hunt-crossley")
+        if not (alpha > 0.0 and math.isfinite(alpha)):
+            raise ChatterError(f"alpha: found {alpha!r}, expected a "
+                               f"Hunt-Crossley constant > 0 s/in")
+    elif damping == "hunt-crossley":
+        raise ChatterError("alpha: hunt-crossley damping needs its "
+                           "material constant alpha (s/in; --alpha)")
+    if yield_pressure is not None:
+        yield_pressure = real("yield_pressure", yield_pressure, "psi")
+        if contact != "thornton":
+            raise ChatterError(f"yield_pressure: found {yield_pressure!r}, "
+                               f"expected none without contact thornton")
+        if not (yield_pressure > 0.0 and math.isfinite(yield_pressure)):
+            raise ChatterError(f"yield_pressure: found {yield_pressure!r}, "
+                               f"expected a pressure > 0 psi")
+    elif contact == "thornton":
+        raise ChatterError("yield_pressure: thornton contact needs the "
+                           "yield pressure (psi; --yield-pressure)")
+    if not hertz and (damping != "none" or contact != "hertz"):
+        raise ChatterError(f"damping/contact: {damping}/{contact} are Hertz "
+                           f"laws; model {model} takes none/hertz")
+    return alpha, yield_pressure
+
+
+def check_button(model, button, length, contact):
+    """Refuse a button that cannot run, in one line naming the
+    argument; returns the cylinder's length as a float (or None)."""
+    if button not in BUTTONS:
+        raise ChatterError(f"button: found {button!r}, expected one of "
+                           f"{', '.join(BUTTONS)}")
+    if button == "cylinder" and model != "hertz":
+        raise ChatterError(f"button: a cylinder is a Hertz-family law; "
+                           f"model {model} takes sphere")
+    if button == "cylinder" and contact == "thornton":
+        raise ChatterError("button: thornton's law is a sphere's (give "
+                           "button sphere)")
+    if length is None:
+        return None
+    length = real("button_length", length, "in")
+    if button != "cylinder":
+        raise ChatterError(f"button_length: found {length!r}, expected "
+                           f"none without button cylinder")
+    low, high = SIZE_RANGE
+    if not low <= length <= high:
+        raise ChatterError(f"button_length: found {length!r}, expected "
+                           f"{low:g} to {high:g} in")
+    return length
+
 
 #: The settings a chatter sweep may vary (--vary) and sample (--sample).
 VARIABLE_SETTINGS = ("preload", "min_open", "damping", "dt", "alpha",
                      "contact", "yield_pressure")
 SAMPLED_SETTINGS = ("preload", "min_open")
 #: Settings whose value is one of a few words.
-CHOICES = {"damping": laws.DAMPINGS, "contact": laws.CONTACTS,
+CHOICES = {"damping": DAMPINGS, "contact": CONTACTS,
            "static_correction": ("on", "off")}
 
 
@@ -96,10 +188,6 @@ def _setting(field: str, text, label: str) -> float:
     return value
 
 
-#: A real number for an argument, or a ChatterError naming it.
-_real = laws.real
-
-
 def check_settings(design, model, damping, backend, preload, samples,
                    theta, nu, button_radius, t_end, open_threshold,
                    min_open, stepper):
@@ -114,19 +202,19 @@ def check_settings(design, model, damping, backend, preload, samples,
                f"{', '.join(MODELS)}")
     if backend not in ("compiled", "numpy"):
         refuse(f"backend: found {backend!r}, expected compiled or numpy")
-    if damping not in laws.DAMPINGS:
+    if damping not in DAMPINGS:
         refuse(f"damping: found {damping!r}, expected one of "
-               f"{', '.join(laws.DAMPINGS)}")
+               f"{', '.join(DAMPINGS)}")
     if stepper not in STEPPERS:
         refuse(f"stepper: found {stepper!r}, expected one of "
                f"{', '.join(STEPPERS)}")
-    preload = _real("preload", preload, "lb")
-    theta = _real("theta", theta, "")
-    nu = _real("nu", nu, "")
-    button_radius = _real("button_radius", button_radius, "in")
-    t_end = None if t_end is None else _real("t_end", t_end, "s")
-    open_threshold = _real("open_threshold", open_threshold, "in")
-    min_open = _real("min_open", min_open, "s")
+    preload = real("preload", preload, "lb")
+    theta = real("theta", theta, "")
+    nu = real("nu", nu, "")
+    button_radius = real("button_radius", button_radius, "in")
+    t_end = None if t_end is None else real("t_end", t_end, "s")
+    open_threshold = real("open_threshold", open_threshold, "in")
+    min_open = real("min_open", min_open, "s")
     if not (preload >= 0.0 and math.isfinite(preload)):
         refuse(f"preload: found {preload!r}, expected a force >= 0 lb")
     if model == "appE" and preload != 0.0:
@@ -181,6 +269,32 @@ def check_settings(design, model, damping, backend, preload, samples,
                "constant is 8(1 - e)/(5 e V))")
 
 
+def check_stop_at_event(stop_at_event, model: str, stepper: str,
+                        backend: str, verify) -> bool:
+    """Whether the run stops at its first event
+    (:mod:`contactsep.chatter.stop_event`); a request the stop does not
+    cover is refused in one line (ChatterError)."""
+    if not isinstance(stop_at_event, (bool, np.bool_)):
+        raise ChatterError(f"stop_at_event: found {stop_at_event!r}, "
+                           f"expected True or False")
+    if not stop_at_event:
+        return False
+    if model == "appE":
+        raise ChatterError("stop_at_event: found True with model 'appE', "
+                           "expected newton or hertz (appE's lower contact "
+                           "never moves: its circuit never opens)")
+    if stepper != "adaptive" or backend != "compiled":
+        raise ChatterError(f"stop_at_event: found True with stepper "
+                           f"{stepper!r} and backend {backend!r}, expected "
+                           f"the compiled adaptive stepper (the one that "
+                           f"watches the circuit as it goes)")
+    if verify:
+        raise ChatterError("stop_at_event: found True with verify=True, "
+                           "expected one of them (verify compares figures "
+                           "of the whole window)")
+    return True
+
+
 @dataclasses.dataclass(frozen=True)
 class Arguments:
     """:func:`contactsep.chatter.simulate`'s arguments, by name (its
@@ -226,15 +340,15 @@ def checked_arguments(a: Arguments) -> Arguments:
     check_settings(a.design, a.model, a.damping, a.backend, a.preload,
                    a.samples, a.theta, a.nu, a.button_radius, a.t_end,
                    a.open_threshold, a.min_open, a.stepper)
-    alpha, yield_pressure = laws.check_law(a.model, a.damping, a.alpha,
+    alpha, yield_pressure = check_law(a.model, a.damping, a.alpha,
                                            a.contact, a.yield_pressure,
                                            static_correction)
-    button_length = laws.check_button(a.model, a.button, a.button_length,
+    button_length = check_button(a.model, a.button, a.button_length,
                                       a.contact)
     if not isinstance(a.verify, (bool, np.bool_)):
         raise ChatterError(f"verify: found {a.verify!r}, expected True or "
                            f"False")
-    stop = stop_event.check(a.stop_at_event, a.model, a.stepper, a.backend,
+    stop = check_stop_at_event(a.stop_at_event, a.model, a.stepper, a.backend,
                             a.verify)
     return dataclasses.replace(a, static_correction=static_correction,
                                alpha=alpha, yield_pressure=yield_pressure,

@@ -22,17 +22,21 @@ import warnings
 from typing import NamedTuple
 
 from contactsep import output
-from contactsep.chatter import circuit, laws, numerics, runners
+from contactsep.chatter import circuit, numerics, runners
 from contactsep.chatter import stepper_registry, stop_event
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.contacts import HertzLaw
 from contactsep.chatter.event_driven import chatter_result
-from contactsep.chatter.laws import ChatterError
+from contactsep.chatter.laws import HertzLaw
 from contactsep.chatter.result import ChatterResult, blown_up, from_run
 from contactsep.chatter.system import members
 from contactsep.errors import ContactsepWarning
 from contactsep.chatter.limits import FORKED_APPE_MODES, FORKED_WORK, MAX_MODES
-from contactsep.chatter.settings import Arguments, checked_arguments
+from contactsep.chatter.settings import (
+    Arguments,
+    ChatterError,
+    checked_arguments,
+    real,
+)
 from contactsep.chatter.single_impulse import single_impulse as _single_impulse
 from contactsep.chatter.stack import _system, checked_dt, design_window
 from contactsep.chatter.stepper_registry import RunRequest
@@ -285,7 +289,7 @@ def _plan(a: Arguments, law, t_end_source: str) -> _Plan:
                                   None if law is None else law.k, a.preload,
                                   linear=law is not None and law.linear)
     dt_source = "given" if a.dt is not None else "design"
-    dt = choice.dt if a.dt is None else laws.real("dt", a.dt, "s")
+    dt = choice.dt if a.dt is None else real("dt", a.dt, "s")
     least = checked_dt(a.design, dt, dt_source, a.t_end, t_end_source,
                        choice.dt, stack.m.size, stacklevel=3)
     return _Plan(stack, parts, choice, dt, dt_source, least)

@@ -15,7 +15,7 @@ import warnings
 import numpy as np
 
 from contactsep.chatter import numerics, runners, system
-from contactsep.chatter.laws import ChatterError
+from contactsep.chatter.settings import ChatterError
 from contactsep.chatter.limits import MAX_STEPS, MAX_T_END, MAX_WORK
 from contactsep.chatter.system import members
 from contactsep.constants import LISTING_TAU_S

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from contactsep.chatter import runners
-from contactsep.chatter.laws import ChatterError
+from contactsep.chatter.settings import ChatterError
 
 
 @dataclass(frozen=True)

@@ -12,14 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from contactsep.chatter.contacts import (
-    ContactMemory,
-    HertzLaw,
     series_energy,
     series_forces,
     series_law_energy,
     series_law_forces,
     solve_lcp,
 )
+from contactsep.chatter.laws import ContactMemory, HertzLaw
 
 EPS = float(np.finfo(float).eps)
 

@@ -18,39 +18,11 @@ from __future__ import annotations
 import dataclasses
 import math
 
-import numpy as np
-
 from contactsep.chatter import circuit, numerics
 from contactsep.chatter import status as chatter_status
-from contactsep.chatter.laws import ChatterError
 
 #: The stepper's argument for "never stop".
 NEVER = -1.0
-
-
-def check(stop_at_event, model: str, stepper: str, backend: str,
-          verify) -> bool:
-    """Whether the run stops at its first event; a request the stop does
-    not cover is refused in one line (ChatterError)."""
-    if not isinstance(stop_at_event, (bool, np.bool_)):
-        raise ChatterError(f"stop_at_event: found {stop_at_event!r}, "
-                           f"expected True or False")
-    if not stop_at_event:
-        return False
-    if model == "appE":
-        raise ChatterError("stop_at_event: found True with model 'appE', "
-                           "expected newton or hertz (appE's lower contact "
-                           "never moves: its circuit never opens)")
-    if stepper != "adaptive" or backend != "compiled":
-        raise ChatterError(f"stop_at_event: found True with stepper "
-                           f"{stepper!r} and backend {backend!r}, expected "
-                           f"the compiled adaptive stepper (the one that "
-                           f"watches the circuit as it goes)")
-    if verify:
-        raise ChatterError("stop_at_event: found True with verify=True, "
-                           "expected one of them (verify compares figures "
-                           "of the whole window)")
-    return True
 
 
 def checked_run(run_at, dt: float, dt_source: str, *args,

@@ -66,7 +66,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
     """The "simulation" group: the model, its law and the search's
     numerics."""
-    from contactsep.chatter.limits import DAMPINGS
+    from contactsep.chatter.settings import DAMPINGS
     from contactsep.studies.preload.chart import MODELS
 
     run_group = parser.add_argument_group("simulation")

@@ -114,7 +114,7 @@ def _add_output_options(study: argparse.ArgumentParser) -> None:
 
 def _add_simulation_options(study: argparse.ArgumentParser) -> None:
     """The simulating studies' model, law and checks."""
-    from contactsep.chatter.limits import DAMPINGS
+    from contactsep.chatter.settings import DAMPINGS
     from contactsep.studies.preload.chart import MODELS as PRELOAD_MODELS
 
     study.add_argument("--model", choices=PRELOAD_MODELS, default=None,
