@@ -131,7 +131,7 @@ def stream(client, function, items, window: int, lost, ordered=True,
     The items are taken only as the window has room (a sweep's chunks
     are sized by the ones before) and those taken together are one
     ``client.map``; Dask's ``as_completed`` collects the finished ones,
-    and those that have arrived are fetched in one gather every
+    and those that have arrived are fetched in one gather, one every
     FETCH_GAP_S at most: the parent's work is a constant per task, not
     a scan of the futures in flight.  ``stop.check()`` (a
     :class:`~contactsep.runs.stops.StopRequests`) is called between
@@ -149,7 +149,7 @@ def stream(client, function, items, window: int, lost, ordered=True,
     tags = {}                    # key -> tag
     fetched = {}                 # key -> result, or _FAILED
     arrived = as_completed(loop=client.loop)
-    lost_since = None
+    lost_since = fetch_at = None
     more = True
     try:
         with dask_run.quiet_dask():
@@ -166,7 +166,7 @@ def stream(client, function, items, window: int, lost, ordered=True,
                     continue
                 if not more and not pending and not queue:
                     return
-                time.sleep(FETCH_GAP_S)
+                _arrival(arrived, fetch_at)
                 if not arrived.has_ready():
                     # nothing arrives, and no connection for
                     # SCHEDULER_LOST_S: a scheduler that never cancelled
@@ -184,6 +184,7 @@ def stream(client, function, items, window: int, lost, ordered=True,
                     fetched}.values())
                 fetched.update(_fetch(client, ready, arrived, lost, where,
                                       what))
+                fetch_at = time.monotonic()
     finally:
         if pending:
             with dask_run.quiet_dask():
@@ -191,6 +192,24 @@ def stream(client, function, items, window: int, lost, ordered=True,
                     client.cancel(list(pending.values()))
                 except Exception:    # noqa: BLE001 - a lost scheduler
                     pass
+
+
+#: Seconds the loop waits for a result before it looks again for a stop
+#: and for its scheduler.
+LISTEN_S = 0.25
+
+
+def _arrival(arrived, fetch_at):
+    """Wait (LISTEN_S at most) until a result has arrived in ``arrived``
+    (an as_completed: it notifies its ``thread_condition`` at each), and
+    until FETCH_GAP_S after the last fetch ended (``fetch_at``, monotonic
+    seconds, None: none yet): the first result after a pause is fetched
+    at once, those arriving faster together."""
+    with arrived.thread_condition:
+        if not arrived.has_ready():
+            arrived.thread_condition.wait(LISTEN_S)
+    if fetch_at is not None:
+        time.sleep(max(0.0, fetch_at + FETCH_GAP_S - time.monotonic()))
 
 
 #: A fetched task that failed: its error is raised at its turn.
