@@ -30,7 +30,7 @@ import os
 import sys
 import time
 
-from contactsep.runs import dask_map, dask_run
+from contactsep.runs import dask_map
 
 
 def noop(task):
@@ -51,14 +51,15 @@ def one_at_a_time(client, function, tasks: list) -> list:
     for i in range(count):
         if i in have:
             continue
-        out[i] = dask_run.wait(client, futures[i], dask_map._NoStop,
-                               len(have))
+        out[i] = futures[i].result()
         have.add(i)
-        ready = dask_run.gather_finished(
-            client, [f for j, f in futures.items() if j not in have])
-        for key, result in ready.items():
-            out[index[key]] = result
-            have.add(index[key])
+        # a gather of all the finished ones among those left (the
+        # scan of every pending future the one Dask loop does without)
+        ready = [f for j, f in futures.items()
+                 if j not in have and f.status == "finished"]
+        for future, result in zip(ready, client.gather(ready)):
+            out[index[future.key]] = result
+            have.add(index[future.key])
     return out
 
 

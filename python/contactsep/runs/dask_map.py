@@ -1,8 +1,10 @@
-"""A batch of simulations on a Dask cluster (``contactsep preload
---scheduler``, the studies of :class:`~contactsep.studies.preload.chart.
-Simulations`): the sweep's machinery of :mod:`dask_run` (the connection,
-the probe, the wait that tells a lost scheduler from a lost worker)
-applied to a list of tasks instead of a sweep's chunks.
+"""The one loop of work on a Dask cluster (:func:`stream`: a window of
+tasks, their results fetched in batched gathers, handed back in order or
+as they arrive), and the batch of simulations on it (``contactsep
+preload --scheduler``, the studies of :class:`~contactsep.studies.
+preload.chart.Simulations`: :func:`run_tasks`); a sweep's chunks take
+the same loop (:func:`contactsep.studies.sweep.chunk_runs.results_dask`),
+the connection and the probe are :mod:`dask_run`'s.
 
 What travels: each task (a Design, the model, the settings, a preload:
 a few hundred bytes) and back its result (a bool or a few numbers).
@@ -18,6 +20,7 @@ fetched before it kept by the journal.
 
 from __future__ import annotations
 
+import collections
 import time
 from concurrent.futures import CancelledError
 
@@ -89,38 +92,81 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
     ``kept(done)``: what a lost scheduler's line says of the ``done``
     results fetched before it.
 
-    The batch is one ``client.map`` in ``order`` (Dask runs a map's
-    tasks in the order given: the costliest first); Dask's
-    ``as_completed`` collects the finished ones, and those that have
-    arrived are fetched in one gather every FETCH_GAP_S at most: the
-    parent's work is a constant per task, not a scan of the batch after
-    every result.
+    The batch is one :func:`stream` whose window is the whole batch: one
+    ``client.map`` in ``order`` (Dask runs a map's tasks in the order
+    given: the costliest first), the results handed back as they
+    arrive.
     """
-    from distributed import as_completed
     order = list(range(len(tasks))) if order is None else list(order)
     out = [None] * len(tasks)
     if not order:
         return out
-    where = dask_run.scheduler_where(client)
-    with dask_run.quiet_dask():
-        mapped = client.map(on_worker, [function] * len(order),
-                            [tasks[i] for i in order], pure=False)
-    #: The futures not yet fetched, by key, and their tasks' indices.
-    left = {future.key: future for future in mapped}
-    index = {future.key: i for future, i in zip(mapped, order)}
     done = 0
 
-    def lost():
+    def lost(where):
         note = None if kept is None else kept(done)
         return dask_run.scheduler_lost(where, done, note)
 
+    for i, result in stream(client, on_worker,
+                            ((i, (function, tasks[i])) for i in order),
+                            len(order), lost, ordered=False,
+                            what="a simulation"):
+        out[i] = result
+        done += 1
+        if finished is not None:
+            finished(i, result)
+        if progress is not None:
+            progress(1)
+    return out
+
+
+def stream(client, function, items, window: int, lost, ordered=True,
+           stop=None, what="a task"):
+    """The one loop of work on a Dask cluster: ``function(*args)`` for
+    each ``(tag, args)`` of ``items``, at most ``window`` of them ahead
+    of those handed back, and (tag, result) of each: in the items' order
+    (``ordered``; an item whose args are None needs no work: (tag, None)
+    in its place) or as they arrive.
+
+    The items are taken only as the window has room (a sweep's chunks
+    are sized by the ones before) and those taken together are one
+    ``client.map``; Dask's ``as_completed`` collects the finished ones,
+    and those that have arrived are fetched in one gather, one every
+    FETCH_GAP_S at most: the parent's work is a constant per task, not
+    a scan of the futures in flight.  ``stop.check()`` (a
+    :class:`~contactsep.runs.stops.StopRequests`) is called between
+    fetches.  ``lost(where)`` is the exception of a lost scheduler (a
+    task the scheduler cancelled, a connection closed, or none for
+    SCHEDULER_LOST_S); a task the cluster could not run (``what``) is
+    one InputError.  A worker lost costs its tasks, which Dask runs
+    again.  What is left is cancelled when the stream ends early.
+    """
+    from distributed import as_completed
+    items = iter(items)
+    where = dask_run.scheduler_where(client)
+    queue = collections.deque()  # [tag, future or None], ordered only
+    pending = {}                 # key -> future not yet handed back
+    tags = {}                    # key -> tag
+    fetched = {}                 # key -> result, or _FAILED
+    arrived = as_completed(loop=client.loop)
+    lost_since = fetch_at = None
+    more = True
     try:
         with dask_run.quiet_dask():
-            arrived = as_completed(mapped)
-            del mapped
-            lost_since = None
-            while left:
-                time.sleep(FETCH_GAP_S)
+            while True:
+                if stop is not None:
+                    stop.check()
+                if more:
+                    more = _submit(client, function, items, window, queue,
+                                   pending, tags, arrived, ordered)
+                key = _next_key(queue, fetched, ordered)
+                if key is not None:
+                    yield _hand_back(client, key, queue, pending, tags,
+                                     fetched, lost, where, what, ordered)
+                    continue
+                if not more and not pending and not queue:
+                    return
+                _arrival(arrived, fetch_at)
                 if not arrived.has_ready():
                     # nothing arrives, and no connection for
                     # SCHEDULER_LOST_S: a scheduler that never cancelled
@@ -130,54 +176,147 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
                         lost_since = lost_since or time.monotonic()
                         if time.monotonic() - lost_since >= \
                                 dask_run.SCHEDULER_LOST_S:
-                            raise lost() from None
+                            raise lost(where) from None
                     continue
                 # each future once, and only those not yet fetched
                 ready = list({f.key: f for f in arrived.next_batch(
-                    block=False) if f.key in left}.values())
-                for key, result in _fetch(client, ready, arrived, lost,
-                                          where):
-                    del left[key]
-                    out[index[key]] = result
-                    done += 1
-                    if finished is not None:
-                        finished(index[key], result)
-                    if progress is not None:
-                        progress(1)
-        return out
+                    block=False) if f.key in pending and f.key not in
+                    fetched}.values())
+                fetched.update(_fetch(client, ready, arrived, lost, where,
+                                      what))
+                fetch_at = time.monotonic()
     finally:
-        if left:
+        if pending:
             with dask_run.quiet_dask():
                 try:
-                    client.cancel(list(left.values()))
+                    client.cancel(list(pending.values()))
                 except Exception:    # noqa: BLE001 - a lost scheduler
                     pass
 
 
-def _fetch(client, ready: list, arrived, lost, where: str) -> list:
-    """[(key, result)] of the done futures ``ready``, in one gather (a
-    worker lost holding one: Dask runs it again and the gather waits for
-    it).  A cancelled one (the scheduler forgot it) or a connection lost
-    is ``lost()``; a connection error while the client still holds its
-    scheduler gives them back to ``arrived`` (an as_completed), to be
-    fetched when done again; a task the cluster could not run is one
-    InputError."""
+#: Seconds the loop waits for a result before it looks again for a stop
+#: and for its scheduler.
+LISTEN_S = 0.25
+
+
+def _arrival(arrived, fetch_at):
+    """Wait (LISTEN_S at most) until a result has arrived in ``arrived``
+    (an as_completed: it notifies its ``thread_condition`` at each), and
+    until FETCH_GAP_S after the last fetch ended (``fetch_at``, monotonic
+    seconds, None: none yet): the first result after a pause is fetched
+    at once, those arriving faster together."""
+    condition = getattr(arrived, "thread_condition", None)
+    if condition is None:
+        # an as_completed without it (it is not distributed's documented
+        # API): look again after FETCH_GAP_S, as a poll
+        time.sleep(FETCH_GAP_S)
+    else:
+        with condition:
+            if not arrived.has_ready():
+                condition.wait(LISTEN_S)
+    if fetch_at is not None:
+        time.sleep(max(0.0, fetch_at + FETCH_GAP_S - time.monotonic()))
+
+
+#: A fetched task that failed: its error is raised at its turn.
+_FAILED = object()
+
+
+def _submit(client, function, items, window: int, queue, pending, tags,
+            arrived, ordered) -> bool:
+    """Take items while the window has room, their work one
+    ``client.map``; False once the items are all taken."""
+    new, more = [], True
+    while (len(queue) if ordered else len(pending) + len(new)) < window:
+        try:
+            tag, args = next(items)
+        except StopIteration:
+            more = False
+            break
+        entry = [tag, None]
+        if ordered:
+            queue.append(entry)
+        if args is not None:
+            new.append((entry, args))
+        elif not ordered:
+            raise ValueError("an unordered stream's items all need work")
+    if new:
+        futures = client.map(function, *zip(*(args for _, args in new)),
+                             pure=False)
+        for (entry, _), future in zip(new, futures):
+            entry[1] = future
+            pending[future.key] = future
+            tags[future.key] = entry[0]
+        arrived.update(futures)
+    return more
+
+
+def _next_key(queue, fetched, ordered):
+    """The key of the next result to hand back (False: an ordered item
+    that needed no work), or None while it has not arrived."""
+    if ordered:
+        if queue and queue[0][1] is None:
+            return False
+        if queue and queue[0][1].key in fetched:
+            return queue[0][1].key
+        return None
+    return next(iter(fetched), None)
+
+
+def _hand_back(client, key, queue, pending, tags, fetched, lost, where,
+               what, ordered):
+    """(tag, result) of ``key`` (False: the ordered head that needed no
+    work), taken out of the stream's books; a failed task's error is
+    raised here, at its turn."""
+    if key is False:
+        return queue.popleft()[0], None
+    if ordered:
+        queue.popleft()
+    result = fetched.pop(key)
+    if result is _FAILED:
+        # its error, mapped as any fetch's (the future stays pending:
+        # cancelled on the way out)
+        _gather(client, [pending[key]], lost, where, what)
+        pending[key].result()
+    del pending[key]
+    return tags.pop(key), result
+
+
+def _fetch(client, ready: list, arrived, lost, where: str, what) -> dict:
+    """{key: result} of the done futures ``ready``, those finished in
+    one gather (a worker lost holding one: Dask runs it again and the
+    gather waits for it), those failed _FAILED.  A cancelled one (the
+    scheduler forgot it) or a connection lost is ``lost(where)``; a
+    connection error while the client still holds its scheduler gives
+    them back to ``arrived`` (an as_completed), to be fetched when done
+    again."""
     if any(future.status == "cancelled" for future in ready):
-        raise lost()
+        raise lost(where)
+    failed = {f.key: _FAILED for f in ready if f.status == "error"}
+    ready = [f for f in ready if f.key not in failed]
+    values = _gather(client, ready, lost, where, what) if ready else []
+    if values is None:
+        arrived.update(ready)
+        return failed
+    return {**{f.key: value for f, value in zip(ready, values)}, **failed}
+
+
+def _gather(client, futures: list, lost, where: str, what):
+    """``client.gather(futures)``, None where the connection failed
+    while the client still holds its scheduler; the cluster's own
+    failure to run a task is one InputError."""
     try:
-        values = client.gather(ready)
+        return client.gather(futures)
     except CancelledError:                   # cancelled during the gather
-        raise lost() from None
+        raise lost(where) from None
     except OSError:                          # CommClosedError
         if client.status not in dask_run.CONNECTED:
-            raise lost() from None
-        arrived.update(ready)
-        return []
+            raise lost(where) from None
+        return None
     except (RuntimeError, ImportError, AttributeError, TypeError) as error:
         if isinstance(error, InputError):
             raise
         # the cluster's own failure (another environment on the workers
         # cannot unpickle the task): one line, no trace
-        raise InputError(f"the Dask cluster{where} could not run a "
-                         f"simulation: {one_line(error)}") from None
-    return [(future.key, value) for future, value in zip(ready, values)]
+        raise InputError(f"the Dask cluster{where} could not run "
+                         f"{what}: {one_line(error)}") from None

@@ -29,7 +29,6 @@ import os
 import re
 import socket
 import struct
-import threading
 import time
 
 from contactsep.errors import InputError
@@ -279,20 +278,6 @@ def threads(client) -> int:
         return 1
 
 
-def gather_finished(client, futures) -> dict:
-    """{key: result} of those of ``futures`` that have finished, fetched
-    in one gather (one round trip for many chunks); {} when that fails
-    (a worker lost meanwhile): each is then waited for alone."""
-    ready = [f for f in futures if f.status == "finished"]
-    if not ready:
-        return {}
-    try:
-        values = client.gather(ready)
-    except Exception:        # noqa: BLE001 - left to wait()
-        return {}
-    return {f.key: value for f, value in zip(ready, values)}
-
-
 def scheduler_where(client) -> str:
     """" ADDRESS" of the client's scheduler, for messages ("" unknown)."""
     try:
@@ -311,50 +296,3 @@ def scheduler_lost(where: str, done_designs: int,
                 f"(rerun with --resume to continue)")
     return SchedulerLost(f"the Dask scheduler{where} was lost (its "
                          f"connection closed); {kept}")
-
-
-def wait(client, future, stop, done_designs: int, kept: str | None = None):
-    """A chunk's result, listening for a stop every quarter second and
-    for the scheduler's loss (SchedulerLost: at once when Dask cancels
-    the chunk, or after SCHEDULER_LOST_S without a connection; ``kept``
-    says what the work finished before it became, default "the
-    ``done_designs`` designs finished before it are kept ...").  The
-    wait is on a done-callback, not ``Future.result(timeout=...)``
-    (which distributed 2026.8 can answer with an UnboundLocalError)."""
-    where = scheduler_where(client)
-    lost = scheduler_lost(where, done_designs, kept)
-    ready = threading.Event()
-    future.add_done_callback(lambda _: ready.set())
-    lost_since = None
-    while True:
-        stop.check()
-        if ready.wait(0.25) or future.done():
-            if future.status == "cancelled":     # the scheduler forgot it
-                raise lost
-            try:
-                # a finished chunk's result is fetched: the connection
-                # may be lost then (CommClosedError, an OSError)
-                if future.status in ("finished", "error"):
-                    return future.result()
-            except (RuntimeError, ImportError, AttributeError,
-                    TypeError) as error:
-                if isinstance(error, InputError):
-                    raise
-                # the cluster's own failure (another environment on the
-                # workers cannot unpickle the task): one line, no trace
-                raise InputError(f"the Dask cluster{where} could not run "
-                                 f"a chunk: {one_line(error)}") from None
-            except OSError:                     # CommClosedError
-                if client.status not in CONNECTED:
-                    raise lost from None
-            # a worker holding the result died ("lost"): Dask runs the
-            # chunk again; wait for that
-            ready.clear()
-            future.add_done_callback(lambda _: ready.set())
-            time.sleep(0.05)
-        if client.status not in ("running", "newly-created"):
-            lost_since = lost_since or time.monotonic()
-            if time.monotonic() - lost_since >= SCHEDULER_LOST_S:
-                raise lost
-        else:
-            lost_since = None

@@ -247,32 +247,43 @@ def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
     assert remote == local
 
 
-def test_gather_finished_takes_only_finished_chunks():
-    distributed = pytest.importorskip("distributed")
-    from contactsep.runs import dask_run
-
-    def fail():
+def _fail_at_three(k):
+    if k == 3:
         raise ValueError("a chunk that fails")
+    return 2 ** k
 
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1,
+
+def test_the_dask_stream_hands_back_in_order_and_fails_at_its_turn():
+    """dask_map.stream (the one Dask loop of the sweeps and the
+    batches): ordered, the items that need no work in their place, at
+    most ``window`` ahead; a task that failed raises its own error at
+    its turn, after the results before it (fetched ahead in a batch)."""
+    distributed = pytest.importorskip("distributed")
+    from contactsep.runs import dask_map, dask_run
+
+    def lost(where):
+        return dask_run.scheduler_lost(where, 0)
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1,
                                   processes=False, dashboard_address=None
                                   ) as cluster, \
             distributed.Client(cluster) as client:
-        done = [client.submit(pow, 2, k, pure=False) for k in range(3)]
-        failed = client.submit(fail, pure=False)
-        distributed.wait(done + [failed])
-        event = distributed.Event(client=client)
-        waiting = client.submit(event.wait, pure=False)
-        got = dask_run.gather_finished(client, done + [failed, waiting])
-        assert got == {f.key: 2 ** k for k, f in enumerate(done)}
-        assert dask_run.gather_finished(client, [failed, waiting]) == {}
-        event.set()
-
-        class Lost:              # a client whose gather fails
-            def gather(self, futures):
-                raise OSError("connection closed")
-
-        assert dask_run.gather_finished(Lost(), done) == {}
+        items = [(k, None if k % 4 == 0 else (k,)) for k in range(3, 12)]
+        got = list(dask_map.stream(client, pow, ((k, (2, k)) if w else
+                                                 (k, None)
+                                                 for k, w in items),
+                                   3, lost))
+        assert got == [(k, None if k % 4 == 0 else 2 ** k)
+                       for k in range(3, 12)]
+        seen = []
+        with pytest.raises(ValueError, match="a chunk that fails"):
+            for k, value in dask_map.stream(
+                    client, _fail_at_three, ((k, (k,)) for k in range(8)),
+                    8, lost):
+                seen.append((k, value))
+        assert seen == [(k, 2 ** k) for k in range(3)]
+        out = dask_map.run_tasks(client, abs, [-1, 2, -3], order=[2, 0, 1])
+        assert out == [1, 2, 3]
 
 
 def test_interrupted_sweep_keeps_written_chunks(tmp_path, monkeypatch):

@@ -14,7 +14,7 @@ import time
 from concurrent.futures.process import BrokenProcessPool
 
 from contactsep.errors import InputError
-from contactsep.runs import dask_run
+from contactsep.runs import dask_map, dask_run
 from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
@@ -182,7 +182,8 @@ DASK_WINDOW_PER_WORKER = 4
 def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
                   store):
     """As :func:`results_local`, the chunks on a Dask cluster
-    (contactsep.runs.dask_run).
+    (contactsep.runs.dask_run), through the one Dask loop
+    (:func:`contactsep.runs.dask_map.stream`, in the chunks' order).
 
     The parent's loop is the limit on many workers (measured on 16:
     docs/performance.md): a result fetched alone costs a round trip to
@@ -194,8 +195,6 @@ def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     client = address if hasattr(address, "submit") else connect(address)
     task_mode = "summary" if mode == "summary" else "columns"
     bounds.workers = dask_run.threads(client)
-    pending = {}        # key -> future, submitted and not yet taken
-    fetched = {}        # key -> result, gathered ahead of its turn
     done = 0
     # the spec goes to the workers once, not with every task
     try:
@@ -203,45 +202,34 @@ def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     except Exception:        # noqa: BLE001 - a client without scatter
         shared = spec
 
-    def submit(first, last):
-        future = client.submit(chunk_result_on_dask, shared, first, last,
-                               threshold, task_mode, pure=False)
-        pending[future.key] = future
-        return future
-
-    def take(item):
-        nonlocal done
-        first, last, work = item
-        if isinstance(work, Done):
-            done += last - first
-            return "columns", work.value, last - first
-        if work.key in fetched:
-            value, designs, seconds = fetched.pop(work.key)
-        else:
-            value, designs, seconds = dask_run.wait(client, work, stop,
-                                                    done)
-            fetched.update(dask_run.gather_finished(
-                client, [f for key, f in pending.items()
-                         if key != work.key and key not in fetched]))
-        del pending[work.key]
-        bounds.record(designs, seconds)
-        if store is not None:
-            store.save(first, last, value)
-        done += designs
-        return task_mode, value, designs
+    def chunks():
+        """((first, last, Done or None), the task's args or None)."""
+        for first, last, stored in bounds.plan():
+            if stored:
+                yield (first, last, Done(store.load(first))), None
+            else:
+                yield (first, last, None), (shared, first, last,
+                                            threshold, task_mode)
 
     window = DASK_WINDOW_PER_WORKER * bounds.workers + 2
     if task_mode == "columns":
         # columns wait in the parent until their turn: fewer of them
         window = 2 * bounds.workers + 2
     try:
-        with dask_run.quiet_dask():
-            yield from submit_all(bounds, submit, store, window, take)
+        for (first, last, stored), result in dask_map.stream(
+                client, chunk_result_on_dask, chunks(), window,
+                lambda where: dask_run.scheduler_lost(where, done),
+                stop=stop, what="a chunk"):
+            if stored is not None:
+                done += last - first
+                yield "columns", stored.value, last - first
+                continue
+            value, designs, seconds = result
+            bounds.record(designs, seconds)
+            if store is not None:
+                store.save(first, last, value)
+            done += designs
+            yield task_mode, value, designs
     finally:
-        with dask_run.quiet_dask():
-            try:
-                client.cancel([f for f in pending.values() if not f.done()])
-            except Exception:    # noqa: BLE001 - a lost scheduler
-                pass
-            if client is not address:
-                client.close()
+        if client is not address:
+            client.close()
