@@ -8,6 +8,7 @@ is printed."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 
@@ -28,9 +29,21 @@ def test_the_script_prints_every_configuration_within_its_budget(tmp_path):
         timeout=900)
     assert done.returncode == 0, done.stderr[-2000:]
     rows = [line.split() for line in done.stdout.splitlines()]
-    # the budget's plan before the runs: the smallest sizes bind
-    assert "eq23: " in done.stdout and "100,000 designs fit" in done.stdout
-    assert "16 designs fit" in done.stdout
+    # the budget's plan before the runs: each sweep's size is at least
+    # its smallest (a shorter sweep says nothing of scaling), and above
+    # it no more than its share of the budget (0.4 of 0.05 min) over
+    # one design's time on one worker, shared by the two engines'
+    # configurations at least (which sizes bind depends on the machine)
+    for name, smallest in (("eq23", 100_000), ("hertz", 16)):
+        plan = re.search(rf"^{name}: (\S+) us a design on one worker; "
+                         rf"([\d,]+) designs fit (\d+) s$", done.stdout,
+                         flags=re.M)
+        assert plan, (name, done.stdout[:2000])
+        each_s, size = float(plan.group(1)) * 1e-6, int(
+            plan.group(2).replace(",", ""))
+        assert size >= smallest
+        if size > smallest:
+            assert size <= 0.4 * 60 * 0.05 / (2 * each_s) * 1.01
     for sweep in ("eq23", "hertz"):
         for engine in ("local", "dask"):
             for k in ("1", "2"):
