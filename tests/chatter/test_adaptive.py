@@ -42,7 +42,7 @@ api = pytest.importorskip("contactsep.chatter._chatter").chatter_api
 @pytest.mark.parametrize("n, d, preload, damping, t_end", [
     (4, 0.125, 0.0, "none", 0.06),
     (8, 0.75, 0.0, "flores", 0.06),
-    pytest.param(16, 0.25, 0.0, "none", 0.06, marks=pytest.mark.slow),
+    (16, 0.25, 0.0, "none", 0.06),
     (8, 0.25, 0.1, "none", 0.025),
     (8, 0.5, 0.3, "flores", 0.025)])
 def test_the_adaptive_hertz_stepper_is_the_fixed_step_one(n, d, preload,
@@ -136,7 +136,6 @@ def test_one_hertz_impact_has_the_closed_form_duration_and_peak_force():
     assert first[1] == pytest.approx(2 * mass * speed, rel=1e-4)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(12))
 def test_random_designs_adaptive_against_fixed_step(seed):
     """Random separators (end conditions, d), restitution, release height,

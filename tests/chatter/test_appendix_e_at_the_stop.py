@@ -66,7 +66,6 @@ def test_the_twins_decide_alike_at_the_stop():
     _check_twins(1, 70)
 
 
-@pytest.mark.slow
 def test_the_twins_decide_alike_on_300_starts_at_the_stop():
     _check_twins(2, 300)
 

@@ -75,8 +75,8 @@ def test_appendix_e_never_penetrates_and_rests_with_a_compressive_force():
 
 @pytest.mark.parametrize("n, dt", [
     (1, 1e-7), (2, 1e-7), (4, 1e-7),
-    pytest.param(8, 1e-7, marks=pytest.mark.slow),
-    pytest.param(16, 5e-8, marks=pytest.mark.slow)])
+    (8, 1e-7),
+    (16, 5e-8)])
 def test_moreau_jean_matches_appendix_e_on_the_rigid_stop(n, dt):
     """Moreau-Jean activates the contact in the step whose predicted gap
     g + (dt/2) u closes, i.e. the exact impact t* lies within dt/2 of

@@ -93,7 +93,6 @@ def test_the_issue_s_constant_gives_its_rigid_stop_restitution():
     assert hunt_crossley_e(alpha, 50.8) == pytest.approx(0.28, abs=0.005)
 
 
-@pytest.mark.slow
 def test_the_numpy_twin_rebounds_as_the_closed_form():
     law = HertzLaw.for_materials(E, NU, RADIUS, alpha=0.0676)
     e, closure = free_mass_rebound(law, "numpy", dt=4e-9)
@@ -114,8 +113,7 @@ def thornton_e(law: HertzLaw, mass: float, speed: float) -> float:
             6.0 / 5.0 - r**2 / 5.0))) ** 0.25
 
 
-@pytest.mark.parametrize("how", ["fixed", "adaptive", pytest.param(
-    "numpy", marks=pytest.mark.slow)])
+@pytest.mark.parametrize("how", ["fixed", "adaptive", "numpy"])
 @pytest.mark.parametrize("speed", [0.04, 0.5, 33.9, 200.0])
 def test_thornton_on_a_rigid_stop_is_his_formula(speed, how):
     law = HertzLaw.for_materials(E, NU, RADIUS, yield_pressure=45.0e3)
@@ -180,7 +178,6 @@ LAWS = {"elastic": {},
                      "static_correction": False}}
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("law", list(LAWS))
 @pytest.mark.parametrize("name", list(FAMILY))
 def test_the_energy_book_closes_on_the_family(name, law):

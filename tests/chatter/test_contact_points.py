@@ -128,7 +128,7 @@ def test_a_lower_point_off_x2_agrees_with_the_independent_simulator(seed):
 
 
 @pytest.mark.parametrize("seed", [
-    pytest.param(seed, marks=pytest.mark.slow) if seed != 1 else seed
+    seed
     for seed in STATIC_SEEDS])        # 5-10 s each
 def test_the_cross_flexibility_agrees_with_the_independent_simulator(seed):
     compare(seed, static=True)

@@ -65,7 +65,6 @@ def test_brass_mid_default_run_agrees_with_a_fine_high_n_run():
     agrees("brass_mid", UNSEEN)
 
 
-@pytest.mark.slow
 def test_thesis_offset_default_run_agrees_with_a_fine_high_n_run():
     """The unseen thesis rig with its contact points moved (x2 = 0.8 in,
     x3 = 14.82 in): a 0.3 s window at N = 128 (about 20 s)."""

@@ -67,7 +67,6 @@ def test_the_default_largest_lower_gap_is_within_1_percent(n, d):
         fine.first_impulse_lb_s, rel=1e-4)
 
 
-@pytest.mark.slow
 def test_the_default_gap_is_moreau_jeans_limit():
     """The issue's case, N = 32, d = 0.75 in (its 0.00708 in was the
     fixed-step stepper at 1e-7 s), against the other code at 5e-9 s

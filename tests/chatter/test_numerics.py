@@ -112,7 +112,6 @@ def test_default_runs_keep_their_energy_and_agree_with_an_eighth_step(name):
                                                       rel=0.01), key
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", DESIGNS)
 def test_default_runs_at_n32_keep_their_energy_and_converge(name):
     """The same at N = 32 (the default N), against dt/8 or the smallest
@@ -145,7 +144,6 @@ def test_the_issues_steel_relay_has_no_false_event_at_the_default():
     assert abs(default.energy_ratio - 1) <= 1e-6
 
 
-@pytest.mark.slow
 def test_the_issues_steel_relay_stays_closed_at_a_quarter_step():
     """The convergence check of the answer above (about 20 s: the
     preloaded contact is closed at every step)."""

@@ -184,7 +184,7 @@ def test_a_preloaded_rig_stays_at_rest(name):
 
 
 @pytest.mark.parametrize("steps", [
-    4_000, pytest.param(26_000, marks=pytest.mark.slow)])
+    4_000, 26_000])
 def test_compiled_equals_its_numpy_twin_with_the_correction(steps):
     """hertz.f90 with the series law against steppers.hertz: the same
     operations (the same coordinate descent), rounding apart; preloaded
@@ -261,7 +261,6 @@ CONVERGENCE = [
 ]
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name,dt,t_end,keys", CONVERGENCE,
                          ids=[c[0] for c in CONVERGENCE])
 def test_corrected_n64_is_within_1pct_of_plain_n256(name, dt, t_end, keys):

@@ -65,10 +65,8 @@ def spectral_radius(matrix):
     return float(np.abs(np.linalg.eigvals(matrix)).max())
 
 
-@pytest.mark.parametrize("name", ["thesis_thick", pytest.param(
-    "steel_thick", marks=pytest.mark.slow), pytest.param(
-    "steel_relay", marks=pytest.mark.slow), pytest.param(
-    "brass_mid", marks=pytest.mark.slow)])
+@pytest.mark.parametrize("name", ["thesis_thick", "steel_thick",
+                                  "steel_relay", "brass_mid"])
 def test_the_step_takes_modes_beyond_pi_and_stays_linearly_stable(name):
     """N = 32/64: the design's step lets the highest retained modes turn
     by more than pi a step (no p_max in the bound: 1.6-6.3 rad on
@@ -168,7 +166,6 @@ def test_default_steps_keep_the_energy_at_n32(name):
     _energy_case(name, 32)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("n", [64, 128])
 @pytest.mark.parametrize("name", DESIGNS)
 def test_default_steps_keep_the_energy_at_n64_and_n128(name, n):

@@ -443,7 +443,6 @@ def test_a_lost_scheduler_is_one_line_and_the_work_is_kept(tmp_path):
         (tmp_path / "reference.csv").read_bytes()
 
 
-@pytest.mark.slow
 def test_a_dask_worker_killed_mid_sweep_costs_only_its_chunk():
     distributed = pytest.importorskip("distributed")
     spec = sweep.make_spec(vary=["h2=0.1:0.8:24"], model="hertz",

@@ -69,7 +69,6 @@ def test_compiled_equals_twin_on_1000_random_designs():
     compare(random_designs(1000, seed=11, n_max=12))
 
 
-@pytest.mark.slow
 def test_compiled_equals_twin_on_1000_random_designs_to_n30():
     compare(random_designs(1000, seed=12, n_max=30))
 

@@ -228,7 +228,6 @@ def test_compiled_matches_twin_small(options):
     assert ties <= 3
 
 
-@pytest.mark.slow
 def test_compiled_matches_twin_1000_designs_n_to_30():
     packed = random_packed(1200, seed=2026)
     ties = compare(compiled.evaluate_packed(packed),

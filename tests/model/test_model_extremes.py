@@ -126,7 +126,6 @@ def test_forty_random_designs_both_backends():
     check_against_reference(random_cases(40, seed=1, cap=2e6))
 
 
-@pytest.mark.slow
 def test_five_hundred_random_designs_both_backends():
     """>= 500 designs over every end condition, N 1-120, tau to 1 s."""
     design = random_cases(520, seed=2, cap=5e7)
@@ -186,7 +185,6 @@ def test_the_twin_gives_up_when_its_work_budget_runs_out(monkeypatch):
     assert r.status.tolist() == [status.OK, status.UNRESOLVED]
 
 
-@pytest.mark.slow
 def test_the_compiled_kernel_gives_up_when_its_work_budget_runs_out():
     r = evaluate(thesis_design(tau=1e8))
     assert int(r.status) == status.UNRESOLVED
@@ -299,7 +297,6 @@ def test_the_twins_segments_find_the_same_extremes(monkeypatch):
     assert max(calls) >= 3
 
 
-@pytest.mark.slow
 def test_a_ten_thousand_second_window_against_the_reference():
     """The compiled kernel on 1.6e6 periods of the fastest mode (its
     window searched in segments) against the reference's 2e8-point grid

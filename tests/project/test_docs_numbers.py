@@ -35,7 +35,6 @@ def test_the_page_quotes_the_draw():
     assert designs > 0 and low <= p_open <= high
 
 
-@pytest.mark.slow
 def test_performance_p_open_is_what_the_sweep_gives():
     from contactsep.studies.sweep import run as runner
     from contactsep.studies.sweep import spec as sweep

@@ -277,7 +277,6 @@ def test_wilsons_z_and_the_largest_preload():
     check([limit], [largest_preload(thesis_design(n_modes=DEFAULT_MODES))])
 
 
-@pytest.mark.slow
 def test_the_million_design_tolerance_sweep():
     """The second sweep example's summary (1e6 designs of eq. 23 as
     printed, seed 0): about 10 s on one core."""
@@ -374,7 +373,6 @@ def test_the_convergence_study_converges_but_its_impulse_does_not():
     assert np.all(falls[1:] < 0.6 * falls[:-1]), falls
 
 
-@pytest.mark.slow
 def test_the_convergence_table_beyond_n_50_and_its_limits():
     """The rows N = 100-1600 (eq. 23 as printed, the convergence study's
     design), the falls of max y3, the Richardson limits and the errors
@@ -464,7 +462,6 @@ def test_the_long_window_in_periods():
     check([periods], [float(ev.p3.max()) * 1e4 / (2 * np.pi) / 1e6])
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("field, value, claim", [
     ("tau", 1e8, r"the thesis design at τ = 10⁸ s gives status 4"),
     ("n_modes", 10_000, r"gives status 4, and so does N = 10⁴")])
