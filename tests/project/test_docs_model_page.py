@@ -104,10 +104,9 @@ def test_the_extremes_tests_are_as_described():
     source = (ROOT / "tests" / "model" / "test_model_extremes.py") \
         .read_text()
     default, slow = quoted("model.md", r"within 1e-12 S on (\d+) random "
-                           r"designs in the default run and (\d+) in the "
-                           r"slow set")
+                           r"designs in one test and (\d+) in another")
     assert f"random_cases({default}, seed=1" in source
-    assert re.search(rf"@pytest.mark.slow\s+def \w+\(\):\s+\"\"\"[^\"]*"
+    assert re.search(rf"def \w+\(\):\s+\"\"\"[^\"]*"
                      rf"\"\"\"\s+design = random_cases\({slow}, ", source)
     low, high = quoted("model.md", r"every end condition, contact points, "
                        r"lengths, thicknesses, materials, N (\d+)–(\d+), τ "
