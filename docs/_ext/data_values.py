@@ -12,7 +12,8 @@ The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
     (the comments every CSV the package writes carries) are skipped.
     Or a committed benchmark run, ``../benchmarks/results/NAME.md#K``:
     the K-th Markdown table of the run (benchmark_runs.py; 1 without
-    ``#K``).
+    ``#K``); ``NAME.md~K``: the K-th table it printed as text
+    (printed_tables.py).
 ``COLUMN``
     the column whose value is shown, or an aggregate over the rows the
     filters select: ``max(col)``, ``min(col)``, ``sum(col)`` (NaN cells
@@ -203,6 +204,19 @@ def _rows(base: Path, datum: Datum) -> tuple[list[str], list[dict]]:
     """The header and rows ``datum.file`` names: a CSV, or the K-th
     table of a committed benchmark run, ``NAME.md#K``
     (benchmark_runs.py)."""
+    if "~" in datum.file:           # a table the run printed as text
+        file, _, table = datum.file.partition("~")
+        if not file.endswith(".md"):
+            raise DatumError(f"{datum.where()}: ~K selects a printed table "
+                             "of a benchmark run (.md), not of a CSV")
+        try:
+            number = int(table)
+        except ValueError:
+            raise DatumError(f"{datum.where()}: ~{table} is not a table "
+                             "number") from None
+        import printed_tables
+        return printed_tables.table_rows(base / file, number,
+                                         datum.where())
     file, hash_, table = datum.file.partition("#")
     if not file.endswith(".md"):
         if hash_:
