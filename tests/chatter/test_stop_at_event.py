@@ -81,7 +81,7 @@ def test_on_the_family_a_stopped_run_answers_as_the_full_one(
     assert math.isnan(full.stopped_s)
     _same_up_to_the_stop(stopped, full)
     assert stopped.work["fixed_steps"] < full.work["fixed_steps"]
-    if name == "steel_relay":       # docs/chatter.md: 737,000 -> 25,000
+    if name == "steel_relay":       # docs/preload.md: 737,000 -> 25,000
         assert 20 * stopped.work["fixed_steps"] < full.work["fixed_steps"]
 
     full = _run(name, without, t_end)

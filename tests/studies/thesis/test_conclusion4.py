@@ -71,7 +71,8 @@ def test_the_first_mode_s_energy_is_within_the_upper_member_s():
 
 @pytest.mark.slow
 def test_e_apparent_converges_in_n():
-    # docs/chatter.md's convergence rows: N = 16 and 32 within 0.02
+    # docs/circuit-opening.md, Conclusion 4, its convergence rows:
+    # N = 16 and 32 within 0.02
     design16 = thesis_study_design(d=0.25, ys=0.5, n_modes=16)
     design32 = design16.replace(n_modes=32)
     for law in restitution.LAWS:

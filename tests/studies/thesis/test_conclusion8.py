@@ -113,7 +113,8 @@ def test_the_command_writes_the_study(tmp_path, capsys):
 def test_the_study_is_converged_in_n():
     """The share to 1e-4; the swings' count is a step function of x3
     whose steps move by at most one grid point (0.01 L3) from N to 2N
-    (docs/chatter.md: at x3/L3 = 0.67, 1 at N = 32 and 2 at N = 64)."""
+    (docs/studies.md, Conclusion 8: at x3/L3 = 0.67, 1 at N = 32 and 2
+    at N = 64)."""
     coarse = c8.conclusion8()
     fine = c8.conclusion8(n_modes=2 * c8.MODES)
     np.testing.assert_allclose(coarse["first_mode_share"],

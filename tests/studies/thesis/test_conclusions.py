@@ -59,7 +59,7 @@ def test_each_row_is_eq23_and_simulate_and_holds_3_percent(name):
                        for note in study.notes)
             continue
         # 3 % above: closed (3 % below is often closed too at N = 4,
-        # where "closed" is far from monotone: docs/chatter.md)
+        # where "closed" is far from monotone: docs/preload-family.md)
         above = simulate(design, model="hertz", damping=damping,
                          preload=1.03 * answer, samples=1,
                          single_impulse=False, **THESIS)
