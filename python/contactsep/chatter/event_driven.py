@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from contactsep.chatter import circuit
+from contactsep.chatter.event_driven_compiled import constrained_basis
 from contactsep.chatter.result import ChatterResult
 from contactsep.chatter.rigid_stop import ZENO_SPEED, RigidStopResult, _flow
 from contactsep.constants import LISTING_TAU_S
@@ -219,7 +220,7 @@ class _StopRun:
         rest."""
         x, p, mass, sx = self.x, self.p, self.mass, self.sx
         self.v = self.v - x * float(self.v @ x) / sx
-        basis = _constrained_basis(p, x, sx)
+        basis = constrained_basis(p, x)
         self.q = self.q - x * float(self.q @ x) / sx
         self.segments.append((self.t, "rest", self.q.copy(), self.v.copy(),
                               basis))
@@ -264,18 +265,6 @@ def _free_gap(q_base, v_base, p, x):
         return float(_flow("free", q_base, v_base, p, None, tau)[1] @ x)
 
     return y, yd
-
-
-def _constrained_basis(p, x, sx):
-    """The modes of the propped system (the contact point held at the
-    stop): (vectors, omega), the constrained direction X at omega = 0."""
-    projector = np.eye(p.size) - np.outer(x, x) / sx
-    stiff = projector @ np.diag(p**2) @ projector
-    omega2, vectors = np.linalg.eigh(0.5 * (stiff + stiff.T))
-    omega = np.sqrt(np.clip(omega2, 0.0, None))
-    # the constrained direction X itself does not move
-    omega[np.argmax(np.abs(vectors.T @ x))] = 0.0
-    return vectors, omega
 
 
 def _rest_force(qr, vr, p, basis, kx, mass, sx):
