@@ -15,8 +15,6 @@ PACKAGE = ROOT / "python" / "contactsep"
 MAX_BODY_LINES = 80
 #: The words a docstring gives its reason with.
 REASON = "Long because"
-#: Functions not yet split ("module:function"): none is left.
-PENDING: frozenset[str] = frozenset()
 
 
 def body_lines(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
@@ -49,15 +47,7 @@ def long_functions(package: Path, most: int = MAX_BODY_LINES) -> dict:
 
 
 def test_no_function_is_long_without_a_reason():
-    found = long_functions(PACKAGE)
-    assert set(found) - PENDING == set(), found
-
-
-def test_every_pending_function_is_still_long():
-    """A pending entry leaves the list as soon as its function is split:
-    the list cannot hide a new long function behind an old name."""
-    found = long_functions(PACKAGE)
-    assert PENDING - set(found) == set()
+    assert long_functions(PACKAGE) == {}
 
 
 def test_the_checker_sees_a_long_function_and_its_reason(tmp_path):
