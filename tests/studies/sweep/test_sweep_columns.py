@@ -53,3 +53,20 @@ def test_every_column_equals_evaluate_of_its_design(workers):
     for column, field in RESULTS.items():
         np.testing.assert_array_equal(t[column], getattr(ev, field),
                                       err_msg=column)
+
+
+def test_a_short_separator_sweeps_its_own_thickness():
+    """The fixed fields are checked with the swept ones at a value the
+    sweep takes: a separator 0.236 in long sampled around 0.0315 in
+    thick is a sweep (it was refused for the thesis's d = 0.25 in, which
+    no design of it has), and one sampled around 0.3 in is refused."""
+    from contactsep.studies.sweep.spec import SweepError, make_spec
+    spec = make_spec(sample=["d=normal(0.0315,0.0008)"], samples=3,
+                     base={"L2": 0.236}, model="hertz")
+    assert spec.size == 3
+    spec = make_spec(vary=["d=0.03,0.04"], base={"L2": 0.236})
+    assert spec.size == 2
+    with pytest.raises(SweepError, match="h2: found 0.3, expected at most "
+                                         "L2 = 0.236 in"):
+        make_spec(sample=["d=uniform(0.25,0.35)"], samples=3,
+                  base={"L2": 0.236})

@@ -33,12 +33,16 @@ class SweepError(InputError):
     """A sweep specification the command refuses."""
 
 
-def check_fixed(base, settings) -> tuple[dict, dict]:
+def check_fixed(base, settings, centres=None) -> tuple[dict, dict]:
     """The fixed design fields (``base``: field or alias -> value) and
     chatter settings, each read as the command line reads it: an unknown
     name, a value of the wrong type or out of range is one line naming
     it (issue 31: {"bogus": 1} was a KeyError, {"dt": nan} ran no
-    design, {"dt": "abc"} a TypeError).  Returns them by field name."""
+    design, {"dt": "abc"} a TypeError).  The fixed fields are checked as
+    one design with the swept fields at ``centres`` (field -> a value
+    the sweep takes), not at the thesis's values: a relay 6 mm long
+    sweeping its thickness around 0.8 mm is not refused for the
+    thesis's 0.25 in.  Returns them by field name."""
     if base is not None and not isinstance(base, dict):
         raise SweepError(f"base: found {type(base).__name__}, expected a "
                          f"dict of design fields")
@@ -46,14 +50,14 @@ def check_fixed(base, settings) -> tuple[dict, dict]:
         raise SweepError(f"settings: found {type(settings).__name__}, "
                          f"expected a dict of chatter settings")
     try:
-        return _fixed(base, settings)
+        return _fixed(base, settings, centres or {})
     except SweepError:
         raise
     except InputError as error:
         raise SweepError(str(error)) from None
 
 
-def _fixed(base, settings) -> tuple[dict, dict]:
+def _fixed(base, settings, centres: dict) -> tuple[dict, dict]:
     fields = {}
     for name, value in (base or {}).items():
         if isinstance(value, np.generic):
@@ -63,7 +67,7 @@ def _fixed(base, settings) -> tuple[dict, dict]:
                                                   f"base: {name}")
     if fields:
         try:
-            thesis_design(**fields)
+            thesis_design(**{**centres, **fields})
         except InputError as error:
             raise SweepError(f"base: {error}") from None
     chosen = {}

@@ -300,6 +300,21 @@ def count_failures(failed: dict, status) -> np.ndarray:
     return ok
 
 
+def _centres(vary, sample) -> dict:
+    """A value each swept design field takes (a --vary axis's first, a
+    --sample's mean or midpoint), to check the fixed fields with."""
+    out = {}
+    for name, values in vary:
+        values = [values.start] if isinstance(values, LinearAxis) \
+            else np.asarray(values).ravel().tolist()
+        if name in design_fields.FIELDS and values:
+            out[name] = values[0]
+    for name, kind, a, b in sample:
+        if name in design_fields.FIELDS:
+            out[name] = a if kind == "normal" else 0.5 * (a + b)
+    return out
+
+
 def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
               backend="compiled", model="eq23", settings=None) -> SweepSpec:
     """A SweepSpec from --vary / --sample texts (or parsed tuples);
@@ -316,7 +331,8 @@ def make_spec(vary=(), sample=(), samples=None, seed=0, base=None,
         raise SweepError("--sample: a field is sampled twice")
     if set(names) & {s[0] for s in sample}:
         raise SweepError("a field cannot be both varied and sampled")
-    base, settings = check_fixed(base, settings)
+    base, settings = check_fixed(base, settings,
+                                 _centres(vary, sample))
     fixed = (set(base) | set(settings)) & (set(names)
                                            | {s[0] for s in sample})
     if fixed:
