@@ -25,7 +25,7 @@ are imported on first use, so the pure-Python parts (cards, beam
 functions, the NumPy reference) import without them.
 """
 
-import importlib
+import importlib as _importlib
 
 from contactsep.errors import ContactsepWarning, DeckError, InputError
 from contactsep.restored.core import replay, solve
@@ -50,13 +50,13 @@ __all__ = ["ContactsepWarning", "DataSet", "DeckError", "InputError",
 
 def __getattr__(name: str):
     if name in _MODEL_NAMES:
-        return getattr(importlib.import_module("contactsep.model"), name)
+        return getattr(_importlib.import_module("contactsep.model"), name)
     if name in _LAZY_NAMES:
-        return getattr(importlib.import_module(_LAZY_NAMES[name]), name)
+        return getattr(_importlib.import_module(_LAZY_NAMES[name]), name)
     if name == "modes":
-        return importlib.import_module("contactsep.model.member_modes").modes
+        return _importlib.import_module("contactsep.model.member_modes").modes
     if name in _LAYERS:
-        return importlib.import_module(f"contactsep.{name}")
+        return _importlib.import_module(f"contactsep.{name}")
     raise AttributeError(f"module 'contactsep' has no attribute {name!r}")
 
 
