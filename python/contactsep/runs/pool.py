@@ -14,11 +14,14 @@ task cannot arrive.
 
 from __future__ import annotations
 
+import collections
 import functools
 import os
 import signal
-from concurrent.futures import Future, ProcessPoolExecutor, as_completed
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import wait as wait_done
 from concurrent.futures.process import BrokenProcessPool
+from queue import Empty, SimpleQueue
 
 from contactsep import output
 from contactsep.errors import InputError
@@ -62,8 +65,8 @@ def stop_pool(pool: ProcessPoolExecutor, finished: bool = True,
     """Shut ``pool`` down; ``finished`` False (stopped early: a signal, a
     failed task): kill its workers first, the tasks still running being
     dropped (a design may take a minute).  The futures another caller
-    cancelled (``Executor.map`` cancels the rest when its caller is
-    interrupted) are given stand-ins first: the pool's manager thread
+    cancelled (:func:`stream` cancels the rest when it ends early) are
+    given stand-ins first: the pool's manager thread
     would mark them failed and print an ``InvalidStateError`` traceback
     (CPython 3.11's ``terminate_broken``); for the same reason the
     shutdown cancels nothing itself: the killed pool fails the rest."""
@@ -84,45 +87,31 @@ def stop_pool(pool: ProcessPoolExecutor, finished: bool = True,
 
 def map_longest_first(pool, function, tasks: list, cost=None,
                       done=None, finished=None) -> list:
-    """``function(task)`` for every task on ``pool``, the results in the
-    tasks' order; the tasks are handed out one at a time, the costliest
-    first (``cost(task)``, a number; None: in order), so that a batch
-    ends with short tasks on every worker instead of one long task on
-    one worker while the others wait (longest processing time first);
-    ``done(1)`` is called as each task ends (a progress bar), and
-    ``finished(index, result)`` in this thread as each task's result
-    arrives (a journal that keeps it)."""
+    """``function(task)`` for every task on ``pool`` (a
+    :class:`RestartingPool`), the results in the tasks' order: the
+    :func:`stream` over the whole batch, the tasks handed out the
+    costliest first (``cost(task)``, a number; None: in order), so that
+    a batch ends with short tasks on every worker instead of one long
+    task on one worker while the others wait (longest processing time
+    first), their results taken as they arrive; ``finished(index,
+    result)`` and then ``done(1)`` (a journal that keeps it, a progress
+    bar) are called in this thread as each result arrives."""
     order = list(range(len(tasks)))
     if cost is not None:
         order.sort(key=lambda i: -cost(tasks[i]))
-    futures = {i: pool.submit(function, tasks[i]) for i in order}
-    if done is not None:
-        # a task that failed (its pool broken: RestartingPool.map runs
-        # it again) is not done
-        for future in futures.values():
-            future.add_done_callback(
-                lambda f: f.cancelled() or f.exception() is not None
-                or done(1))
+    out = [None] * len(tasks)
+    work = stream(pool, function, ((i, (tasks[i],)) for i in order),
+                  len(order), ordered=False)
     try:
-        if finished is not None:
-            index = {future: i for i, future in futures.items()}
-            broken = None
-            for future in as_completed(index):
-                try:
-                    result = future.result()
-                except BrokenProcessPool as error:
-                    # every task left fails at once: the results that
-                    # arrived are still handed on, then the pool's error
-                    broken = broken or error
-                    continue
-                finished(index[future], result)
-            if broken is not None:
-                raise broken
-        return [futures[i].result() for i in range(len(tasks))]
-    except BaseException:
-        for future in futures.values():
-            future.cancel()
-        raise
+        for i, result in work:
+            out[i] = result
+            if finished is not None:
+                finished(i, result)
+            if done is not None:
+                done(1)
+    finally:
+        work.close()        # what is left cancelled before the pool stops
+    return out
 
 
 #: Times a local pool is started again after a worker died.
@@ -141,17 +130,20 @@ class RestartingPool:
     does not end: the pool it broke is stopped and a new one started
     (MAX_POOL_RESTARTS times at most: a task that kills its worker each
     time, as the OOM killer would, then raises BrokenProcessPool), and
-    the tasks in flight are run again there (the same bits: a task's
-    result does not depend on where it runs).  The one local backend of
-    the sweeps' chunks (:meth:`submit`, :meth:`result`) and of the
-    preload searches' batches (:meth:`map`).  ``make(workers)``: a new
-    pool (looked up by the caller, so that a test may plant one)."""
+    the tasks in flight are run again there by the one local loop,
+    :func:`stream` (the same bits: a task's result does not depend on
+    where it runs): the one local backend of the sweeps' chunks and of
+    the preload searches' batches (:func:`map_longest_first`).
+    ``make(workers)``: a new pool (looked up by the caller, so that a
+    test may plant one)."""
 
     def __init__(self, workers: int, make=None) -> None:
         self.workers = workers
         self._make = make or worker_pool
         #: The pools started, the last one in use.
         self.pools = [self._make(workers)]
+        #: Whether a task was submitted (the processes start with it).
+        self.started = False
 
     @property
     def pool(self):
@@ -179,54 +171,130 @@ class RestartingPool:
                     stop.check()
                 self.restart(len(self.pools))
         future.pool = len(self.pools)
+        self.started = True
         return future
-
-    def result(self, future, again, stop):
-        """The result of ``future`` (waited for between ``stop``'s
-        checks); a worker killed meanwhile (its pool broken) costs the
-        tasks in flight: ``again()`` submits this one on a new pool."""
-        from contactsep.runs.stops import wait_for
-        while True:
-            try:
-                return wait_for(future, stop)
-            except BrokenProcessPool:
-                stop.check()   # a SIGTERM to the group: workers went first
-                self.restart(future.pool)
-                future = again()
-
-    def map(self, mapper, function, tasks: list, finished=None,
-            **options) -> list:
-        """``mapper(pool, function, tasks, finished=..., **options)``
-        (:func:`map_longest_first`) on the pool in use, the results in
-        the tasks' order; a worker killed meanwhile: the tasks whose
-        results had not arrived go again to a new pool.  ``finished
-        (index, result)`` as each result arrives.  Workers that died
-        too often: :func:`died_too_often`."""
-        out, todo = [None] * len(tasks), list(range(len(tasks)))
-        while True:
-            arrived = set()
-
-            def kept(j, result, todo=todo, arrived=arrived):
-                out[todo[j]] = result
-                arrived.add(j)
-                if finished is not None:
-                    finished(todo[j], result)
-            broken = len(self.pools)
-            try:
-                results = mapper(self.pool, function,
-                                 [tasks[i] for i in todo], finished=kept,
-                                 **options)
-            except BrokenProcessPool:
-                try:
-                    self.restart(broken)
-                except BrokenProcessPool:
-                    raise died_too_often() from None
-                todo = [i for j, i in enumerate(todo) if j not in arrived]
-                continue
-            for i, result in zip(todo, results):
-                out[i] = result
-            return out
 
     def stop(self, finished: bool = True, wait: bool = True) -> None:
         """:func:`stop_pool` of the pool in use."""
         stop_pool(self.pools[-1], finished, wait=wait)
+
+
+#: Seconds the local loop waits for a result before it looks again for
+#: a stop (the Dask loop's LISTEN_S).
+LISTEN_S = 0.25
+
+
+def _submitted(pool, function, args, stop, advice):
+    """``function(*args)`` on ``pool`` (:meth:`RestartingPool.submit`);
+    a pool that broke too often: :func:`died_too_often`."""
+    try:
+        return pool.submit(function, *args, stop=stop)
+    except BrokenProcessPool:
+        raise died_too_often(advice) from None
+
+
+def stream(pool, function, items, window: int, ordered=True, stop=None,
+           advice=""):
+    """The one loop of work on local worker processes (``pool`` a
+    :class:`RestartingPool`), the contract of the Dask loop
+    (:func:`contactsep.runs.dask_map.stream`): ``function(*args)`` for
+    each ``(tag, args)`` of ``items``, at most ``window`` of them ahead
+    of those handed back, and (tag, result) of each: in the items' order
+    (``ordered``; an item whose args are None needs no work: (tag, None)
+    in its place) or as they arrive.
+
+    The items are taken only as the window has room (a sweep's chunks
+    are sized by the ones before).  ``stop.check()`` (a
+    :class:`~contactsep.runs.stops.StopRequests`) is called before each
+    wait of LISTEN_S at most, before a dead worker's pool is started
+    again and before a failed task's error is raised.  A worker that
+    died (its pool broken) costs the tasks in flight whose results had
+    not arrived: they go again to a new pool (the same bits: a task's
+    result does not depend on where it runs); workers that died too
+    often: :func:`died_too_often` (``advice``).  What is left is
+    cancelled when the stream ends early."""
+    items = iter(items)
+    queue = collections.deque()   # [tag, args, future], ordered only
+    pending = {}                  # future -> its entry, not handed back
+    arrived = SimpleQueue()       # futures as they end, unordered only
+    more = True
+    try:
+        while True:
+            if stop is not None:
+                stop.check()
+            while more and (len(queue) if ordered else len(pending)) \
+                    < window:
+                try:
+                    tag, args = next(items)
+                except StopIteration:
+                    more = False
+                    break
+                entry = [tag, args, None]
+                if args is not None:
+                    entry[2] = _submitted(pool, function, args, stop,
+                                          advice)
+                    pending[entry[2]] = entry
+                    if not ordered:
+                        entry[2].add_done_callback(arrived.put)
+                elif not ordered:
+                    raise ValueError("an unordered stream's items all "
+                                     "need work")
+                if ordered:
+                    queue.append(entry)
+            if ordered:
+                if not queue:
+                    return
+                if queue[0][2] is None:
+                    yield queue.popleft()[0], None
+                    continue
+                future = queue[0][2]
+                if not wait_done([future], timeout=LISTEN_S).done:
+                    continue
+            else:
+                if not pending:
+                    return
+                try:
+                    future = arrived.get(timeout=LISTEN_S)
+                except Empty:
+                    continue
+                if future not in pending:
+                    continue      # one a broken pool failed: sent again
+            error = future.exception()
+            if isinstance(error, BrokenProcessPool):
+                _again(pool, function, pending, future.pool, stop, advice,
+                       None if ordered else arrived)
+                continue
+            if error is not None:
+                if stop is not None:
+                    stop.check()  # failed because the same Ctrl-C ended it
+                future.result()
+            entry = pending.pop(future)
+            if ordered:
+                queue.popleft()
+            yield entry[0], future.result()
+    finally:
+        for future in pending:
+            future.cancel()
+
+
+def _again(pool, function, pending, broken: int, stop, advice, arrived):
+    """Pool number ``broken`` lost a worker: a new pool (``stop.check()``
+    first: a SIGTERM to the group, the workers went first) and every
+    task of ``pending`` it held whose result had not arrived sent to it
+    (``arrived``: told as they end, or None)."""
+    if stop is not None:
+        stop.check()
+    try:
+        pool.restart(broken)
+    except BrokenProcessPool:
+        raise died_too_often(advice) from None
+    for future, entry in list(pending.items()):
+        if future.pool != broken or (future.done() and not
+                                     future.cancelled() and
+                                     future.exception() is None):
+            continue
+        del pending[future]
+        entry[2] = _submitted(pool, function, entry[1], stop, advice)
+        pending[entry[2]] = entry
+        if arrived is not None:
+            entry[2].add_done_callback(arrived.put)

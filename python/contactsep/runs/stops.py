@@ -128,16 +128,3 @@ class StopRequests:
             signal.signal(signum, previous)
         self._previous = {}
 
-
-def wait_for(future, stop: StopRequests):
-    """A chunk's columns, listening for a stop every quarter second (a
-    chunk that failed because the same Ctrl-C ended it: the stop)."""
-    while True:
-        stop.check()
-        try:
-            return future.result(timeout=0.25)
-        except TimeoutError:
-            continue
-        except BaseException:
-            stop.check()
-            raise

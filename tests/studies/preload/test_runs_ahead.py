@@ -63,7 +63,7 @@ def plant(setattr) -> list:
         return pools[-1]
 
     def batch(pool, *args, **kwargs):
-        pool.batches.append([])
+        pool.pool.batches.append([])      # the RestartingPool's pool
         return real(pool, *args, **kwargs)
     setattr(preload, "worker_pool", pool)
     setattr(preload, "map_longest_first", batch)

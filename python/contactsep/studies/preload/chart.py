@@ -186,9 +186,8 @@ class Simulations:
                     self.progress(1)
             return out
         # the preloaded runs first (slower: fixed steps while pressed)
-        return self._pool.map(map_longest_first, function, tasks,
-                              cost=cost, done=self.progress,
-                              finished=finished)
+        return map_longest_first(self._pool, function, tasks, cost=cost,
+                                 done=self.progress, finished=finished)
 
     def _kept(self, done: int) -> str:
         """What a lost scheduler's line says of the finished runs."""

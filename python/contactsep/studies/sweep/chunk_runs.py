@@ -6,19 +6,17 @@ drives them and streams the results to its writers.
 
 from __future__ import annotations
 
-import collections
 import os
 import shutil
 import tempfile
 import time
-from concurrent.futures.process import BrokenProcessPool
 
 from contactsep.errors import InputError
 from contactsep.runs import dask_map, dask_run
 from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.dask_run import connect
-from contactsep.runs.pool import RestartingPool, died_too_often
+from contactsep.runs.pool import RestartingPool, stream
 from contactsep.runs.journal import chunk_file, load_columns, save_columns
 from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
@@ -77,21 +75,15 @@ class Done:
         self.value = value
 
 
-def submit_all(bounds: Chunks, submit, store, window_size, take):
-    """Submit each chunk the store lacks (``submit(first, last)``, a
-    future), ``window_size`` at most in flight, and yield
-    ``take(item)`` of each chunk in order."""
-    window = collections.deque()
+def planned(bounds: Chunks, store, args):
+    """A sweep stream's items (a local or Dask ``stream``'s): ((first,
+    last, Done or None), ``args(first, last)`` or None) of each chunk
+    in order, a chunk the store holds loaded as it is taken."""
     for first, last, stored in bounds.plan():
         if stored:
-            window.append((first, last, Done(store.load(first))))
+            yield (first, last, Done(store.load(first))), None
         else:
-            window.append((first, last, submit(first, last)))
-        while len(window) >= window_size or (
-                window and isinstance(window[0][2], Done)):
-            yield take(window.popleft())
-    while window:
-        yield take(window.popleft())
+            yield (first, last, None), args(first, last)
 
 
 def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
@@ -120,44 +112,31 @@ def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
                                      dir=shared)
     pool = RestartingPool(workers)
-    finished = started = False
+    finished = False
     task_mode = "summary" if mode == "summary" else "file"
-
-    def submit(first, last):
-        nonlocal started
-        future = pool.submit(chunk_result, spec, first, last, threshold,
-                             task_mode, directory, stop=stop)
-        started = True
-        return future
-
-    def result(first, last, work):
-        """A chunk's result; a worker killed meanwhile (its pool broken)
-        costs the chunks in flight, run again on a new pool."""
-        return pool.result(work, lambda: submit(first, last), stop)
-
-    def take(item):
-        first, last, work = item
-        if isinstance(work, Done):
-            return "columns", work.value, last - first
-        value, designs, seconds = result(first, last, work)
-        bounds.record(designs, seconds)
-        if task_mode == "summary":
-            return "summary", value, designs
-        columns = load_columns(value)
-        if store is None:
-            os.unlink(value)
-        else:
-            store.chunks[first] = last
-        return "columns", columns, designs
-
+    chunks = planned(bounds, store, lambda first, last: (
+        spec, first, last, threshold, task_mode, directory))
+    work = stream(pool, chunk_result, chunks, 2 * workers, stop=stop,
+                  advice=": try a smaller --chunk-size")
     try:
-        yield from submit_all(bounds, submit, store, 2 * workers, take)
+        for (first, last, stored), result in work:
+            if stored is not None:
+                yield "columns", stored.value, last - first
+                continue
+            value, designs, seconds = result
+            bounds.record(designs, seconds)
+            if task_mode == "summary":
+                yield "summary", value, designs
+                continue
+            columns = load_columns(value)
+            if store is None:
+                os.unlink(value)
+            else:
+                store.chunks[first] = last
+            yield "columns", columns, designs
         finished = True
-    except BrokenProcessPool:
-        stop.check()   # a SIGTERM to the whole group: the workers went first
-        raise died_too_often(": try a smaller --chunk-size") from None
     except OSError as error:
-        if started:
+        if pool.started:
             raise
         # the pool starts its processes at the first chunk: one that
         # could not start (a process limit) left the others waiting for
@@ -170,7 +149,8 @@ def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
         # pool that could not start): the chunks still running are
         # dropped, so their workers are stopped now rather than waited
         # for (a design may take seconds)
-        pool.stop(finished, wait=started)
+        work.close()
+        pool.stop(finished, wait=pool.started)
         if store is None:
             shutil.rmtree(directory, ignore_errors=True)
 
@@ -202,22 +182,15 @@ def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
     except Exception:        # noqa: BLE001 - a client without scatter
         shared = spec
 
-    def chunks():
-        """((first, last, Done or None), the task's args or None)."""
-        for first, last, stored in bounds.plan():
-            if stored:
-                yield (first, last, Done(store.load(first))), None
-            else:
-                yield (first, last, None), (shared, first, last,
-                                            threshold, task_mode)
-
+    chunks = planned(bounds, store, lambda first, last: (
+        shared, first, last, threshold, task_mode))
     window = DASK_WINDOW_PER_WORKER * bounds.workers + 2
     if task_mode == "columns":
         # columns wait in the parent until their turn: fewer of them
         window = 2 * bounds.workers + 2
     try:
         for (first, last, stored), result in dask_map.stream(
-                client, chunk_result_on_dask, chunks(), window,
+                client, chunk_result_on_dask, chunks, window,
                 lambda where: dask_run.scheduler_lost(where, done),
                 stop=stop, what="a chunk"):
             if stored is not None:
