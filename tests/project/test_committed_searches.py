@@ -217,3 +217,17 @@ def test_the_conclusion_s_rows_are_its_deciding_runs(name):
                                 ("circuit_open_s", r.circuit_open_s)):
         assert float(row[column_name_]) == pytest.approx(value, rel=1e-9,
                                                          abs=1e-15)
+
+
+def test_a_planted_answer_is_refused():
+    """The check can fail: the thesis row's answer moved one step of the
+    bisection down (to the run with an event) is refused."""
+    from contactsep.studies.study import thesis_study_design
+    notes, _, rows = read("preload")
+    (row,) = [r for r in rows if (r["d_in"], r["ys_in"]) == ("0.25", "0.5")]
+    planted = {**row, "min_preload_lb": repr(below(float(
+        row["min_preload_lb"])))}
+    design = thesis_study_design(d=0.25, ys=0.5, n_modes=32)
+    with pytest.raises(AssertionError):
+        decide(design, planted, notes, "d = 0.25 in, y_s = 0.5 in", 5e-8,
+               "none")
