@@ -15,7 +15,7 @@ blocks and the two committed CSVs the slow steps write
 (``docs/studies/tutorial_preload.csv``: ``contactsep preload --csv``'s
 file, every simulation of the search; ``docs/studies/tutorial_tolerance.csv``:
 the tolerance study's builds); ``tests/project/test_tutorial.py`` holds
-them equal to the code.
+the page to them and simulates again the runs that decide them.
 """
 
 from __future__ import annotations

@@ -19,10 +19,25 @@ from conftest import ROOT
 
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
          *sorted((ROOT / "docs" / "howto").glob("*.md"))]
-#: Commands checked for syntax only: installing, measuring, and the
-#: robust preload search at 381 samples, shown with its cost (hours).
+#: Commands checked for syntax only: installing, measuring, the
+#: robust preload search at 381 samples, shown with its cost (hours),
+#: and the commands that only regenerate a committed preload search
+#: (docs/studies/preload.csv and preload_physical.csv, minutes of
+#: thousands of simulations): tests/project/test_committed_searches.py
+#: simulates again the runs that decide each row of them, checks their
+#: '#' lines and columns, and that their page names these commands;
+#: so do the tutorial's two slow steps, whose files are committed as
+#: docs/studies/tutorial_preload.csv and tutorial_tolerance.csv
+#: (tests/project/test_tutorial.py; here they read the my_relay.json
+#: of the page's set-up, which the slow set alone never wrote).
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/",
-             "--samples 381")
+             "--samples 381",
+             "study preload --converge --csv docs/studies/preload.csv",
+             "study preload --separator physical --csv "
+             "docs/studies/preload_physical.csv",
+             "study preload --converge --out docs/studies",
+             "--design my_relay.json --csv tutorial_preload.csv",
+             "--samples 100 --seed 1 --csv tolerance.csv")
 #: Commands run only in the slow set (a minute or a large file).
 SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
         "tolerance.csv", "study conclusion", "--preload 20",
