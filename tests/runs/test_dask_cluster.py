@@ -55,13 +55,18 @@ def test_a_robust_preload_on_the_cluster_is_the_local_pools(deployment):
     assert remote.csv_text() == local.csv_text()
     assert remote.robust is not None and len(remote.robust.tested) > 2
     ran = {task["key"]: task["worker"] for task in stream.data
-           if str(task["key"]).startswith("on_worker")}
+           if str(task["key"]).startswith("run_pack")}
     # the nominal search's runs, then K a preload the robust one tried,
     # and the runs made ahead for idle workers that were never asked for
     asked = remote.simulations + ROBUST["samples"] * len(
         remote.robust.tested)
     made, used = remote.timing["ahead"]
-    assert len(ran) == asked + made - used and asked > 50
+    # one task a pack of runs (runs/dask_packs.py: one run a pack until
+    # a run is timed, then packs of MIN_PACK_S or more of runs of a few
+    # ms): at most one task a run, and fewer once the runs are packed
+    # (their exact count follows the runs' times); the packing's own
+    # counts: tests/runs/test_dask_packs.py
+    assert asked > 50 and 10 <= len(ran) <= asked + made - used
     assert len(set(ran.values())) == 2
 
 

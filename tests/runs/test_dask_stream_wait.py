@@ -52,3 +52,23 @@ def test_with_the_condition_and_nothing_arriving_it_listens_its_limit():
     start = time.monotonic()
     dask_map._arrival(_Arrivals(), None)
     assert time.monotonic() - start >= dask_map.LISTEN_S * 0.9
+
+
+def test_the_fetch_gap_is_waited_only_while_tasks_are_in_flight(
+        monkeypatch):
+    """After a fetch, the next waits FETCH_GAP_S (results arriving fast
+    come in one gather) while some task is still in flight; once every
+    task has arrived (as_completed's ``futures`` empty) it fetches at
+    once: a batch's last result is not held back."""
+    monkeypatch.setattr(dask_map, "FETCH_GAP_S", 5.0)
+    arrivals = _Arrivals()
+    arrivals.ready = True
+    arrivals.futures = {}
+    start = time.monotonic()
+    dask_map._arrival(arrivals, time.monotonic())
+    assert time.monotonic() - start < 2.0
+    monkeypatch.setattr(dask_map, "FETCH_GAP_S", 0.3)
+    arrivals.futures = {"in flight": 1}
+    start = time.monotonic()
+    dask_map._arrival(arrivals, time.monotonic())
+    assert time.monotonic() - start >= 0.25

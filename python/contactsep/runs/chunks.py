@@ -11,8 +11,23 @@ from contactsep.output.pieces import PIECE_S, PieceSizes, first_size
 #: contactsep.output.pieces.PIECE_S, the one rule of timed pieces.
 CHUNKS_PER_WORKER = 20
 MIN_CHUNK_S = 0.2
+#: The least seconds of a pack of simulations on Dask
+#: (:mod:`contactsep.runs.dask_packs`): a batch's packs are all of
+#: what is left, so MIN_CHUNK_S would leave workers idle; ten times the
+#: parent's few milliseconds a task.
+MIN_PACK_S = 0.05
 #: Bytes a chunk's per-mode arrays may take.
 CHUNK_MEMORY = 64 << 20
+
+
+def chunk_seconds(left_s: float, workers: int,
+                  least: float = MIN_CHUNK_S) -> float:
+    """The one rule of a chunk's seconds: PIECE_S while much work is
+    left (``left_s`` seconds of it), and each of ``workers`` a
+    CHUNKS_PER_WORKER share of what is left towards the end, down to
+    ``least`` seconds."""
+    return min(PIECE_S, max(least, left_s / (CHUNKS_PER_WORKER
+                                             * max(1, workers))))
 
 
 class Chunks:
@@ -60,8 +75,7 @@ class Chunks:
         towards the end."""
         self._sizes.observe(designs, seconds)
         left = (self.size - self._position) * self._sizes.seconds_per_item
-        self._sizes.resize(min(PIECE_S, max(
-            MIN_CHUNK_S, left / (CHUNKS_PER_WORKER * self.workers))))
+        self._sizes.resize(chunk_seconds(left, self.workers))
 
     def __iter__(self):
         """(first, last) of each chunk, in order."""

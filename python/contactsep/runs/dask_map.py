@@ -84,39 +84,56 @@ FETCH_GAP_S = 0.02
 
 
 def run_tasks(client, function, tasks: list, order=None, finished=None,
-              progress=None, kept=None) -> list:
+              progress=None, kept=None, packs=None) -> list:
     """``function(task)`` for every task on the cluster of ``client``,
     the results in the tasks' order; ``order``: the indices, costliest
     first (None: as given); ``finished(index, result)`` and
     ``progress(1)`` are called in this thread as each result arrives;
     ``kept(done)``: what a lost scheduler's line says of the ``done``
-    results fetched before it.
+    results fetched before it; ``packs``: a
+    :class:`~contactsep.runs.dask_packs.Packs` that sizes the packs from
+    the runs timed in earlier batches (None: one run a pack).
 
-    The batch is one :func:`stream` whose window is the whole batch: one
+    The batch is cut into packs of short runs (:mod:`dask_packs`: one
+    Dask task each, many runs of a few milliseconds together) and run
+    as one :func:`stream` whose window is the whole batch: one
     ``client.map`` in ``order`` (Dask runs a map's tasks in the order
-    given: the costliest first), the results handed back as they
-    arrive.
+    given: the costliest first), each pack's results handed back as it
+    arrives, a run's in the pack's order.  A run that failed is raised
+    once the pack's other runs are handed back (kept by a journal).
     """
+    from contactsep.runs.dask_packs import Pack, Packs, run_pack
     order = list(range(len(tasks))) if order is None else list(order)
     out = [None] * len(tasks)
     if not order:
         return out
+    packs = Packs() if packs is None else packs
     done = 0
 
     def lost(where):
         note = None if kept is None else kept(done)
         return dask_run.scheduler_lost(where, done, note)
 
-    for i, result in stream(client, on_worker,
-                            ((i, (function, tasks[i])) for i in order),
-                            len(order), lost, ordered=False,
-                            what="a simulation"):
-        out[i] = result
-        done += 1
-        if finished is not None:
-            finished(i, result)
-        if progress is not None:
-            progress(1)
+    cut = packs.cut(order)
+    for indices, (results, seconds) in stream(
+            client, run_pack,
+            ((indices, (Pack(function, [tasks[i] for i in indices]),))
+             for indices in cut),
+            len(cut), lost, ordered=False, what="a simulation"):
+        packs.record(len(indices), seconds)
+        failed = [result for ok, result in results if not ok]
+        for i, (ok, result) in zip(indices, results):
+            if not ok:
+                continue
+            out[i] = result
+            done += 1
+            if finished is not None:
+                finished(i, result)
+            if progress is not None:
+                progress(1)
+        if failed:
+            raise _task_error(failed[0], dask_run.scheduler_where(client),
+                              "a simulation")
     return out
 
 
@@ -204,7 +221,9 @@ def _arrival(arrived, fetch_at):
     (an as_completed: it notifies its ``thread_condition`` at each), and
     until FETCH_GAP_S after the last fetch ended (``fetch_at``, monotonic
     seconds, None: none yet): the first result after a pause is fetched
-    at once, those arriving faster together."""
+    at once, those arriving faster together, and at once when every task
+    in flight has arrived (nothing more is worth the wait: the end of a
+    batch of a few runs)."""
     condition = getattr(arrived, "thread_condition", None)
     if condition is None:
         # an as_completed without it (it is not distributed's documented
@@ -214,7 +233,9 @@ def _arrival(arrived, fetch_at):
         with condition:
             if not arrived.has_ready():
                 condition.wait(LISTEN_S)
-    if fetch_at is not None:
+    # as_completed's futures not yet done (distributed's own attribute;
+    # without it, the gap)
+    if fetch_at is not None and getattr(arrived, "futures", True):
         time.sleep(max(0.0, fetch_at + FETCH_GAP_S - time.monotonic()))
 
 
@@ -314,9 +335,17 @@ def _gather(client, futures: list, lost, where: str, what):
             raise lost(where) from None
         return None
     except (RuntimeError, ImportError, AttributeError, TypeError) as error:
-        if isinstance(error, InputError):
-            raise
-        # the cluster's own failure (another environment on the workers
-        # cannot unpickle the task): one line, no trace
-        raise InputError(f"the Dask cluster{where} could not run "
-                         f"{what}: {one_line(error)}") from None
+        raise _task_error(error, where, what) from None
+
+
+def _task_error(error, where: str, what) -> BaseException:
+    """The exception the parent raises for a task's ``error``: the
+    cluster's own failure (another environment on the workers cannot
+    unpickle the task: a RuntimeError, ImportError, AttributeError or
+    TypeError other than an InputError) one InputError line, no trace;
+    any other error itself."""
+    if isinstance(error, InputError) or not isinstance(
+            error, (RuntimeError, ImportError, AttributeError, TypeError)):
+        return error
+    return InputError(f"the Dask cluster{where} could not run "
+                      f"{what}: {one_line(error)}")

@@ -123,13 +123,15 @@ class Simulations:
         #: Runs made ahead for idle workers (capacity set on opening), and
         #: the runs each batch put on the workers (asked and ahead).
         self.ahead, self.batches = RunsAhead(), []
-        self._pool = None
+        self._pool = self._packs = None
 
     def __enter__(self) -> "Simulations":
         if self.client is not None:
-            from contactsep.runs import dask_map, dask_run
+            from contactsep.runs import dask_map, dask_packs, dask_run
             dask_map.check_code(self.client)
             self.ahead.capacity = dask_run.threads(self.client)
+            # the batches' runs packed by the time a run took so far
+            self._packs = dask_packs.Packs(self.ahead.capacity)
         elif self.workers > 1:
             self._pool = RestartingPool(self.workers, make=worker_pool)
             self.ahead.capacity = self.workers
@@ -175,7 +177,7 @@ class Simulations:
             order = sorted(range(len(tasks)), key=lambda i: -cost(tasks[i]))
             return run_tasks(self.client, function, tasks, order=order,
                              finished=finished, progress=self.progress,
-                             kept=self._kept)
+                             kept=self._kept, packs=self._packs)
         if self._pool is None:
             out = []
             for i, task in enumerate(tasks):
