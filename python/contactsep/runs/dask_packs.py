@@ -11,27 +11,21 @@ every run's result or error, in its order.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 
 from contactsep.output.pieces import PieceSizes
 from contactsep.runs import dask_run
 from contactsep.runs.chunks import MIN_PACK_S, chunk_seconds
 
 
+@dataclass(frozen=True)
 class Pack:
     """The typed task of one pack: ``function(task)`` for each of
     ``tasks``, in order, on one worker."""
 
-    __slots__ = ("function", "tasks")
-
-    def __init__(self, function, tasks: list) -> None:
-        self.function = function
-        self.tasks = tasks
-
-    def __getstate__(self):
-        return self.function, self.tasks
-
-    def __setstate__(self, state) -> None:
-        self.function, self.tasks = state
+    function: Callable
+    tasks: list
 
 
 def run_pack(pack: Pack) -> tuple[list, float]:
