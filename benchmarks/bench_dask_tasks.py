@@ -30,7 +30,15 @@ import os
 import sys
 import time
 
-from contactsep.runs import dask_map
+from contactsep.runs import dask_map, dask_run
+
+
+def on_worker(function, task):
+    """``function(task)`` on a Dask worker, with glibc's own heap
+    thresholds, as a one-run pack does (dask_packs.run_pack): the
+    yardsticks' task."""
+    dask_run.heap_as_glibc_default()
+    return function(task)
 
 
 def noop(task):
@@ -43,7 +51,7 @@ def one_at_a_time(client, function, tasks: list) -> list:
     priority), then for each task a wait and a gather of all the
     finished ones among those left."""
     count = len(tasks)
-    futures = {i: client.submit(dask_map.on_worker, function, task,
+    futures = {i: client.submit(on_worker, function, task,
                                 pure=False, priority=count - i)
                for i, task in enumerate(tasks)}
     index = {future.key: i for i, future in futures.items()}
@@ -67,7 +75,7 @@ def dask_floor(client, function, tasks: list) -> list:
     """Dask's own least cost of a batch: one map, one wait for all, one
     gather (no result before the last: no journal could keep them)."""
     import distributed
-    futures = client.map(dask_map.on_worker, [function] * len(tasks), tasks,
+    futures = client.map(on_worker, [function] * len(tasks), tasks,
                          pure=False)
     distributed.wait(futures)
     return client.gather(futures)

@@ -27,13 +27,7 @@ from concurrent.futures import CancelledError
 from contactsep.errors import InputError
 from contactsep.output import one_line
 from contactsep.runs import dask_run
-
-
-def on_worker(function, task):
-    """``function(task)`` on a Dask worker, with glibc's own heap
-    thresholds (dask_run.heap_as_glibc_default)."""
-    dask_run.heap_as_glibc_default()
-    return function(task)
+from contactsep.runs.dask_packs import Pack, Packs, run_pack
 
 
 def _code() -> tuple[str, str]:
@@ -102,7 +96,6 @@ def run_tasks(client, function, tasks: list, order=None, finished=None,
     arrives, a run's in the pack's order.  A run that failed is raised
     once the pack's other runs are handed back (kept by a journal).
     """
-    from contactsep.runs.dask_packs import Pack, Packs, run_pack
     order = list(range(len(tasks))) if order is None else list(order)
     out = [None] * len(tasks)
     if not order:
