@@ -200,7 +200,7 @@ def test_the_constants_the_page_states_are_the_codes():
     from contactsep.model import design
     from contactsep.output import pieces
     from contactsep.runs import chunks
-    from contactsep.studies.sweep import chunk_runs
+    from contactsep.runs import backend
     from contactsep.studies.sweep import spec as sweep
     target, first, growth, piece = quoted(
         r"chunks are sized by cost below `--chunk-size` \(about ([\d.]+) s "
@@ -228,9 +228,12 @@ def test_the_constants_the_page_states_are_the_codes():
                     r"times when only summaries come back, fetched in one "
                     r"gather\)")
     assert {"three": 3, "four": 4, "six": 6, "eight": 8}[per] == \
-        chunk_runs.DASK_WINDOW_PER_WORKER
-    assert "DASK_WINDOW_PER_WORKER * bounds.workers + 2" in \
-        inspect.getsource(chunk_runs)
+        backend.DASK_WINDOW_PER_WORKER
+    # the window the page describes: per chunks a worker thread, plus 2
+    assert backend.DaskCluster.chunk_window(
+        _Threads(8), summaries=True) == 8 * backend.DASK_WINDOW_PER_WORKER + 2
+    assert backend.DaskCluster.chunk_window(
+        _Threads(8), summaries=False) == 2 * 8 + 2
     (most,) = quoted(r"The design's own limit of ([\d,]+) modes a member "
                      r"\(`model.design.MAX_MODES`\)")
     assert int(most.replace(",", "")) == design.MAX_MODES
@@ -306,3 +309,10 @@ def test_the_samples_cost_a_flight_step_each():
     extra = flight(rows["hertz N=16 (default)"]) - \
         flight(rows["hertz N=16, summary only"])
     assert abs(extra / samples - 1) < 0.05
+
+
+class _Threads:
+    """A Dask backend's workers alone (its window's one input)."""
+
+    def __init__(self, workers: int) -> None:
+        self.workers = workers

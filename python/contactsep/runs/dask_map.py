@@ -3,8 +3,8 @@ tasks, their results fetched in batched gathers, handed back in order or
 as they arrive), and the batch of simulations on it (``contactsep
 preload --scheduler``, the studies of :class:`~contactsep.studies.
 preload.chart.Simulations`: :func:`run_tasks`); a sweep's chunks take
-the same loop (:func:`contactsep.studies.sweep.chunk_runs.results_dask`),
-the connection and the probe are :mod:`dask_run`'s.
+the same loop (:class:`contactsep.runs.backend.DaskCluster`, the backend
+every caller takes), the connection and the probe are :mod:`dask_run`'s.
 
 What travels: each task (a Design, the model, the settings, a preload:
 a few hundred bytes) and back its result (a bool or a few numbers).
@@ -232,6 +232,21 @@ def _arrival(arrived, fetch_at):
         time.sleep(max(0.0, fetch_at + FETCH_GAP_S - time.monotonic()))
 
 
+class OnWorker:
+    """``function(*args)`` on a Dask worker, its malloc given glibc's own
+    thresholds back first (:func:`contactsep.runs.dask_run.
+    heap_as_glibc_default`: every task of the loop), named as
+    ``function`` (its tasks' keys on the dashboard)."""
+
+    def __init__(self, function) -> None:
+        self.function = function
+        self.__name__ = getattr(function, "__name__", "task")
+
+    def __call__(self, *args):
+        dask_run.heap_as_glibc_default()
+        return self.function(*args)
+
+
 #: A fetched task that failed: its error is raised at its turn.
 _FAILED = object()
 
@@ -255,8 +270,8 @@ def _submit(client, function, items, window: int, queue, pending, tags,
         elif not ordered:
             raise ValueError("an unordered stream's items all need work")
     if new:
-        futures = client.map(function, *zip(*(args for _, args in new)),
-                             pure=False)
+        futures = client.map(OnWorker(function),
+                             *zip(*(args for _, args in new)), pure=False)
         for (entry, _), future in zip(new, futures):
             entry[1] = future
             pending[future.key] = future

@@ -15,7 +15,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from contactsep.output.pieces import PieceSizes
-from contactsep.runs import dask_run
 from contactsep.runs.chunks import MIN_PACK_S, chunk_seconds
 
 
@@ -29,11 +28,10 @@ class Pack:
 
 
 def run_pack(pack: Pack) -> tuple[list, float]:
-    """On a Dask worker (glibc's own heap thresholds:
-    dask_run.heap_as_glibc_default): ([(True, result) or (False, the
-    exception)] of each of the pack's runs, in order; the seconds they
-    took together)."""
-    dask_run.heap_as_glibc_default()
+    """On a Dask worker (glibc's own heap thresholds: the Dask loop's
+    :class:`~contactsep.runs.dask_map.OnWorker`): ([(True, result) or
+    (False, the exception)] of each of the pack's runs, in order; the
+    seconds they took together)."""
     start = time.perf_counter()
     out = []
     for task in pack.tasks:

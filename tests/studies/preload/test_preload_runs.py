@@ -17,6 +17,7 @@ from contactsep.studies.preload import chart as preload
 
 from contactsep.studies.preload import robust as preload_robust
 from contactsep.studies.preload.runs import PreloadRun, SampleRun
+from contactsep.runs import backend
 from contactsep.runs.journal import RunJournal
 from contactsep.runs.task_keys import canonical
 
@@ -99,7 +100,7 @@ def pool(monkeypatch):
     the pool path), the simulations planted: an event below PER_IN lb
     per inch of the separator's thickness."""
     recorder = RecordingPool()
-    real = preload.map_longest_first
+    real = backend.map_longest_first
 
     def batch(*args, **kwargs):
         recorder.batches.append([])
@@ -115,8 +116,8 @@ def pool(monkeypatch):
         recorder.batches[-1].append(load)
         return load < PER_IN * design.h2
 
-    monkeypatch.setattr(preload, "worker_pool", lambda workers: recorder)
-    monkeypatch.setattr(preload, "map_longest_first", batch)
+    monkeypatch.setattr(backend, "worker_pool", lambda workers: recorder)
+    monkeypatch.setattr(backend, "map_longest_first", batch)
     monkeypatch.setattr(preload_robust, "simulate_design", sample)
     monkeypatch.setattr(preload, "_simulate_event", event)
     return recorder
@@ -177,7 +178,7 @@ def test_the_studies_batches_reach_the_pool_costliest_first(
         handed.append(task[1])         # (design, preload, ...)
         return (0.0,) * (4 if study == "contact_points" else 3)
 
-    monkeypatch.setattr(preload, "worker_pool", lambda workers: recorder)
+    monkeypatch.setattr(backend, "worker_pool", lambda workers: recorder)
     monkeypatch.setattr(module, worker, planted)
     getattr(module, study)(n_modes=4, preloads=(0.0, 6.0), workers=2)
     assert set(handed) == {0.0, 6.0}

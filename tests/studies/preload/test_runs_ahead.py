@@ -21,6 +21,7 @@ from contactsep.studies.preload import chart as preload
 from contactsep.studies.preload import scan as preload_scan
 from contactsep.studies.preload import search as preload_search
 from contactsep.studies.preload.verify import search_design
+from contactsep.runs import backend
 from contactsep.runs.journal import RunJournal
 from contactsep.studies.preload.runs_ahead import RunsAhead
 
@@ -56,7 +57,7 @@ def plant(setattr) -> list:
     count the busy share is taken from, apart from the Simulations' own
     bookkeeping."""
     pools = []
-    real = preload.map_longest_first
+    real = backend.map_longest_first
 
     def pool(workers):
         pools.append(SendingPool())
@@ -65,8 +66,8 @@ def plant(setattr) -> list:
     def batch(pool, *args, **kwargs):
         pool.pool.batches.append([])      # the RestartingPool's pool
         return real(pool, *args, **kwargs)
-    setattr(preload, "worker_pool", pool)
-    setattr(preload, "map_longest_first", batch)
+    setattr(backend, "worker_pool", pool)
+    setattr(backend, "map_longest_first", batch)
     setattr(preload, "_simulate_event", planted_event)
     return pools
 

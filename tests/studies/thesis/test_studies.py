@@ -224,7 +224,7 @@ def test_sweep_on_a_dask_local_cluster_equals_local():
 
 def test_dask_summary_equals_local_bit_for_bit(monkeypatch):
     """Summary only (no output): the chunks fetched in batches ahead of
-    their turn (chunk_runs.results_dask) are still merged in order, so the
+    their turn (the Dask backend) are still merged in order, so the
     summary is the local one's, bit for bit (a different merge order
     would move the means' last bits).  The chunks are held at 7 designs
     in both runs: chunks are sized from measured times (Chunks.record),

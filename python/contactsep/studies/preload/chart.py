@@ -29,12 +29,8 @@ from contactsep.chatter.stack import largest_preload
 from contactsep.constants import LISTING_TAU_S
 from contactsep.errors import InputError
 from contactsep.model.fields import design_lines
-from contactsep.runs.pool import (
-    RestartingPool,
-    map_longest_first,
-    usable_cores,
-    worker_pool,
-)
+from contactsep.runs.backend import InProcess, backend_for
+from contactsep.runs.pool import usable_cores
 from contactsep.studies.preload.converge import chart_columns, largest_check
 from contactsep.studies.preload.runs import PreloadRun, run_row
 from contactsep.studies.preload.runs_ahead import RunsAhead
@@ -66,7 +62,7 @@ FIXED = {"h2": "its rows, d = 0.125-0.75 in",
 
 
 def _preload_of(task) -> float:
-    """A task's cost, the order of a batch (pool.map_longest_first): a
+    """A task's cost, the order of a batch (the backend's ``map``): a
     :class:`~contactsep.studies.preload.runs.PreloadRun`'s preload (lb),
     0 for any other task (a study's runs without one)."""
     return task.cost if isinstance(task, PreloadRun) else 0.0
@@ -94,11 +90,11 @@ def _simulate_event(task) -> bool:
 
 
 class Simulations:
-    """Batches of simulations on worker processes (one pool for the whole
-    search; ``workers`` 1 runs them here), or on a Dask cluster
-    (``workers`` a ``distributed.Client``: :mod:`dask_map`; the caller
-    keeps and closes it).  Counts the runs and their time for the
-    caller's notes."""
+    """Batches of simulations on the backend of ``workers``
+    (:func:`contactsep.runs.backend.backend_for`: one pool of worker
+    processes for the whole search; 1 runs them here; a
+    ``distributed.Client``, which the caller keeps and closes: its
+    cluster).  Counts the runs and their time for the caller's notes."""
 
     def __init__(self, workers=None, progress=None, journal=None):
         from contactsep.runs.dask_run import is_client
@@ -123,26 +119,21 @@ class Simulations:
         #: Runs made ahead for idle workers (capacity set on opening), and
         #: the runs each batch put on the workers (asked and ahead).
         self.ahead, self.batches = RunsAhead(), []
-        self._pool = self._packs = None
+        self._backend = None
 
     def __enter__(self) -> "Simulations":
-        if self.client is not None:
-            from contactsep.runs import dask_map, dask_packs, dask_run
-            dask_map.check_code(self.client)
-            self.ahead.capacity = dask_run.threads(self.client)
-            # the batches' runs packed by the time a run took so far
-            self._packs = dask_packs.Packs(self.ahead.capacity)
-        elif self.workers > 1:
-            self._pool = RestartingPool(self.workers, make=worker_pool)
-            self.ahead.capacity = self.workers
+        self._backend = backend_for(workers=self.workers,
+                                    scheduler=self.client)
+        # a journal keeps results for this code only
+        self._backend.check_code()
+        self.ahead.capacity = self._backend.workers
         return self
 
     def __exit__(self, kind, *exc) -> None:
-        if self._pool is None:
-            return
         # stopped early (Ctrl-C, SIGTERM, a failed run): the runs still
         # going are killed now, not waited for (a minute each at large N)
-        self._pool.stop(finished=kind is None)
+        if self._backend is not None:
+            self._backend.close(finished=kind is None)
 
     def map(self, function, tasks: list, cost=None) -> list:
         """function(task) for every task, in order (function and tasks
@@ -172,24 +163,12 @@ class Simulations:
 
     def _run(self, function, tasks: list, finished=None,
              cost=_preload_of) -> list:
-        if self.client is not None:
-            from contactsep.runs.dask_map import run_tasks
-            order = sorted(range(len(tasks)), key=lambda i: -cost(tasks[i]))
-            return run_tasks(self.client, function, tasks, order=order,
-                             finished=finished, progress=self.progress,
-                             kept=self._kept, packs=self._packs)
-        if self._pool is None:
-            out = []
-            for i, task in enumerate(tasks):
-                out.append(function(task))
-                if finished is not None:
-                    finished(i, out[-1])
-                if self.progress is not None:
-                    self.progress(1)
-            return out
-        # the preloaded runs first (slower: fixed steps while pressed)
-        return map_longest_first(self._pool, function, tasks, cost=cost,
-                                 done=self.progress, finished=finished)
+        # the preloaded runs first where workers share them (slower:
+        # fixed steps while pressed); a Simulations never opened runs
+        # them here
+        backend = self._backend or InProcess()
+        return backend.map(function, tasks, cost=cost, finished=finished,
+                           progress=self.progress, kept=self._kept)
 
     def _kept(self, done: int) -> str:
         """What a lost scheduler's line says of the finished runs."""

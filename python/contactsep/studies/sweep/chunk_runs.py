@@ -1,23 +1,21 @@
-"""Where a sweep's chunks are computed and how they come back, in order:
-in this process, on a local worker pool (restarted where a worker
-dies), or on a Dask cluster; :func:`contactsep.studies.sweep.run.run_sweep`
-drives them and streams the results to its writers.
+"""A sweep's chunks: what a worker computes of one
+(:func:`chunk_result`) and how they come back, in order, from the
+backend the command chose (:func:`chunk_results`: in this process, on
+local worker processes or on a Dask cluster, :mod:`contactsep.runs.
+backend`); :func:`contactsep.studies.sweep.run.run_sweep` drives them
+and streams the results to its writers.
 """
 
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
 import time
 
-from contactsep.errors import InputError
-from contactsep.runs import dask_map, dask_run
-from contactsep.studies.sweep import chatter as chatter_sweep
+from contactsep.runs import dask_run
+from contactsep.runs.backend import backend_for
 from contactsep.runs.chunks import Chunks
-from contactsep.runs.dask_run import connect
-from contactsep.runs.pool import RestartingPool, stream
 from contactsep.runs.journal import chunk_file, load_columns, save_columns
+from contactsep.studies.sweep import chatter as chatter_sweep
 from contactsep.studies.sweep.spec import Summary, SweepSpec, evaluate_chunk
 
 
@@ -46,9 +44,9 @@ def chunk_result(spec, first, last, threshold, mode, directory=None):
     wants, with the seconds it took: ``mode`` "summary" (nothing is
     written: the chunk's own summary, a few numbers), "file" (its
     columns saved as ``directory``/FIRST-LAST.npz, the message back a
-    short path: a worker killed while it sent megabytes of columns
-    would leave the pool reading the rest of the message forever), or
-    "columns" (the NumPy columns themselves: Dask)."""
+    short path: a backend whose results come back best as files,
+    Backend.results_by_file), or "columns" (the NumPy columns
+    themselves)."""
     columns, seconds = evaluate_chunk_timed(spec, first, last)
     if mode == "summary":
         summary = new_summary(spec, threshold)
@@ -59,13 +57,6 @@ def chunk_result(spec, first, last, threshold, mode, directory=None):
         save_columns(path, columns)
         return path, last - first, seconds
     return columns, last - first, seconds
-
-
-def chunk_result_on_dask(spec, first, last, threshold, mode):
-    """:func:`chunk_result` on a Dask worker, its malloc set back to
-    glibc's own thresholds first (dask_run.heap_as_glibc_default)."""
-    dask_run.heap_as_glibc_default()
-    return chunk_result(spec, first, last, threshold, mode)
 
 
 class Done:
@@ -86,123 +77,57 @@ def planned(bounds: Chunks, store, args):
             yield (first, last, None), args(first, last)
 
 
-def results_local(spec, bounds: Chunks, workers, stop, mode, threshold,
-                   store):
+def chunk_results(spec, bounds: Chunks, stop, mode, threshold, store,
+                  workers: int = 1, scheduler=None):
     """(kind, value, designs) of each chunk in order: kind "summary"
-    (value a partial summary) or "columns"."""
-    if workers <= 1:
-        for first, last, stored in bounds.plan():
-            stop.check()
-            if stored:
-                yield "columns", store.load(first), last - first
-                continue
-            value, designs, seconds = chunk_result(
-                spec, first, last, threshold,
-                "summary" if mode == "summary" else "columns")
-            bounds.record(designs, seconds)
-            if store is not None:
-                store.save(first, last, value)
-            yield ("summary" if mode == "summary" else "columns"), value, \
-                designs
-        return
-    if store is not None:
-        directory = store.path          # the workers save into the store
-    else:
-        shared = "/dev/shm" if os.path.isdir("/dev/shm") else None
-        directory = tempfile.mkdtemp(prefix="contactsep-sweep-",
-                                     dir=shared)
-    pool = RestartingPool(workers)
-    finished = False
-    task_mode = "summary" if mode == "summary" else "file"
-    chunks = planned(bounds, store, lambda first, last: (
-        spec, first, last, threshold, task_mode, directory))
-    work = stream(pool, chunk_result, chunks, 2 * workers, stop=stop,
-                  advice=": try a smaller --chunk-size")
-    try:
-        for (first, last, stored), result in work:
-            if stored is not None:
-                yield "columns", stored.value, last - first
-                continue
-            value, designs, seconds = result
-            bounds.record(designs, seconds)
-            if task_mode == "summary":
-                yield "summary", value, designs
-                continue
-            columns = load_columns(value)
-            if store is None:
-                os.unlink(value)
-            else:
-                store.chunks[first] = last
-            yield "columns", columns, designs
-        finished = True
-    except OSError as error:
-        if pool.started:
-            raise
-        # the pool starts its processes at the first chunk: one that
-        # could not start (a process limit) left the others waiting for
-        # work forever, and the interpreter's exit waiting for them
-        raise InputError(f"--workers {workers}: the worker processes could "
-                         f"not be started ({error.strerror or error}); try "
-                         f"fewer") from None
-    finally:
-        # stopped early (a signal, a writer's error, a dead worker, a
-        # pool that could not start): the chunks still running are
-        # dropped, so their workers are stopped now rather than waited
-        # for (a design may take seconds)
-        work.close()
-        pool.stop(finished, wait=pool.started)
-        if store is None:
-            shutil.rmtree(directory, ignore_errors=True)
-
-
-#: Chunks in flight per Dask worker thread when only summaries come back.
-DASK_WINDOW_PER_WORKER = 4
-
-
-def results_dask(spec, bounds: Chunks, address, stop, mode, threshold,
-                  store):
-    """As :func:`results_local`, the chunks on a Dask cluster
-    (contactsep.runs.dask_run), through the one Dask loop
-    (:func:`contactsep.runs.dask_map.stream`, in the chunks' order).
-
-    The parent's loop is the limit on many workers (measured on 16:
-    docs/performance.md): a result fetched alone costs a round trip to
-    the scheduler and a worker, and a window of two chunks a worker
-    left workers idle while the parent fetched the oldest.  So the
-    window holds DASK_WINDOW_PER_WORKER chunks a worker (the scheduler
-    queues them), and each fetch takes every finished chunk in one
-    gather; the chunks are still taken in order."""
-    client = address if hasattr(address, "submit") else connect(address)
-    task_mode = "summary" if mode == "summary" else "columns"
-    bounds.workers = dask_run.threads(client)
-    done = 0
-    # the spec goes to the workers once, not with every task
-    try:
-        shared = client.scatter(spec, broadcast=True, hash=False)
-    except Exception:        # noqa: BLE001 - a client without scatter
-        shared = spec
-
-    chunks = planned(bounds, store, lambda first, last: (
-        shared, first, last, threshold, task_mode))
-    window = DASK_WINDOW_PER_WORKER * bounds.workers + 2
-    if task_mode == "columns":
-        # columns wait in the parent until their turn: fewer of them
-        window = 2 * bounds.workers + 2
-    try:
-        for (first, last, stored), result in dask_map.stream(
-                client, chunk_result_on_dask, chunks, window,
-                lambda where: dask_run.scheduler_lost(where, done),
-                stop=stop, what="a chunk"):
-            if stored is not None:
-                done += last - first
-                yield "columns", stored.value, last - first
-                continue
-            value, designs, seconds = result
-            bounds.record(designs, seconds)
-            if store is not None:
-                store.save(first, last, value)
-            done += designs
-            yield task_mode, value, designs
-    finally:
-        if client is not address:
-            client.close()
+    (value a partial summary; ``mode`` "summary") or "columns", the
+    chunks computed on the backend of ``workers`` and ``scheduler``
+    (:func:`contactsep.runs.backend.backend_for`) through its one
+    stream, in the chunks' order; a chunk ``store`` holds is given as
+    it is, a new one kept there as it arrives."""
+    summaries = mode == "summary"
+    with backend_for(workers=workers, scheduler=scheduler) as backend:
+        if backend.parallel:
+            # the last chunks sized for the workers there are
+            bounds.workers = backend.workers
+        by_file = not summaries and backend.results_by_file
+        task_mode = "summary" if summaries else "file" if by_file \
+            else "columns"
+        directory = None
+        if by_file:
+            # the workers save into the store
+            directory = store.path if store is not None \
+                else backend.scratch()
+        # the spec goes to the workers once (Dask), not with every task
+        shared = backend.share(spec)
+        chunks = planned(bounds, store, lambda first, last: (
+            shared, first, last, threshold, task_mode, directory))
+        done = 0
+        work = backend.stream(
+            chunk_result, chunks, backend.chunk_window(summaries),
+            stop=stop, advice=": try a smaller --chunk-size",
+            lost=lambda where: dask_run.scheduler_lost(where, done),
+            what="a chunk")
+        try:
+            for (first, last, stored), result in work:
+                if stored is not None:
+                    done += last - first
+                    yield "columns", stored.value, last - first
+                    continue
+                value, designs, seconds = result
+                bounds.record(designs, seconds)
+                if by_file:
+                    path, value = value, load_columns(value)
+                    if store is None:
+                        os.unlink(path)
+                    else:
+                        store.chunks[first] = last
+                elif store is not None:
+                    store.save(first, last, value)
+                done += designs
+                yield "summary" if summaries else "columns", value, designs
+        finally:
+            # stopped early (a signal, a writer's error, a dead worker):
+            # what is left is cancelled before the backend stops its
+            # workers (a design may take seconds)
+            work.close()

@@ -12,11 +12,7 @@ from contactsep import output
 from contactsep.errors import InputError
 from contactsep.model.evaluate import costly
 from contactsep.studies.sweep import chatter as chatter_sweep
-from contactsep.studies.sweep.chunk_runs import (
-    new_summary,
-    results_dask,
-    results_local,
-)
+from contactsep.studies.sweep.chunk_runs import chunk_results, new_summary
 from contactsep.runs.chunks import Chunks
 from contactsep.runs.pool import WORKERS_PER_CORE, max_workers, usable_cores
 from contactsep.runs import journal
@@ -133,10 +129,8 @@ def run_sweep(spec: SweepSpec, *, writers=(), threshold=None,
     done = 0
     start = time.perf_counter()
     with StopRequests() as stop, output.stop_checks(stop.check):
-        results = results_dask(
-            spec, bounds, scheduler, stop, mode, threshold, store) \
-            if scheduler else results_local(
-                spec, bounds, workers, stop, mode, threshold, store)
+        results = chunk_results(spec, bounds, stop, mode, threshold, store,
+                                workers=workers, scheduler=scheduler)
         ended = None
         try:
             for kind, value, designs in results:
