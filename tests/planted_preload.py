@@ -94,6 +94,6 @@ def plant_threshold(monkeypatch, where):
 def fake_zero_preload(task):
     """A conclusion study's run with no preload: (largest lower gap,
     open time, events) from the separator's thickness alone."""
-    design, _, _ = task
+    design = task.design
     CALLS.append(("free", float(design.h2)))
     return 0.01 * float(design.h2), 0.0, 0

@@ -165,3 +165,35 @@ def test_the_resumable_studies_are_those_of_simulations():
     from contactsep.studies.thesis.conclusions import STUDIES as CONCLUSIONS
     from contactsep.studies.thesis.recommendations import STUDIES as ADVICE
     assert set(RESUMABLE) == {"preload", "buttons", *CONCLUSIONS, *ADVICE}
+
+
+def test_a_study_journal_kept_before_its_runs_were_typed_still_answers():
+    """The thesis studies' runs became typed tasks; a journal names a run
+    by the tuple it was handed before (key_tuple), so a journal kept by
+    an earlier version is still answered from."""
+    from contactsep.model.thesis_rig import thesis_design
+    from contactsep.runs.task_keys import task_key
+    from contactsep.studies.thesis import (
+        buttons,
+        conclusions,
+        contact_points,
+        materials,
+    )
+    design, settings = thesis_design(), {"t_end": 0.01}
+    law = {"nu": 0.3}
+    pairs = [
+        (contact_points._opening, contact_points.OpeningRun(
+            design, 6.0, settings), (design, 6.0, settings)),
+        (materials._run, materials.MaterialsRun(design, 6.0, law, settings),
+         (design, 6.0, law, settings)),
+        (conclusions._zero_preload, conclusions.FreeRun(
+            design, "hertz", settings), (design, "hertz", settings)),
+        (buttons._zero_preload, buttons.ButtonRun(design, settings),
+         (design, settings)),
+    ]
+    for function, typed, plain in pairs:
+        assert task_key(function, typed) == task_key(function, plain)
+    # and a different run is a different key
+    assert task_key(contact_points._opening, contact_points.OpeningRun(
+        design, 0.0, settings)) != task_key(contact_points._opening,
+                                            (design, 6.0, settings))

@@ -175,7 +175,7 @@ def test_the_studies_batches_reach_the_pool_costliest_first(
     handed = []
 
     def planted(task):
-        handed.append(task[1])         # (design, preload, ...)
+        handed.append(task.preload_lb)
         return (0.0,) * (4 if study == "contact_points" else 3)
 
     monkeypatch.setattr(backend, "worker_pool", lambda workers: recorder)

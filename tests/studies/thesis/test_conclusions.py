@@ -83,7 +83,7 @@ def test_a_study_table_around_known_simulations(monkeypatch):
         return load < 2.0 * float(design.x3) / float(design.L3)
 
     def free(task):
-        design = task[0]
+        design = task.design
         return float(design.x3) / 1000.0, 0.03, 3
 
     monkeypatch.setattr(preload, "_simulate_event", event)

@@ -63,9 +63,10 @@ FIXED = {"h2": "its rows, d = 0.125-0.75 in",
 
 def _preload_of(task) -> float:
     """A task's cost, the order of a batch (the backend's ``map``): a
-    :class:`~contactsep.studies.preload.runs.PreloadRun`'s preload (lb),
-    0 for any other task (a study's runs without one)."""
-    return task.cost if isinstance(task, PreloadRun) else 0.0
+    typed task's own ``cost`` (a
+    :class:`~contactsep.studies.preload.runs.PreloadRun`'s preload, lb),
+    0 for a task without one (a study's runs with no preload)."""
+    return float(getattr(task, "cost", 0.0))
 
 
 def _simulate_event(task) -> bool:

@@ -17,6 +17,8 @@ shape and radius the study reports, with the elastic law:
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from contactsep.chatter import simulate
@@ -33,10 +35,23 @@ RADII = (0.0625, 0.125, 0.25)
 MODES = 8
 
 
-def _zero_preload(task):
+@dataclass(frozen=True)
+class ButtonRun:
+    """One simulation of the study's design with no preload, its button
+    in ``settings`` (further keywords of ``simulate()``)."""
+
+    design: object
+    settings: dict
+
+    def key_tuple(self) -> tuple:
+        """What names the run in a journal (the tuple it once was)."""
+        return (self.design, self.settings)
+
+
+def _zero_preload(task: ButtonRun):
     """One simulation with no preload (runs in a worker)."""
-    design, settings = task
-    r = simulate(design, samples=1, single_impulse=False, **settings)
+    r = simulate(task.design, samples=1, single_impulse=False,
+                 **task.settings)
     return r.circuit_open_s, r.n_events
 
 
@@ -58,7 +73,8 @@ def buttons(n_modes: int = MODES, radii=RADII, shapes=SHAPES, *,
                  "t_end": LISTING_TAU_S} for shape, radius in rows]
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
-        free = sims.map(_zero_preload, [(design, s) for s in settings])
+        free = sims.map(_zero_preload, [ButtonRun(design, s)
+                                        for s in settings])
         found = [min_preloads([design], "hertz", s, simulations=sims)[0]
                  for s in settings]
     open_s, events = (np.array(v) for v in zip(*free))

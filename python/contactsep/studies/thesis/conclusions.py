@@ -23,6 +23,8 @@ to 0.5).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from contactsep.chatter import simulate
@@ -65,11 +67,24 @@ STUDIES = {
 }
 
 
-def _zero_preload(task):
+@dataclass(frozen=True)
+class FreeRun:
+    """One simulation of a study's design with no preload, by ``model``,
+    ``settings`` further keywords of ``simulate()``."""
+
+    design: object
+    model: str
+    settings: dict
+
+    def key_tuple(self) -> tuple:
+        """What names the run in a journal (the tuple it once was)."""
+        return (self.design, self.model, self.settings)
+
+
+def _zero_preload(task: FreeRun):
     """One simulation with no preload (runs in a worker)."""
-    design, model, settings = task
-    r = simulate(design, model=model, samples=1, single_impulse=False,
-                 **settings)
+    r = simulate(task.design, model=task.model, samples=1,
+                 single_impulse=False, **task.settings)
     return r.max_lower_gap_in, r.circuit_open_s, r.n_events
 
 
@@ -132,7 +147,7 @@ def conclusion(name: str, model: str = "hertz",
     settings["t_end"] = LISTING_TAU_S
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
-        free = sims.map(_zero_preload, [(d, model, settings)
+        free = sims.map(_zero_preload, [FreeRun(d, model, settings)
                                         for d in designs])
         found = min_preloads(designs, model, settings, simulations=sims)
     gap, open_s, events = (np.array(v) for v in zip(*free))

@@ -31,6 +31,8 @@ a check of the run.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from contactsep.chatter import simulate
@@ -53,11 +55,29 @@ FIXED = {"x2": "its rows, x2/L2 = 0.2-0.8",
          "x2_lower": "its columns, x2_lower/L2 = 0.2-0.8"}
 
 
-def _opening(task):
+@dataclass(frozen=True)
+class OpeningRun:
+    """One simulation of the study: ``design`` under ``preload_lb`` (lb),
+    ``settings`` further keywords of ``simulate()``; its cost (the
+    batch's order, costliest first) its preload."""
+
+    design: object
+    preload_lb: float
+    settings: dict
+
+    @property
+    def cost(self) -> float:
+        return float(self.preload_lb)
+
+    def key_tuple(self) -> tuple:
+        """What names the run in a journal (the tuple it once was)."""
+        return (self.design, self.preload_lb, self.settings)
+
+
+def _opening(task: OpeningRun):
     """One simulation (runs in a worker)."""
-    design, preload, settings = task
-    r = simulate(design, preload=preload, samples=1, single_impulse=False,
-                 **settings)
+    r = simulate(task.design, preload=task.preload_lb, samples=1,
+                 single_impulse=False, **task.settings)
     return (r.circuit_open_s, r.n_events, r.longest_open_s,
             r.max_lower_gap_in)
 
@@ -100,10 +120,9 @@ def contact_points(*, n_modes: int = MODES, dt: float = DT,
     settings = {"dt": dt, "t_end": LISTING_TAU_S}
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
-        # (design, preload, settings): the preloaded runs first
-        rows = sims.map(_opening, [(d, p, settings) for p in preloads
-                                   for d in designs],
-                        cost=lambda task: task[1])
+        # the preloaded runs first (their cost)
+        rows = sims.map(_opening, [OpeningRun(d, p, settings)
+                                   for p in preloads for d in designs])
         found = min_preloads(designs, "hertz", settings, simulations=sims) \
             if min_preload else []
     open_s, events, longest, gap = (np.array(v, dtype=float)

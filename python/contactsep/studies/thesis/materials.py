@@ -29,6 +29,7 @@ design; ``min_preload=True`` adds it (``min_preload_lb``).
 from __future__ import annotations
 
 import inspect
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -59,11 +60,31 @@ def thornton_available() -> bool:
     return "contact" in parameters and "yield_pressure" in parameters
 
 
-def _run(task):
+@dataclass(frozen=True)
+class MaterialsRun:
+    """One simulation of the study: ``design`` under ``preload_lb`` (lb)
+    by the contact ``law`` (keywords of ``simulate()``: the law, its
+    yield pressure, the buttons' Poisson ratio), ``settings`` the
+    study's own; its cost (the batch's order) its preload."""
+
+    design: object
+    preload_lb: float
+    law: dict
+    settings: dict
+
+    @property
+    def cost(self) -> float:
+        return float(self.preload_lb)
+
+    def key_tuple(self) -> tuple:
+        """What names the run in a journal (the tuple it once was)."""
+        return (self.design, self.preload_lb, self.law, self.settings)
+
+
+def _run(task: MaterialsRun):
     """One simulation (runs in a worker)."""
-    design, preload, law, settings = task
-    r = simulate(design, preload=preload, samples=1, single_impulse=False,
-                 **law, **settings)
+    r = simulate(task.design, preload=task.preload_lb, samples=1,
+                 single_impulse=False, **task.law, **task.settings)
     return r.circuit_open_s, r.n_events, r.max_lower_gap_in
 
 
@@ -113,8 +134,8 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
     tasks, rows = _tasks(laws, preloads, pairs, designs, settings)
     with Simulations(workers, progress=progress,
                      journal=journal) as sims:
-        # (design, preload, law, settings): the preloaded runs first
-        answers = sims.map(_run, tasks, cost=lambda task: task[1])
+        # the preloaded runs first (their cost)
+        answers = sims.map(_run, tasks)
         found = min_preloads(designs, "hertz", settings, simulations=sims) \
             if min_preload else []
     columns = _columns(answers, rows, len(laws) > 1)
@@ -129,15 +150,15 @@ def materials(*, n_modes: int = MODES, contacts=STUDY_MATERIALS,
 
 
 def _tasks(laws, preloads, pairs, designs, settings):
-    """The simulations (design, preload, law, settings) and their rows
+    """The simulations (:class:`MaterialsRun`) and their rows
     (law, preload, contact material, separator material): each law, then
     each preload, then each pair of materials."""
     tasks, rows = [], []
     for law, extra in laws:
         for preload in preloads:
             for (c, s), design in zip(pairs, designs):
-                tasks.append((design, preload, {**extra(c, s), "nu": c.nu},
-                              settings))
+                tasks.append(MaterialsRun(
+                    design, preload, {**extra(c, s), "nu": c.nu}, settings))
                 rows.append((law, preload, c, s))
     return tasks, rows
 
