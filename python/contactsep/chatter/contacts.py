@@ -30,6 +30,18 @@ MAX_SWEEPS = 200
 MAX_NEWTON = 100
 
 
+def element_approach(i: int, c_matrix, gap, force) -> float:
+    """The approach a_i = -g_i - sum_{j != i} C_ij lambda_j (in) that
+    element ``i`` takes up with the other elements' forces as they stand:
+    one step of the coordinate descent of every series solve, summed in
+    j's order (twin of hertz_series.f90's element_approach)."""
+    a = -float(gap[i])
+    for j in range(len(gap)):
+        if j != i:
+            a -= float(c_matrix[i][j]) * force[j]
+    return a
+
+
 def element_depth(a: float, b: float) -> float:
     """The root delta >= 0 of delta + b delta^{3/2} = a (a > 0, b >= 0):
     Newton's method from the upper bound min(a, (a/b)^{2/3}); the function
@@ -63,10 +75,7 @@ def series_forces(stiff, c_matrix, gap, linear=False) -> np.ndarray:
     for _ in range(MAX_SWEEPS):
         old = list(force)
         for i in range(k):
-            a = -float(gap[i])
-            for j in range(k):
-                if j != i:
-                    a -= float(c_matrix[i][j]) * force[j]
+            a = element_approach(i, c_matrix, gap, force)
             if a > 0.0 and stiff[i] > 0.0 and linear:
                 # a linear element (cylindrical button): a / (1 + c s)
                 force[i] = stiff[i] * a / (1.0 + float(c_matrix[i][i])
@@ -138,10 +147,7 @@ def series_law_forces(memory: ContactMemory, factor, c_matrix, gap):
     for _ in range(MAX_SWEEPS):
         old = list(force)
         for i in range(k):
-            a = -float(gap[i])
-            for j in range(k):
-                if j != i:
-                    a -= float(c_matrix[i][j]) * force[j]
+            a = element_approach(i, c_matrix, gap, force)
             if a > 0.0 and factor[i] > 0.0:
                 depth[i] = law_depth(memory, i, a, float(c_matrix[i][i])
                                      * factor[i])

@@ -250,15 +250,25 @@ def hertz_adaptive(system, law, dt, steps, stride, threshold,
          law.yield_pressure, law.e_star, law.radius, int(law.linear), dt,
          steps, stride, samples, threshold, s.n_upper, bound, room,
          stop_open=stop_open), steps * s.m.size)
+    return _adaptive_run(status, t, g, energy, first, crossings, n_cross,
+                         gap_max, counts, gap0, threshold, steps * dt,
+                         book=_book(s, q, v, book))
+
+
+def _adaptive_run(status, t, g, energy, first, crossings, n_cross, gap_max,
+                  counts, gap0, threshold, end, **own) -> Run:
+    """The Run of an adaptive stepper's outputs: its status checked, its
+    samples up to where it stopped, each contact's open intervals from
+    its crossings of ``threshold`` (from the gaps ``gap0`` at the
+    release to ``end``, s); ``own``: the stepper's own fields of Run."""
     status = _checked(status)
     t, g, energy = _reached(t, g, energy, status)
     upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
-                                        steps * dt)
+                                        end)
     return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
                lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
                first=_first(first), work=_work(counts), status=status,
-               book=_book(s, q, v, book),
-               stopped_at=_stopped_at(crossings, n_cross))
+               stopped_at=_stopped_at(crossings, n_cross), **own)
 
 
 def _book(system, q, v, book) -> dict:
@@ -282,15 +292,10 @@ def newton_adaptive(system, e, dt, steps, stride, threshold,
             s.m, s.p, s.h, s.g0, s.q0, s.v0, e, dt, steps, stride, samples,
             threshold, s.n_upper, _energy_bound(s), room,
             stop_open=stop_open), steps * s.m.size)
-    status = _checked(status)
-    t, g, energy = _reached(t, g, energy, status)
-    upper, lower = _open_from_crossings(crossings, n_cross, gap0, threshold,
-                                        steps * dt)
-    return Run(t=t, gaps=g.T, energy=energy, upper_open=upper,
-               lower_open=lower, max_lower_gap_in=float(gap_max[0, 1]),
-               first=_first(first), work=_work(counts), status=status,
-               stopped_at=_stopped_at(crossings, n_cross),
-               energy_end=0.5 * float(np.sum(s.m * (v**2 + (s.p * q)**2))))
+    return _adaptive_run(
+        status, t, g, energy, first, crossings, n_cross, gap_max, counts,
+        gap0, threshold, steps * dt,
+        energy_end=0.5 * float(np.sum(s.m * (v**2 + (s.p * q)**2))))
 
 
 def _work(counts) -> dict:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import csv
 import io
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -157,3 +157,20 @@ def thesis_study_design(d=0.25, **overrides):
     from contactsep.model import thesis_design as experiment
     overrides.setdefault("lower_response", "as-printed")
     return experiment(d, **overrides)
+
+
+class StudyRun:
+    """The base of a study's typed runs (frozen dataclasses, one
+    simulation each, handed to its workers): a run is named in a journal
+    by its fields in order (:meth:`key_tuple`: the plain tuple the study
+    handed out before its runs were typed, so that a journal kept then
+    is still answered from); its cost, the batch's order (costliest
+    first), is its preload (``preload_lb``, lb) where it has one."""
+
+    def key_tuple(self) -> tuple:
+        """The run's fields in order: what names it in a journal."""
+        return tuple(getattr(self, f.name) for f in fields(self))
+
+    @property
+    def cost(self) -> float:
+        return float(getattr(self, "preload_lb", 0.0))

@@ -25,7 +25,7 @@ from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.model.fields import design_lines
 from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, thesis_study_design
+from contactsep.studies.study import Study, StudyRun, thesis_study_design
 
 #: The shapes and radii (in) of the study.
 SHAPES = ("sphere", "cylinder")
@@ -36,16 +36,12 @@ MODES = 8
 
 
 @dataclass(frozen=True)
-class ButtonRun:
+class ButtonRun(StudyRun):
     """One simulation of the study's design with no preload, its button
     in ``settings`` (further keywords of ``simulate()``)."""
 
     design: object
     settings: dict
-
-    def key_tuple(self) -> tuple:
-        """What names the run in a journal (the tuple it once was)."""
-        return (self.design, self.settings)
 
 
 def _zero_preload(task: ButtonRun):

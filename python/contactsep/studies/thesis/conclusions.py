@@ -40,6 +40,7 @@ from contactsep.studies.preload.chart import (
 )
 from contactsep.studies.study import (
     Study,
+    StudyRun,
     evaluate_all,
     refuse_fixed,
     thesis_study_design,
@@ -68,17 +69,13 @@ STUDIES = {
 
 
 @dataclass(frozen=True)
-class FreeRun:
+class FreeRun(StudyRun):
     """One simulation of a study's design with no preload, by ``model``,
     ``settings`` further keywords of ``simulate()``."""
 
     design: object
     model: str
     settings: dict
-
-    def key_tuple(self) -> tuple:
-        """What names the run in a journal (the tuple it once was)."""
-        return (self.design, self.model, self.settings)
 
 
 def _zero_preload(task: FreeRun):

@@ -39,7 +39,7 @@ from contactsep.chatter import simulate
 from contactsep.constants import LISTING_TAU_S
 from contactsep.model.fields import design_lines
 from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
+from contactsep.studies.study import Study, StudyRun, refuse_fixed, thesis_study_design
 
 #: The positions of both contacts on the separator, as x / L2.
 RATIOS = (0.2, 0.35, 0.5, 0.65, 0.8)
@@ -56,7 +56,7 @@ FIXED = {"x2": "its rows, x2/L2 = 0.2-0.8",
 
 
 @dataclass(frozen=True)
-class OpeningRun:
+class OpeningRun(StudyRun):
     """One simulation of the study: ``design`` under ``preload_lb`` (lb),
     ``settings`` further keywords of ``simulate()``; its cost (the
     batch's order, costliest first) its preload."""
@@ -64,14 +64,6 @@ class OpeningRun:
     design: object
     preload_lb: float
     settings: dict
-
-    @property
-    def cost(self) -> float:
-        return float(self.preload_lb)
-
-    def key_tuple(self) -> tuple:
-        """What names the run in a journal (the tuple it once was)."""
-        return (self.design, self.preload_lb, self.settings)
 
 
 def _opening(task: OpeningRun):

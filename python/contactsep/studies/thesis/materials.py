@@ -42,7 +42,7 @@ from contactsep.model.materials import (
 )
 from contactsep.model.fields import design_lines
 from contactsep.studies.preload.chart import Simulations, limit_notes, min_preloads
-from contactsep.studies.study import Study, refuse_fixed, thesis_study_design
+from contactsep.studies.study import Study, StudyRun, refuse_fixed, thesis_study_design
 
 #: Modes per member (as study contact-points).
 MODES = 32
@@ -61,7 +61,7 @@ def thornton_available() -> bool:
 
 
 @dataclass(frozen=True)
-class MaterialsRun:
+class MaterialsRun(StudyRun):
     """One simulation of the study: ``design`` under ``preload_lb`` (lb)
     by the contact ``law`` (keywords of ``simulate()``: the law, its
     yield pressure, the buttons' Poisson ratio), ``settings`` the
@@ -71,14 +71,6 @@ class MaterialsRun:
     preload_lb: float
     law: dict
     settings: dict
-
-    @property
-    def cost(self) -> float:
-        return float(self.preload_lb)
-
-    def key_tuple(self) -> tuple:
-        """What names the run in a journal (the tuple it once was)."""
-        return (self.design, self.preload_lb, self.law, self.settings)
 
 
 def _run(task: MaterialsRun):
