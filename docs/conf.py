@@ -103,6 +103,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "cli_reference",
     "data_values",
+    "code_constants",
     "benchmark_runs",
 ]
 
