@@ -19,8 +19,10 @@ The role's text is ``MODULE.NAME[INDEX]...[:FORMAT]``:
     an item of a tuple, list or dict constant (an integer or a quoted
     key), as often as needed.
 ``FORMAT``
-    a Python format spec (``.2g``, ``,d``), or ``words``: a whole number
-    from zero to twenty as an English word (``four``).  Without one the
+    a Python format spec (``.2g``, ``,d``); ``words``: a whole number
+    from zero to twenty as an English word (``four``); ``sci``: the
+    shortest form, a power of ten as the pages write one (``1e9``,
+    ``3e8``, ``1e5``, ``1e-5``; 1024 stays ``1024``).  Without one the
     value is shown as Python's ``str`` gives it.
 
 :func:`resolve` is the whole lookup, without Sphinx, so the tests run it
@@ -98,9 +100,26 @@ def _item(value, index: str, where: str):
         raise ConstantError(f"{where}: has no item [{index}]") from None
 
 
+def _shortest(number: float) -> str:
+    """``number`` written the shorter way: as a plain number, or as a
+    mantissa and a power of ten with neither a plus nor leading zeros
+    (100000 is 1e5, 1024 stays 1024)."""
+    mantissa, _, exponent = f"{number:.15e}".partition("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    power = f"{mantissa}e{int(exponent)}"
+    plain = f"{number:.15g}"
+    if "e" in plain or len(power) < len(plain):
+        return power
+    return plain
+
+
 def _format(value, fmt: str | None, where: str) -> str:
     if fmt is None or fmt == "":
         return str(value)
+    if fmt == "sci":
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise ConstantError(f"{where}: {value!r} is not a number")
+        return _shortest(float(value))
     if fmt == "words":
         if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
                 or not 0 <= value < len(WORDS):

@@ -43,6 +43,15 @@ def test_a_constant_is_shown_as_asked(spec, shown):
     assert resolve(spec) == shown
 
 
+@pytest.mark.parametrize("number, shown", [
+    (1e5, "1e5"), (1024, "1024"), (1e-5, "1e-5"), (3e8, "3e8"),
+    (10**12, "1e12"), (10.0, "10"), (0.5, "0.5"), (2.5e-7, "2.5e-7"),
+    (123456789.0, "123456789")])
+def test_the_sci_format_is_the_shorter_form(number, shown):
+    assert code_constants._format(number, "sci", "x") == shown
+    assert float(shown) == number          # the same number
+
+
 def test_the_words_are_the_numbers():
     """The words format's table, against the numbers spelled out."""
     assert code_constants.WORDS[:5] == ["zero", "one", "two", "three",

@@ -472,40 +472,6 @@ def test_the_searchs_limits_give_status_4(field, value, claim):
     assert int(np.ravel(ev.status)[0]) == status.UNRESOLVED
 
 
-def test_the_sweep_limits_are_the_codes():
-    """The limits docs/sweeps.md states in words are the constants the
-    code uses (a changed constant fails here until the page says it)."""
-    from contactsep.runs import dask_run, pool
-    from contactsep.studies import stats
-    from contactsep.studies.sweep import chatter as chatter_sweep
-    from contactsep.studies.sweep import spec as sweep
-    from contactsep.studies.sweep import writers
-    default, most = quoted("sweeps.md", r"`--chunk-size` \(default "
-                           r"([\d,]+), at most ([\d,]+)\)")
-    assert (default, most) == (f"{sweep.CHUNK_SIZE:,}",
-                               f"{sweep.MAX_CHUNK_SIZE:,}")
-    restarts, designs, workers = quoted(
-        "sweeps.md", r"up to (\d+) times a sweep.*?a sweep has at most "
-        r"(1e\d+) designs and (\d+) workers a usable core")
-    assert int(restarts) == pool.MAX_POOL_RESTARTS
-    assert float(designs) == sweep.MAX_DESIGNS
-    assert int(workers) == pool.WORKERS_PER_CORE
-    (group,) = quoted("howto/resume.md",
-                      r"row groups of a fixed ([\d,]+) rows")
-    assert group == f"{writers.ROW_GROUP:,}"
-    (block,) = quoted("howto/resume.md", r"the summary's sums are taken "
-                      r"([\d,]+) values at a time")
-    assert block == f"{stats.BLOCK:,}"
-    probe, lost = quoted("sweeps.md", r"refused in one line within (\d+) "
-                         r"s .*? a scheduler lost mid-sweep is one line "
-                         r"within about (\d+) s")
-    assert (int(probe), int(lost)) == (dask_run.PROBE_TIMEOUT_S,
-                                       dask_run.SCHEDULER_LOST_S)
-    (chunk,) = quoted("sweeps.md", r"\*\*Chunks\*\* are at most (\d+) "
-                      r"designs by default")
-    assert int(chunk) == chatter_sweep.CHUNK_SIZE
-
-
 def test_the_png_sizes():
     """"default 100: 600 x 400 pixels, the tables 600 x 500"."""
     import struct
@@ -773,11 +739,7 @@ def test_the_domains_symmetry_corners_are_the_tests():
     assert (min(values), max(values)) == (10 ** float(mu[0]), float(mu[1]))
 
 
-def test_the_general_members_limit_and_the_fe_tolerances():
-    from contactsep.beams.timoshenko import MAX_GENERAL_MODES
-    (most,) = quoted("model.md", r"A general member takes at most (\d+) "
-                     r"modes")
-    assert int(most) == MAX_GENERAL_MODES
+def test_the_fe_tolerances_are_the_tests():
     three, six = quoted("model.md", r"first three modes to ([\d.e-]+), six "
                         r"to ([\d.e-]+),")
     source = (ROOT / "tests" / "shared" / "test_beams_timoshenko.py"
@@ -797,32 +759,6 @@ def test_the_simulation_counts_of_the_long_studies():
     assert f"{chart} simulations" in notes
     says("studies.md", "Not a batch of eq. 23 but "
          + role("chatter", "rows", None) + " three-beam simulations")
-
-
-def test_the_chatter_and_unit_limits_are_the_codes():
-    from contactsep.chatter import circuit, limits, stack
-    from contactsep.cli import design_options
-    steps, work, coarse = quoted(
-        "sweeps.md", r"\(more than (1e\d+) steps, or (1e\d+) steps × "
-        r"modes\) is refused before any work, one more than (\d+) times "
-        r"the default is warned")
-    assert (float(steps), float(work)) == (limits.MAX_STEPS,
-                                           limits.MAX_WORK)
-    assert float(coarse) == stack.COARSE_DT
-    (min_open,) = quoted("sweeps.md", r"`min_open_s`, default ([\d.e-]+) "
-                         r"s\)")
-    assert float(min_open) == circuit.MIN_OPEN
-    (most,) = quoted("sweeps.md", r"d ≤ 0, N > (\d+),")
-    assert int(most) == limits.MAX_MODES
-    (forked,) = quoted("sweeps.md", r"steps × modes ≥ (\de\d), goes to a "
-                       r"forked child")
-    assert float(forked) == limits.FORKED_WORK
-    modulus, density, length = quoted(
-        "names-and-units.md", r"a modulus below (1e\d) psi .*? a weight "
-        r"density above (\d+) lb/in³ .*? a member longer than (\d+) in")
-    assert (float(modulus), float(density), float(length)) == (
-        design_options.SOFTEST_PSI, design_options.DENSEST_LB_IN3,
-        design_options.LONGEST_IN)
 
 
 def test_the_kappa_five_sixths_and_per_row_clamps():
