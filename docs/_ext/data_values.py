@@ -10,6 +10,9 @@ The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
 ``FILE``
     a CSV file, relative to ``docs/``; its lines that start with ``#``
     (the comments every CSV the package writes carries) are skipped.
+    Or a committed JSON object (a command's ``--json`` output): one row
+    whose columns are its leaves, named by their paths (``n``,
+    ``inputs.seed``, ``p_exceed_ci95[0]``).
     Or a committed benchmark run, ``../benchmarks/results/NAME.md#K``:
     the K-th Markdown table of the run (benchmark_runs.py; 1 without
     ``#K``); ``NAME.md~K``: the K-th table it printed as text
@@ -200,6 +203,42 @@ def read_rows(path: Path, label: str) -> tuple[list[str], list[dict]]:
     return header, rows
 
 
+def _flat(value, prefix: str, row: dict) -> None:
+    """The leaves of a JSON value as ``row``'s cells, each named by its
+    path: ``key.inner`` through objects, ``key[0]`` through arrays."""
+    if isinstance(value, dict):
+        for key, inner in value.items():
+            _flat(inner, f"{prefix}.{key}" if prefix else str(key), row)
+    elif isinstance(value, list):
+        for index, inner in enumerate(value):
+            _flat(inner, f"{prefix}[{index}]", row)
+    elif value is None:
+        row[prefix] = ""
+    elif isinstance(value, bool):
+        row[prefix] = "1" if value else "0"
+    else:
+        row[prefix] = repr(value) if isinstance(value, float) else str(value)
+
+
+def json_row(path: Path, label: str) -> tuple[list[str], list[dict]]:
+    """A committed JSON object (a command's ``--json`` output) as a table
+    of one row, its leaves the columns (:func:`_flat`)."""
+    import json
+    try:
+        with open(path, encoding="utf-8") as handle:
+            value = json.load(handle)
+    except FileNotFoundError:
+        raise DatumError(f"{label}: no such file") from None
+    except (OSError, UnicodeDecodeError, ValueError) as error:
+        raise DatumError(f"{label}: not a JSON file "
+                         f"({one_line(error)})") from None
+    if not isinstance(value, dict):
+        raise DatumError(f"{label}: not a JSON object")
+    row = {}
+    _flat(value, "", row)
+    return list(row), [row]
+
+
 def _rows(base: Path, datum: Datum) -> tuple[list[str], list[dict]]:
     """The header and rows ``datum.file`` names: a CSV, or the K-th
     table of a committed benchmark run, ``NAME.md#K``
@@ -218,6 +257,8 @@ def _rows(base: Path, datum: Datum) -> tuple[list[str], list[dict]]:
         return printed_tables.table_rows(base / file, number,
                                          datum.where())
     file, hash_, table = datum.file.partition("#")
+    if file.endswith(".json") and not hash_:
+        return json_row(base / file, datum.where())
     if not file.endswith(".md"):
         if hash_:
             raise DatumError(f"{datum.where()}: #K selects a table of a "

@@ -225,3 +225,43 @@ def test_an_error_points_at_the_roles_own_line(tmp_path):
     assert data_values.source_line(str(page), use, 3) == 5
     assert data_values.source_line(str(page), "t.csv:other", 3) == 3
     assert data_values.source_line("<string>", use, 7) == 7
+
+
+SUMMARY = """{"n": 1000, "p": 0.0845, "ci": [0.08, 0.09], "ok": true,
+ "none": null, "inputs": {"seed": 0, "sample": {"d_in": {"sd": 0.01}}},
+ "label": "hertz"}"""
+
+
+@pytest.mark.parametrize("spec, shown", [
+    ("s.json:n:,d", "1,000"),
+    ("s.json:p", "0.0845"),
+    ("s.json:p:.2f", "0.08"),
+    ("s.json:ci[1]:.2f", "0.09"),
+    ("s.json:inputs.seed", "0"),
+    ("s.json:inputs.sample.d_in.sd:g", "0.01"),
+    ("s.json:ok", "1"),
+    ("s.json:label", "hertz"),
+    ("s.json:rows", "1"),
+])
+def test_a_committed_json_object_is_one_row_of_its_leaves(tmp_path, spec,
+                                                           shown):
+    (tmp_path / "s.json").write_text(SUMMARY)
+    assert resolve(spec, tmp_path) == shown
+
+
+@pytest.mark.parametrize("text, spec, says", [
+    (SUMMARY, "s.json:none", "the cell is empty"),
+    (SUMMARY, "s.json:nope", "no column 'nope'"),
+    (SUMMARY, "s.json:ci", "no column 'ci'"),
+    ("[1, 2]", "s.json:x", "not a JSON object"),
+    ("{nan", "s.json:x", "not a JSON file"),
+    (None, "s.json:x", "no such file"),
+])
+def test_a_json_file_that_cannot_be_read_is_one_line(tmp_path, text, spec,
+                                                      says):
+    if text is not None:
+        (tmp_path / "s.json").write_text(text)
+    with pytest.raises(DatumError) as caught:
+        resolve(spec, tmp_path)
+    assert says in str(caught.value)
+    assert "\n" not in str(caught.value)
