@@ -61,10 +61,11 @@ def test_one_clamp_stiffness_fit_matches_scipy():
 def test_one_committed_row_is_what_the_code_fits():
     """docs/studies/separator-fit.csv (written by the command its page,
     docs/studies.md, names) against the code, fast: one row of a fit of
-    one parameter (a golden-section search, milliseconds; a fit of two
-    takes seconds), chosen by the study's name, fitted again: its
-    parameters as text, its rms and residuals to 1e-10 of their
-    column's largest magnitude (the file holds 12 significant digits).
+    one parameter (a golden-section search, about a second of CPU; a
+    fit of two takes four to six), chosen by the study's name, fitted
+    again: its parameters as text, its rms and residuals to 1e-10 of
+    their column's largest magnitude (the file holds 12 significant
+    digits).
     The slow test below runs the command and checks the issue's
     findings on its output."""
     import zlib
