@@ -29,16 +29,16 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
 #: so do the tutorial's two slow steps, whose files are committed as
 #: docs/studies/tutorial_preload.csv and tutorial_tolerance.csv
 #: (tests/project/test_tutorial.py; here they read the my_relay.json
-#: of the page's set-up, which the slow set alone never wrote).  The
-#: other commands that only regenerate committed files of docs/studies
-#: (docs/studies.md) are checked there too, fast: `study all --out
-#: docs/studies` by tests/studies/test_committed_outputs.py
-#: (test_committed_study_is_what_the_code_computes, every study of
-#: eq. 23; README.md's `study all --out figs` runs the command),
-#: `study chatter --out docs/studies` by its
-#: test_committed_chatter_table_is_what_the_code_computes (docs/chatter.md's
-#: `study chatter` runs the command), and `study separator-fit --csv
-#: docs/studies/separator-fit.csv` by
+#: of the page's set-up, which the slow set alone never wrote).  So
+#: do the other commands that only regenerate committed files of
+#: docs/studies (docs/studies.md), whose files are checked fast:
+#: `study all --out docs/studies` by tests/studies/
+#: test_committed_outputs.py (test_committed_study_is_what_the_code_
+#: computes, every study of eq. 23; tests/studies/thesis/test_studies.py
+#: runs `study all --out DIR` into a scratch folder), `study chatter
+#: --out docs/studies` by its test_committed_chatter_table_is_what_the_
+#: code_computes (docs/chatter.md's `study chatter` runs the command
+#: here), `study separator-fit --csv docs/studies/separator-fit.csv` by
 #: tests/studies/thesis/test_separator_fit.py (one committed row fitted
 #: again; its slow test runs the command and checks the findings).
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/",
