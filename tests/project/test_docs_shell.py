@@ -29,7 +29,18 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")),
 #: so do the tutorial's two slow steps, whose files are committed as
 #: docs/studies/tutorial_preload.csv and tutorial_tolerance.csv
 #: (tests/project/test_tutorial.py; here they read the my_relay.json
-#: of the page's set-up, which the slow set alone never wrote).
+#: of the page's set-up, which the slow set alone never wrote).  So
+#: do the other commands that only regenerate committed files of
+#: docs/studies (docs/studies.md), whose files are checked fast:
+#: `study all --out docs/studies` by tests/studies/
+#: test_committed_outputs.py (test_committed_study_is_what_the_code_
+#: computes, every study of eq. 23; tests/studies/thesis/test_studies.py
+#: runs `study all --out DIR` into a scratch folder), `study chatter
+#: --out docs/studies` by its test_committed_chatter_table_is_what_the_
+#: code_computes (docs/chatter.md's `study chatter` runs the command
+#: here), `study separator-fit --csv docs/studies/separator-fit.csv` by
+#: tests/studies/thesis/test_separator_fit.py (one committed row fitted
+#: again; its slow test runs the command and checks the findings).
 NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/",
              "--samples 381",
              "study preload --converge --csv docs/studies/preload.csv",
@@ -37,7 +48,10 @@ NEVER_RUN = ("apt-get", "pip install", "pytest", "benchmarks/",
              "docs/studies/preload_physical.csv",
              "study preload --converge --out docs/studies",
              "--design my_relay.json --csv tutorial_preload.csv",
-             "--samples 100 --seed 1 --csv tolerance.csv")
+             "--samples 100 --seed 1 --csv tolerance.csv",
+             "study all --out docs/studies",
+             "study chatter --out docs/studies",
+             "study separator-fit --csv docs/studies/separator-fit.csv")
 #: Commands run only in the slow set (a minute or a large file).
 SLOW = ("--samples 1000000", "study chatter", "study all", "study preload",
         "tolerance.csv", "study conclusion", "--preload 20",

@@ -157,16 +157,72 @@ def test_the_materials_study_runs_and_draws(tmp_path):
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
 
 
-@pytest.mark.slow
+def _one_row_again(name, row):
+    """The study run again on the one row's grid point, as its function
+    builds it: contact-points on the ratios of the row's two contact
+    points (four simulations), materials on the row's two materials and
+    preload (one simulation a law)."""
+    if name == "contact-points":
+        length = float(cp.thesis_study_design().L2)
+        ratios = tuple(dict.fromkeys(
+            (float(row["x2_in"]) / length,
+             float(row["x2_lower_in"]) / length)))
+        study = cp.contact_points(ratios=ratios,
+                                  preloads=(float(row["preload_lb"]),),
+                                  workers=1)
+        keys = ("x2_in", "x2_lower_in")
+    else:
+        study = mat.materials(contacts=(row["contact_material"],),
+                              separators=(row["separator_material"],),
+                              preloads=(float(row["preload_lb"]),),
+                              workers=1)
+        keys = ("law",) if "law" in row else ()
+    columns = study.columns
+    (k,) = [i for i in range(len(study))
+            if all(str(columns[key][i]) == row[key]
+                   or (key != "law"
+                       and float(columns[key][i]) == float(row[key]))
+                   for key in keys)]
+    return study, k
+
+
 @pytest.mark.parametrize("name", ["contact-points", "materials"])
-def test_committed_study_is_what_the_code_computes(name):
-    """50 and 32 three-beam simulations (minutes): the committed CSVs
-    of docs/studies are today's; regenerate with `contactsep study NAME
-    --out docs/studies`."""
-    from test_committed_outputs import COMMITTED, compare
-    from contactsep.studies.thesis.recommendations import STUDIES
-    committed = (COMMITTED / f"{name}.csv").read_text()
-    compare(committed, STUDIES[name][0]().csv_text(), name)
+def test_one_committed_row_is_what_the_code_computes(name):
+    """The committed CSVs of docs/studies (50 and 64 three-beam
+    simulations; regenerate with `contactsep study NAME --out
+    docs/studies`, the command docs/circuit-opening.md names), fast:
+    one row, chosen by the study's name, simulated again by the study's
+    own function on that row's grid point; each column to 1e-10 of its
+    column's largest magnitude (the files hold 12 significant digits),
+    the '#' lines that do not count the grid's simulations or list its
+    presets the same."""
+    import zlib
+
+    from conftest import ROOT
+    from test_committed_outputs import COMMITTED, parse
+    assert f"contactsep study {name}" in \
+        (ROOT / "docs" / "circuit-opening.md").read_text()
+    comments, header, rows = parse((COMMITTED / f"{name}.csv").read_text())
+    k = zlib.crc32(name.encode()) % len(rows)
+    row = dict(zip(header, rows[k]))
+    study, i = _one_row_again(name, row)
+    fresh_comments, fresh_header, fresh_rows = parse(study.csv_text())
+    assert fresh_header == header
+
+    def kept(lines):
+        return [line for line in lines
+                if not line.endswith(" simulations")
+                and not line.startswith("# presets ")]
+    assert kept(fresh_comments) == kept(comments)
+    for j, column in enumerate(header):
+        old, new = rows[k][j], fresh_rows[i][j]
+        try:
+            a, b = float(old), float(new)
+        except ValueError:
+            assert old == new, (name, column)
+            continue
+        scale = max(abs(float(r[j])) for r in rows)
+        assert a == b or abs(a - b) <= 1e-10 * scale, (name, column, a, b)
     assert (COMMITTED / f"{name}.png").read_bytes()[:8] == \
         b"\x89PNG\r\n\x1a\n"
 

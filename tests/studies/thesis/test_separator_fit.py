@@ -58,6 +58,50 @@ def test_one_clamp_stiffness_fit_matches_scipy():
     assert logs[0] == pytest.approx(best.x, abs=1e-5)
 
 
+def test_one_committed_row_is_what_the_code_fits():
+    """docs/studies/separator-fit.csv (written by the command its page,
+    docs/studies.md, names) against the code, fast: one row of a fit of
+    one parameter (a golden-section search, about a second of CPU; a
+    fit of two takes four to six), chosen by the study's name, fitted
+    again: its parameters as text, its rms and residuals to 1e-10 of
+    their column's largest magnitude (the file holds 12 significant
+    digits).
+    The slow test below runs the command and checks the issue's
+    findings on its output."""
+    import zlib
+
+    from conftest import ROOT
+    committed = ROOT / "docs" / "studies"
+    command = ("contactsep study separator-fit --csv "
+               "docs/studies/separator-fit.csv --png "
+               "docs/studies/separator-fit.png")
+    assert command in (ROOT / "docs" / "studies.md").read_text()
+    lines = (committed / "separator-fit.csv").read_text().splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    header, *rows = csv.reader(line for line in lines
+                               if not line.startswith("#"))
+    assert comments[0] == ("# Table II explained: the separator's first "
+                           "frequency, five models fitted")
+    assert header == ["model", "data", "parameters", "rms_pct",
+                      *sf.RESIDUAL_COLUMNS]
+    assert [(r[0], r[1]) for r in rows] == [
+        (model, data) for model in sf.MODELS for data in sf.DATA]
+    fitted = [i for i, r in enumerate(rows)
+              if len(sf.PARAMETERS[r[0]]) == 1]
+    k = fitted[zlib.crc32(b"separator-fit") % len(fitted)]
+    model, data, parameters = rows[k][:3]
+    logs, res = sf.fit(model, sf.DATA[data])
+    assert sf._describe(model, logs) == parameters
+    fresh = [100.0 * float(np.sqrt(np.mean(res**2))),
+             *(100.0 * float(v) for v in res)]
+    for j, value in enumerate(fresh, start=3):
+        scale = max(abs(float(r[j])) for r in rows)
+        assert abs(float(rows[k][j]) - value) <= 1e-10 * scale, \
+            (model, data, header[j])
+    assert (committed / "separator-fit.png").read_bytes()[:8] == \
+        b"\x89PNG\r\n\x1a\n"
+
+
 @pytest.mark.slow
 def test_study_reproduces_the_issues_findings(tmp_path, capsys):
     out_csv, out_png = tmp_path / "fit.csv", tmp_path / "fit.png"
