@@ -7,6 +7,7 @@ quadrature, and a point load's static deflection from the beam equation
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -70,9 +71,17 @@ def _raw_shape(end, kl, xi):
     return num / den - np.cos(kx) + sigma * np.sin(kx)
 
 
+@functools.lru_cache(maxsize=None)
 def _gauss(n):
+    """n-point Gauss-Legendre nodes and weights on [0, 1], read-only:
+    made once for each n (an eigenvalue problem of order n >= 200, a
+    fifth of a random design's reference run when made for every
+    beam)."""
     x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w
+    x, w = 0.5 * (x + 1.0), 0.5 * w
+    x.setflags(write=False)
+    w.setflags(write=False)
+    return x, w
 
 
 @dataclass(frozen=True)

@@ -437,11 +437,26 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
         f = k * d**1.5 * (1.0 + chi * (-u))
         return np.where(d > 0.0, np.maximum(f, 0.0), 0.0)
 
+    # the right-hand side, called millions of times in a long pressed
+    # phase: its arrays made once and the two contacts' Hertz (Flores)
+    # forces in scalars (the same equations as force, without the
+    # small-array overhead that was 60 % of a run)
+    n3, p2, ht = 3 * n, p**2, np.ascontiguousarray(h.T)
+
     def rhs(_, y):
-        qq, vv = y[:3 * n], y[3 * n:6 * n]
-        f = force(h @ qq + g0, h @ vv)
-        acc = -p**2 * qq + (h.T @ f) / m
-        return np.concatenate([vv, acc, f])
+        qq, vv = y[:n3], y[n3:2 * n3]
+        if cmat is not None:
+            f = force(h @ qq + g0, h @ vv)
+        else:
+            (g_up, g_low), (u_up, u_low) = (h @ qq + g0).tolist(), \
+                (h @ vv).tolist()
+            f = np.array([_hertz(k, chi, g_up, u_up),
+                          _hertz(k, chi, g_low, u_low)])
+        res = np.empty(2 * n3 + 2)
+        res[:n3] = vv
+        np.subtract((ht @ f) / m, p2 * qq, out=res[n3:2 * n3])
+        res[2 * n3:] = f
+        return res
 
     t = t_hit
     impulse_before = 0.0
@@ -555,6 +570,14 @@ def simulate(setup: Setup, t_end: float, *, threshold: float = 1e-6,
     if first_episode_open:
         traj.first_impulse_lb_s = impulse_before
     return traj
+
+
+def _hertz(k, chi, g, u):
+    """One contact's Hertz (Flores) force, k d^1.5 (1 - chi u) >= 0 at
+    depth d = -g > 0 (force's law, for one contact in scalars)."""
+    if g >= 0.0:
+        return 0.0
+    return max(k * (-g)**1.5 * (1.0 + chi * (-u)), 0.0)
 
 
 def _rate(p1, q1, v1, x1, s):
