@@ -7,7 +7,6 @@ reworded sentence fails."""
 
 from __future__ import annotations
 
-import inspect
 import re
 
 import pytest
@@ -57,16 +56,21 @@ def test_the_failed_designs_message_is_the_commands(capsys):
 
 
 def test_the_dask_chunking_is_the_codes():
-    from contactsep.runs import chunks
-    from contactsep.studies.sweep import chunk_runs
-    a_worker, smallest = quoted(
-        "sweeps.md", r"every worker gets at least (\d+) of what is left "
-        r"\(down to ([\d.]+) s of work a chunk\)")
-    assert int(a_worker) == chunks.CHUNKS_PER_WORKER
-    assert float(smallest) == chunks.MIN_CHUNK_S
+    """The chunks a Dask cluster has in flight, as sweeps.md says them:
+    twice its threads plus two (the constants of the sizing rule are
+    the page's ``constant`` roles)."""
+    from contactsep.runs import backend
+
+    class Threads:
+        workers = 8
+
     quoted("sweeps.md", r"twice as many chunks as the cluster has "
-           r"threads, plus two, are in flight")
-    assert "2 * bounds.workers + 2" in inspect.getsource(chunk_runs)
+           r"threads, plus two, are in flight \(\{constant\}`contactsep"
+           r"\.runs\.backend\.DASK_WINDOW_PER_WORKER:words` times as many "
+           r"when only summaries come back\)")
+    assert backend.DaskCluster.chunk_window(Threads(), False) == 2 * 8 + 2
+    assert backend.DaskCluster.chunk_window(Threads(), True) == \
+        backend.DASK_WINDOW_PER_WORKER * 8 + 2
 
 
 def test_osmiums_density():
