@@ -173,4 +173,7 @@ class StudyRun:
 
     @property
     def cost(self) -> float:
-        return float(getattr(self, "preload_lb", 0.0))
+        """The preload (lb); 0 for a run without one, or whose preload
+        is not a number."""
+        value = getattr(self, "preload_lb", 0.0)
+        return float(value) if isinstance(value, (int, float)) else 0.0

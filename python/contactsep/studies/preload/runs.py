@@ -22,10 +22,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from contactsep.studies.study import StudyRun
+
 
 @dataclass(frozen=True)
-class PreloadRun:
+class PreloadRun(StudyRun):
     """One simulation of ``design`` by ``model`` at ``preload_lb``.
+
+    Its cost, the batch's order, is its preload; it is named in a
+    journal by ``(design, model, settings, preload_lb)``, its fields in
+    order (:class:`~contactsep.studies.study.StudyRun`).
 
     Parameters
     ----------
@@ -44,18 +50,6 @@ class PreloadRun:
     model: str
     settings: dict
     preload_lb: float
-
-    @property
-    def cost(self) -> float:
-        """The run's cost for the batch's order: its preload (lb; module
-        docstring); 0 for one that is not a number."""
-        value = self.preload_lb
-        return float(value) if isinstance(value, (int, float)) else 0.0
-
-    def key_tuple(self) -> tuple:
-        """``(design, model, settings, preload)``: what names the run
-        in a journal."""
-        return (self.design, self.model, self.settings, self.preload_lb)
 
 
 @dataclass(frozen=True)
