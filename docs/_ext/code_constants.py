@@ -37,6 +37,8 @@ import importlib
 import numbers
 import re
 
+from data_values import one_line
+
 #: The words of the ``words`` format.
 WORDS = ("zero one two three four five six seven eight nine ten eleven "
          "twelve thirteen fourteen fifteen sixteen seventeen eighteen "
@@ -50,10 +52,6 @@ _INDEX = re.compile(r"\[([^\]]+)\]")
 
 class ConstantError(ValueError):
     """A ``constant`` that cannot be shown; its message is one line."""
-
-
-def _one_line(text: str) -> str:
-    return " ".join(str(text).split())
 
 
 def _lookup(path: str):
@@ -130,15 +128,15 @@ def _format(value, fmt: str | None, where: str) -> str:
         return format(value, fmt)
     except (ValueError, TypeError) as error:
         raise ConstantError(f"{where}: format {fmt!r} does not take "
-                            f"{value!r} ({_one_line(error)})") from None
+                            f"{value!r} ({one_line(error)})") from None
 
 
 def resolve(spec: str) -> str:
     """The text the role shows for ``spec`` (module docstring)."""
-    text = _one_line(spec).replace(" ", "")
+    text = one_line(spec).replace(" ", "")
     match = _SPEC.match(text)
     if match is None:
-        raise ConstantError(f"{_one_line(spec)!r}: expected "
+        raise ConstantError(f"{one_line(spec)!r}: expected "
                             f"MODULE.NAME[INDEX][:FORMAT]")
     where = match.group("path") + (match.group("index") or "")
     value = _lookup(match.group("path"))

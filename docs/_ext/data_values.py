@@ -217,7 +217,7 @@ def _flat(value, prefix: str, row: dict) -> None:
     elif isinstance(value, bool):
         row[prefix] = "1" if value else "0"
     else:
-        row[prefix] = repr(value) if isinstance(value, float) else str(value)
+        row[prefix] = str(value)     # a float's shortest exact repr
 
 
 def json_row(path: Path, label: str) -> tuple[list[str], list[dict]]:
