@@ -14,7 +14,7 @@ import re
 
 import numpy as np
 import pytest
-from test_docs_pages import NUMBER, printed, quoted
+from docs_text import NUMBER, printed, quoted
 
 import contactsep
 from conftest import ROOT, THESIS_DECKS

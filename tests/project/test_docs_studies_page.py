@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from test_docs_pages import NUMBER, page, printed, quoted
+from docs_text import NUMBER, page, printed, quoted
 
 from contactsep.cli import main as cli_main
 
