@@ -39,7 +39,7 @@ ENDS = {1: "clamped-free", 2: "clamped-clamped", 3: "clamped-pinned",
 
 # ------------------------------------------------------------ beam modes
 
-PUBLISHED = {  # /work/shared/beam-constants.md (8-9 digits)
+PUBLISHED = {  # tests/data/beam-constants.md (8-9 digits)
     1: [1.87510407, 4.69409113, 7.85475744, 10.99554073, 14.13716839,
         17.27875953],
     2: [4.73004074, 7.85320462, 10.9956078, 14.1371655, 17.2787597],

@@ -478,7 +478,7 @@ def test_round_trip_keeps_the_printed_digits(sets):
 
 # ---------------------------------------------------------------- thesis decks
 
-# /work/shared/beam-constants.md (Blevins 1979, Table 8-1), first four modes
+# tests/data/beam-constants.md (Blevins 1979, Table 8-1), first four modes
 PUBLISHED_CANTILEVER_K = [1.87510407, 4.69409113, 7.85475744, 10.99554073]
 PUBLISHED_CANTILEVER_SIGMA = [0.734095514, 1.018467319, 0.999224497,
                               1.000033553]

@@ -15,7 +15,7 @@ from contactsep import beams
 CANT, CC = "cantilever", "clamped-clamped"
 
 # R. D. Blevins, Formulas for Natural Frequency and Mode Shape (1979),
-# Table 8-1, as quoted in /work/shared/beam-constants.md.  Strings, so that
+# Table 8-1, as quoted in tests/data/beam-constants.md.  Strings, so that
 # the tolerance is half a unit in the last printed digit.
 PUBLISHED = {
     CANT: {

@@ -4,7 +4,7 @@ residual_flexibility): the static correction's series spring.
 
 Independent paths: the static deflection of a point load solved here from
 the beam equation (two cubics joined at the load, 8 conditions), the
-published eigenvalue k_1L (/work/shared/beam-constants.md), and tails of
+published eigenvalue k_1L (tests/data/beam-constants.md), and tails of
 the modal series summed in closed form (pinned-pinned: sin modes; the
 cantilever's tip: X_j(L) = 2 (-1)^(j+1), k_jL -> (j - 1/2) pi, so the tail
 is a Hurwitz zeta value)."""
