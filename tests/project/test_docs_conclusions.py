@@ -2,8 +2,8 @@
 opening ("The thesis's conclusions and circuit opening") quote the
 committed studies (docs/studies/conclusion3|5|6|7.csv, `contactsep study
 conclusionN --csv`), row for row: the datum roles that draw each row's
-values from its study, the open time (in ms, scaled) at the page's
-rounding.  Reads files only: the studies are three-beam searches of
+values from its study (the open time scaled to ms by the role's
+expression).  Reads files only: the studies are three-beam searches of
 minutes each."""
 
 from __future__ import annotations
@@ -47,17 +47,18 @@ def rounded(row: dict) -> list[str]:
 def cells(name: str, key: str, row: dict) -> list[str]:
     """A row's cells after its leading ones: the roles that show y3 to
     4 decimals, the gap to 3 digits, the events and the preload to 4
-    digits, selected by the row's ``key``; the open time in ms to 0.1
-    (a scaled value the role does not show) as text."""
+    digits, selected by the row's ``key``; the open time in ms to 0.1,
+    the role's expression scaling the study's seconds."""
     where = f"{key}={float(row[key]):g}"
 
     def role(column, fmt=None):
         fmt = f":{fmt}" if fmt else ""
         return f"{{datum}}`studies/{name}.csv:{column}@{where}{fmt}`"
 
+    open_ms = (f"{{datum}}`=1000 * [studies/{name}.csv:circuit_open_s@"
+               f"{where}]:.1f`")
     return [role("y3_max_in", ".4f"), role("max_lower_gap_in", ".3g"),
-            f"{1e3 * float(row['circuit_open_s']):.1f}", role("n_events"),
-            role("min_preload_lb", ".4g")]
+            open_ms, role("n_events"), role("min_preload_lb", ".4g")]
 
 
 def section() -> str:
@@ -70,7 +71,7 @@ def section() -> str:
 @pytest.mark.parametrize("name", sorted(LEADING))
 def test_the_conclusion_table_quotes_its_study(name):
     """Row for row, the study's key as text and the rest of its values
-    the roles that select that row (the open time as text)."""
+    the roles that select that row."""
     header, key, with_r = LEADING[name]
     text = section()
     lines = text[text.index(header + " eq. 23 max y3 (in)"):].splitlines()
@@ -171,7 +172,7 @@ def test_the_physical_chart_quotes_both_charts():
 
 def test_the_physical_conclusion_5_table_quotes_its_study():
     """Row for row, the d as text, the gap, events and preload the roles
-    that select the row, the open time (ms) as text."""
+    that select the row."""
     table = quoted_table(physical_section(),
                          "| d (in) | max lower gap (in) |")
     name = "conclusion5_physical"
