@@ -249,40 +249,46 @@ def _doc_table(heading):
     return out
 
 
+def _gap_and_open(spec: str, formats: tuple[str, str]) -> str:
+    """A table cell: the datum roles of the largest lower gap with no
+    preload and the open time at 6 lb, both scaled by 1000 (0.001 in,
+    ms), of the row ``spec`` (``FILE:{}@FILTERS,preload_lb={}``)."""
+    gap = spec.format("max_lower_gap_in", 0)
+    opened = spec.format("circuit_open_s", 6)
+    return (f"{{datum}}`=1000 * [{gap}]:{formats[0]}` / "
+            f"{{datum}}`=1000 * [{opened}]:{formats[1]}`")
+
+
 def test_the_docs_tables_are_the_committed_studies():
-    """docs/circuit-opening.md's two tables (gap in 0.001 in / open ms at 6 lb)
-    against docs/studies/contact-points.csv and materials.csv."""
+    """docs/circuit-opening.md's two tables (gap in 0.001 in / open ms at
+    6 lb): every cell the datum roles of its grid point's rows of
+    docs/studies/contact-points.csv and materials.csv (the roles resolve
+    to the files' values: tests/project/test_data_values.py), and every
+    grid point of the files in a cell."""
     table = _doc_table("open time at 6 lb (ms), upper contact's x2 across")
     rows = _csv_rows("contact-points")
-    assert len(table) == 5
+    x2s = ("0.5", "0.875", "1.25", "1.625", "2")
+    assert sorted(map(float, table)) == sorted(
+        {float(r["x2_lower_in"]) for r in rows})
+    assert sorted({r["x2_in"] for r in rows}, key=float) == list(x2s)
     for label, cells in table.items():
-        for x2, cell in zip(("0.5", "0.875", "1.25", "1.625", "2"), cells):
-            gap, open_ms = (float(v) for v in cell.split("/"))
-            got = {float(r["preload_lb"]): r for r in rows
-                   if r["x2_in"] == x2 and
-                   float(r["x2_lower_in"]) == float(label)}
-            assert gap == pytest.approx(
-                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
-            assert open_ms == pytest.approx(
-                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.0051)
+        assert cells == [_gap_and_open(
+            "studies/contact-points.csv:{}@"
+            f"x2_in={x2},x2_lower_in={label},preload_lb={{}}",
+            (".3g", ".2f")) for x2 in x2s], label
     table = _doc_table("Largest lower\ngap with no preload (0.001 in) / "
                        "open time at 6 lb (ms):")
     rows = _csv_rows("materials")
-    assert len(table) == 4
     names = {"steel": "steel", "brass": "brass", "aluminium": "aluminium",
              "beryllium copper": "beryllium-copper"}
+    separators = ("steel", "brass", "beryllium-copper", "aluminium")
+    assert {names[label] for label in table} == \
+        {r["contact_material"] for r in rows} == set(separators)
     for label, cells in table.items():
-        for separator, cell in zip(("steel", "brass", "beryllium-copper",
-                                    "aluminium"), cells):
-            gap, open_ms = (float(v) for v in cell.split("/"))
-            got = {float(r["preload_lb"]): r for r in rows
-                   if r["contact_material"] == names[label]
-                   and r["separator_material"] == separator
-                   and r.get("law", "hertz") == "hertz"}
-            assert gap == pytest.approx(
-                1e3 * float(got[0.0]["max_lower_gap_in"]), abs=0.051)
-            assert open_ms == pytest.approx(
-                1e3 * float(got[6.0]["circuit_open_s"]), abs=0.051)
+        assert cells == [_gap_and_open(
+            "studies/materials.csv:{}@law=hertz,"
+            f"contact_material={names[label]},separator_material={sep},"
+            "preload_lb={}", (".1f", ".1f")) for sep in separators], label
     # the prose on Thornton's rows: closed at 6 lb but for BeCu on BeCu
     thornton = [r for r in rows if r.get("law") == "thornton"]
     assert len(thornton) == 32
