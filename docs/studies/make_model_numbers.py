@@ -41,6 +41,7 @@ def domain_numbers() -> dict:
     return {
         "size_min_um": domain.SIZE_RANGE[0] * INCH_CM * 1e4,
         "size_max_ft": domain.SIZE_RANGE[1] / 12,
+        "osmium_lb_in3": OSMIUM * G_CM3_LB_IN3,
         "density_max_over_osmium":
             domain.DENSITY_RANGE[1] / (OSMIUM * G_CM3_LB_IN3),
         "aluminium_lb_ft3": ALUMINIUM * G_CM3_LB_IN3 * 1728,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from docs_text import NUMBER, page, printed, quoted
+from docs_text import page, printed, quoted, says
 
 from contactsep.cli import main as cli_main
 
@@ -64,21 +64,30 @@ def test_the_dask_chunking_is_the_codes():
     class Threads:
         workers = 8
 
-    quoted("sweeps.md", r"twice as many chunks as the cluster has "
-           r"threads, plus two, are in flight \(\{constant\}`contactsep"
-           r"\.runs\.backend\.DASK_WINDOW_PER_WORKER:words` times as many "
-           r"when only summaries come back\)")
+    says("sweeps.md", "twice as many chunks as the cluster has threads, "
+         "plus two, are in flight ({constant}`contactsep.runs.backend."
+         "DASK_WINDOW_PER_WORKER:words` times as many when only summaries "
+         "come back)")
     assert backend.DaskCluster.chunk_window(Threads(), False) == 2 * 8 + 2
     assert backend.DaskCluster.chunk_window(Threads(), True) == \
         backend.DASK_WINDOW_PER_WORKER * 8 + 2
 
 
 def test_osmiums_density():
-    """'osmium is 0.816' lb/in^3: 22.59 g/cm^3 (CRC Handbook)."""
+    """'osmium is 0.816' lb/in^3 (docs/studies/model_numbers.json, which
+    tests/project/test_docs_model_page.py checks against its command):
+    22.59 g/cm^3 (CRC Handbook)."""
+    import json
+
+    from conftest import ROOT
     pint = pytest.importorskip("pint")
-    (claim,) = quoted("names-and-units.md", rf"osmium is {NUMBER}\)")
+    says("names-and-units.md", "osmium is {datum}`studies/model_numbers."
+         "json:domain.osmium_lb_in3:.3f`)")
+    committed = json.loads((ROOT / "docs" / "studies" /
+                            "model_numbers.json").read_text())
     value = (22.59 * pint.UnitRegistry()("g/cm^3")).to("lb/in^3").magnitude
-    assert printed(value, claim), value
+    assert committed["domain"]["osmium_lb_in3"] == pytest.approx(
+        value, rel=1e-9)
 
 
 def test_the_newton_band_claim_is_the_convergence_pages():
