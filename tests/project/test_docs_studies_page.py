@@ -43,16 +43,37 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path,
 
 
 def test_the_failed_designs_message_is_the_commands(capsys):
-    """The one-line warning the page quotes is what its command prints."""
-    sample, samples, failed, total, invalid = quoted(
-        "sweeps.md", r"named in one line \(`--sample '([^']+)' --samples "
-        r"(\d+)`: `contactsep: warning: ([\d,]+) of ([\d,]+) designs failed "
-        r"\(([\d,]+) invalid input\); ...`\)")
+    """The one-line warning the page quotes (its counts ``datum`` roles of
+    docs/studies/failed_designs_summary.json, the command's ``--json``
+    summary) is what its command prints, and the committed summary is
+    the one it prints now (its counts and inputs exactly)."""
+    import json
+
+    from docs_text import STUDIES
+    name = "studies/failed_designs_summary.json"
+    committed = json.loads((STUDIES / "failed_designs_summary.json")
+                           .read_text())
+    inputs = committed["inputs"]
+    (field, law), = inputs["sample"].items()
+    assert (field, law["distribution"]) == ("d_in", "normal")
+    sample = f"d=normal({law['mean']:g},{law['sd']:g})"
+    samples = str(inputs["samples"])
+    says("sweeps.md", f"(`--sample '{sample}' --samples {samples}`: "
+         f"`contactsep: warning:` {{datum}}`{name}:n_failed:,d` of "
+         f"{{datum}}`{name}:inputs.designs:,d` `designs failed (`"
+         f"{{datum}}`{name}:n_failed_by_status.2:,d` `invalid input); "
+         "...`; its summary with `--json`: "
+         "`docs/studies/failed_designs_summary.json`)")
     assert cli_main(["sweep", "--sample", sample, "--samples", samples,
-                     "--progress", "never"]) == 0
-    err = capsys.readouterr().err
-    assert (f"contactsep: warning: {failed} of {total} designs failed "
-            f"({invalid} invalid input); ") in err, err
+                     "--progress", "never", "--json"]) == 0
+    out, err = capsys.readouterr()
+    now = json.loads(out)
+    for key in ("n", "n_failed", "n_failed_by_status", "inputs"):
+        assert now[key] == committed[key], key
+    failed, total = committed["n_failed"], inputs["designs"]
+    invalid = committed["n_failed_by_status"]["2"]
+    assert (f"contactsep: warning: {failed:,} of {total:,} designs failed "
+            f"({invalid:,} invalid input); ") in err, err
 
 
 def test_the_dask_chunking_is_the_codes():
