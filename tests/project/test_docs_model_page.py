@@ -1,20 +1,23 @@
 """docs/model.md's remaining numbers (issue 30, item 8), beside
-test_docs_pages.py: the domain table's limits and what they are in
-other units (published material constants, pint), the round-off of a
-mode near a clamp (mpmath), the deck's alpha sensitivity (the restored
-reference), and the counts of tests the page describes (read from the
-tests themselves).  Each number is found by the sentence that quotes
-it; a reworded sentence fails."""
+test_docs_pages.py.  The computed ones (the domain table's limits in
+other units, the round-off of a mode near a clamp, the deck's alpha
+sensitivity) are ``datum`` roles of docs/studies/model_numbers.json:
+the file is checked against its command, and its numbers against
+independent values (published material constants with pint, mpmath,
+the restored reference).  The counts of tests the page describes are
+still found by the sentence that quotes them and read from the tests
+themselves; a reworded sentence fails."""
 
 from __future__ import annotations
 
 import dataclasses
 import importlib.util
+import json
 import re
 
 import numpy as np
 import pytest
-from docs_text import NUMBER, printed, quoted
+from docs_text import quoted, says
 
 import contactsep
 from conftest import ROOT, THESIS_DECKS
@@ -25,37 +28,89 @@ pint = pytest.importorskip("pint")
 UNITS = pint.UnitRegistry()
 
 
+MODEL_NUMBERS = ROOT / "docs" / "studies" / "model_numbers.json"
+
+
+def _model_numbers() -> dict:
+    return json.loads(MODEL_NUMBERS.read_text())
+
+
+def _datum(path: str, fmt: str) -> str:
+    return f"{{datum}}`studies/model_numbers.json:{path}:{fmt}`"
+
+
+def _make_model_numbers():
+    spec = importlib.util.spec_from_file_location(
+        "make_model_numbers", ROOT / "docs" / "studies" /
+        "make_model_numbers.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_model_numbers_are_what_their_command_prints():
+    """docs/studies/model_numbers.json is what `python
+    docs/studies/make_model_numbers.py` prints now: the domain's
+    conversions and the deck's alpha move to 1e-10 relative (the move is
+    a difference of two near amplitudes: 1e-8), the round-off at a clamp
+    (itself round-off, so not reproducible to more) to the digit the
+    page shows."""
+    committed, now = _model_numbers(), _make_model_numbers().main()
+    assert set(committed) == set(now)
+    assert committed["domain"].keys() == now["domain"].keys()
+    for key, value in now["domain"].items():
+        assert committed["domain"][key] == pytest.approx(value, rel=1e-10)
+    assert committed["deck_alpha"]["deck"] == now["deck_alpha"]["deck"]
+    assert committed["deck_alpha"]["change"] == now["deck_alpha"]["change"]
+    assert committed["deck_alpha"]["a3_relative_move"] == pytest.approx(
+        now["deck_alpha"]["a3_relative_move"], rel=1e-8)
+    assert f"{committed['clamp_roundoff']:.0e}" == \
+        f"{now['clamp_roundoff']:.0e}"
+
+
 def test_the_domain_tables_limits_in_other_units():
     """The domain table's limits are the code's own (``constant`` roles,
     tests/project/test_code_constants.py); what the table says they are
-    in other units and against published materials is checked here."""
-    size = quoted("model.md", r"SIZE_RANGE\[1\]:g` in \| ([\d.]+) µm to "
-                  r"(\d+) ft:")
+    in other units and against published materials (the committed
+    model_numbers.json's, shown by ``datum`` roles) is checked here
+    against pint."""
+    domain = _model_numbers()["domain"]
+    says("model.md", f"{_datum('domain.size_min_um', '.2g')} µm to "
+         "{datum}`=round([studies/model_numbers.json:domain.size_max_ft], "
+         "-1):.0f` ft:")
     micro = (design_module.SIZE_RANGE[0] * UNITS.inch).to("um").magnitude
     feet = (design_module.SIZE_RANGE[1] * UNITS.inch).to("ft").magnitude
-    assert f"{micro:.2g}" == size[0] and f"{round(feet, -1):.0f}" == size[1]
-    density = quoted("model.md", r"DENSITY_RANGE\[1\]:g` lb/in³ \| aerogel "
-                     r"to (\d+) times osmium; aluminium's (\d+) lb/ft³ typed "
-                     r"as lb/in³ is refused")
+    assert domain["size_min_um"] == pytest.approx(micro, rel=1e-12)
+    assert domain["size_max_ft"] == pytest.approx(feet, rel=1e-12)
+    says("model.md", "aerogel to "
+         f"{_datum('domain.density_max_over_osmium', '.0f')} times osmium; "
+         "aluminium's {datum}`=round([studies/model_numbers.json:domain."
+         "aluminium_lb_ft3], -1):.0f` lb/ft³ typed as lb/in³ is refused")
     high = design_module.DENSITY_RANGE[1]
     # osmium 22.59 g/cm^3, aluminium 2.70 g/cm^3 (CRC Handbook)
     osmium = (22.59 * UNITS("g/cm^3")).to("lb/in^3").magnitude
-    assert f"{high / osmium:.0f}" == density[0]
+    assert domain["density_max_over_osmium"] == pytest.approx(
+        high / osmium, rel=1e-9)
     aluminium = (2.70 * UNITS("g/cm^3")).to("lb/ft^3").magnitude
-    assert f"{round(aluminium, -1):.0f}" == density[1]
-    assert float(density[1]) > high
-    (diamond,) = quoted("model.md", r"MODULUS_RANGE\[1\]:g` psi \| the "
-                        r"softest rubber to (\d+) times diamond")
+    assert domain["aluminium_lb_ft3"] == pytest.approx(aluminium, rel=1e-9)
+    assert round(domain["aluminium_lb_ft3"], -1) > high
+    says("model.md", "the softest rubber to "
+         f"{_datum('domain.modulus_max_over_diamond', '.0f')} times diamond")
     # diamond's Young's modulus: 1050-1220 GPa in the literature
     top = (design_module.MODULUS_RANGE[1] * UNITS.psi).to("GPa").magnitude
-    assert top / 1220 <= float(diamond) <= top / 1050
+    shown = float(f"{domain['modulus_max_over_diamond']:.0f}")
+    assert top / 1220 <= shown <= top / 1050
+    assert domain["modulus_max_over_diamond"] == pytest.approx(
+        top / 1220, rel=1e-6)
     assert design_module.DEFLECTION_RANGE[1] == 1.0    # "≤ L1"
 
 
 def test_a_mode_near_a_clamp_against_mpmath():
-    """'3e-11 at the limit, measured against mpmath': the compiled
-    mode values at SUPPORT_CLEARANCE from each clamped end (every end
-    condition with a clamp, N = 32) against 120-digit mpmath."""
+    """The round-off at the limit, 'measured against mpmath' (the
+    committed model_numbers.json's, its own 120-digit solve): the
+    compiled mode values at SUPPORT_CLEARANCE from each clamped end
+    (every end condition with a clamp, N = 32) against the tests'
+    independent 120-digit mpmath, to the digit the page shows."""
     pytest.importorskip("mpmath")
     spec = importlib.util.spec_from_file_location(
         "mpmath_modes", ROOT / "tests" / "model" /
@@ -63,8 +118,10 @@ def test_a_mode_near_a_clamp_against_mpmath():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     _mp_modes = module._mp_modes      # 120-digit roots and mode values
-    (claim,) = quoted("model.md", rf"1e-16/\(x/L\)² relative round-off "
-                      rf"\({NUMBER} at the limit, measured against mpmath\)")
+    says("model.md", "1e-16/(x/L)² relative round-off ("
+         f"{_datum('clamp_roundoff', '.0e')} at the limit, measured "
+         "against mpmath)")
+    claim = _model_numbers()["clamp_roundoff"]
     clear = design_module.SUPPORT_CLEARANCE
     worst = 0.0
     for end in (1, 2, 3):             # clamped-free, -clamped, -pinned
@@ -72,25 +129,30 @@ def test_a_mode_near_a_clamp_against_mpmath():
         _, want = _mp_modes(end, 32, xi)
         _, got = compiled.mode_values(end, 32, xi)
         worst = max(worst, float(np.max(np.abs(got - want) / np.abs(want))))
-    assert printed(worst, claim), (worst, claim)
+    assert f"{worst:.0e}" == f"{claim:.0e}", (worst, claim)
     assert worst < 1e-16 / clear**2        # the page's estimate bounds it
 
 
 def test_the_decks_alpha_moves_a3():
-    """'A_3 moves by ~4e-5 for a 5e-10 change of alpha_3': the restored
-    reference's closed form on a thesis deck, alpha_3 moved by 5e-10."""
+    """'A_3 moves by ~4e-5 for a 5e-10 change of alpha_3' (the committed
+    model_numbers.json's): the restored reference's closed form on a
+    thesis deck, alpha_3 moved by the committed change."""
     from contactsep.restored import reference
-    moved, change = quoted("model.md", rf"A_3 moves by ~{NUMBER} for a "
-                           rf"{NUMBER} change of alpha_3")
+    says("model.md", "A_3 moves by ~"
+         f"{_datum('deck_alpha.a3_relative_move', '.0e')} for a "
+         f"{_datum('deck_alpha.change', '.0e')} change of alpha_3")
+    committed = _model_numbers()["deck_alpha"]
+    assert committed["deck"] == THESIS_DECKS[0].name
     ds = contactsep.replay(THESIS_DECKS[0], precision="double")[0].inputs
     before = reference.initial_amplitudes(ds, "closed-form")[2]
     alpha = np.array(ds.alpha, dtype=np.float64)
-    alpha[2] += float(change)
+    alpha[2] += committed["change"]
     after = reference.initial_amplitudes(
         dataclasses.replace(ds, alpha=type(ds.alpha)(alpha) if
                             isinstance(ds.alpha, tuple) else alpha),
         "closed-form")[2]
-    assert printed(abs(after / before - 1), moved)
+    assert abs(after / before - 1) == pytest.approx(
+        committed["a3_relative_move"], rel=1e-8)
 
 
 def test_the_extremes_tests_are_as_described():

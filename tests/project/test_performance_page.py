@@ -283,14 +283,15 @@ def test_the_contact_dynamics_counts_are_the_codes():
 
 def test_the_samples_cost_a_flight_step_each():
     """'The 60,000 samples cost one flight step each (the default row
-    against the summary-only one)': simulate's default samples, and the
-    two rows' flight steps differ by that many, to within 5 %."""
+    against the summary-only one)': simulate's default samples (the
+    page's ``constant`` role), and the two rows' flight steps differ by
+    that many, to within 5 %."""
     import importlib
     simulate_module = importlib.import_module("contactsep.chatter.simulate")
     rows = table("bench_chatter")
-    (samples,) = quoted(r"The ([\d,]+) samples cost one flight step each")
-    samples = int(samples.replace(",", ""))
-    assert samples == simulate_module.DEFAULT_SAMPLES
+    quoted(r"The \{constant\}`contactsep\.chatter\.simulate\."
+           r"DEFAULT_SAMPLES:,` samples cost one flight step each")
+    samples = simulate_module.DEFAULT_SAMPLES
 
     def flight(row):
         return int(re.search(r"flight_steps (\d+)", row[2]).group(1))
