@@ -27,8 +27,10 @@ The role's text is ``FILE:COLUMN[@KEY=VALUE,...][:FORMAT]``:
     (``0.25`` matches ``0.250``), else as text.  A plain ``COLUMN``
     needs exactly one matching row.
 ``FORMAT``
-    a Python format spec (``.2f``, ``.4g``, ``,d``); without one the
-    cell is shown as written in the file.
+    a Python format spec (``.2f``, ``.4g``, ``,d``), or ``.Psci``: the
+    ``.Pe`` form with the exponent as the pages write it, neither a
+    plus nor leading zeros (``4e-5``, ``1.2e6``); without one the cell
+    is shown as written in the file.
 
 Or ``=EXPR[:FORMAT]``, arithmetic on such values, each written
 ``[FILE:COLUMN@...]`` (data_expressions.py): a ratio, a difference, a
@@ -281,6 +283,12 @@ def _matches(cell: str, wanted: str) -> bool:
     return cell == wanted
 
 
+def _pages_exponent(text: str) -> str:
+    """``4e-05`` as the pages write it, ``4e-5`` (``1.2e+06``: ``1.2e6``)."""
+    mantissa, _, exponent = text.partition("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
 def _format(value, datum: Datum) -> str:
     fmt = datum.fmt
     if fmt is None:
@@ -295,6 +303,8 @@ def _format(value, datum: Datum) -> str:
                              f"integer, for format {fmt!r}")
         number = int(number)
     try:
+        if fmt.endswith("sci"):
+            return _pages_exponent(format(number, fmt[:-3] + "e"))
         return format(number, fmt)
     except (ValueError, TypeError) as error:
         raise DatumError(f"{datum.where()}: bad format {fmt!r} "

@@ -77,6 +77,10 @@ def base(tmp_path):
     ("sub/big.csv:sum(n):,.1f", "1,234,576.5"),
     ("t.csv:n_modes@d_in=0.25,ys_in=0.75:03d", "064"),
     ("t.csv:answer_lb@model=newton:d", None),   # 9.5 is no integer
+    # the pages' exponent: no plus, no leading zeros
+    ("sub/big.csv:n@label=a:.1sci", "1.2e6"),
+    ("t.csv:answer_lb@model=newton:.0sci", "1e1"),
+    ("t.csv:min(answer_lb):.2sci", "4.01e0"),
 ])
 def test_resolves(base, spec, shown):
     if shown is None:
@@ -96,6 +100,7 @@ def test_resolves(base, spec, shown):
     ("t.csv:answer_lb@d_in=0.25", "3 rows match, one is needed"),
     ("t.csv:answer_lb", "5 rows match"),
     ("t.csv:answer_lb@model=newton:.2q", "bad format '.2q'"),
+    ("t.csv:answer_lb@model=newton:.2qsci", "bad format '.2qsci'"),
     ("t.csv:model@n_modes=16:.2f", "'newton' is not a number"),
     ("t.csv:max(model)", "'hertz' is not a number"),
     ("t.csv:answer_lb@d_in=0.5,ys_in=0.75:.4g", "the value is nan"),

@@ -139,8 +139,8 @@ def test_the_decks_alpha_moves_a3():
     thesis deck, alpha_3 moved by the committed change."""
     from contactsep.restored import reference
     says("model.md", "A_3 moves by ~"
-         f"{_datum('deck_alpha.a3_relative_move', '.0e')} for a "
-         f"{_datum('deck_alpha.change', '.0e')} change of alpha_3")
+         f"{_datum('deck_alpha.a3_relative_move', '.0sci')} for a "
+         f"{_datum('deck_alpha.change', '.0sci')} change of alpha_3")
     committed = _model_numbers()["deck_alpha"]
     assert committed["deck"] == THESIS_DECKS[0].name
     ds = contactsep.replay(THESIS_DECKS[0], precision="double")[0].inputs
