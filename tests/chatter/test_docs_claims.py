@@ -197,8 +197,11 @@ SIDE_BY_SIDE_MODELS = tuple((model, n) for model in ("newton", "hertz")
 
 
 def _side_by_side_cell(model: str, d: float, n: int) -> str:
+    """The cell's role: three digits, in fixed point below 1e-4 in."""
+    gap = float(_chatter_rows()[model, d, n]["max_lower_gap_in"])
+    fmt = "#.3g" if gap >= 1e-4 else ".7f"
     return ("{datum}`studies/chatter.csv:max_lower_gap_in@"
-            f"model={model},d_in={d:g},N={n}:.3g`")
+            f"model={model},d_in={d:g},N={n}:{fmt}`")
 
 
 def _chatter_rows() -> dict:
