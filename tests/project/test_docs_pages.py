@@ -9,16 +9,13 @@ test_docs_physics_values.py."""
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 import pytest
 
 import contactsep
 from conftest import ROOT
-from contactsep.model import evaluate, thesis_design
-from docs_text import (NUMBER, STUDIES, check, column, page, quoted,
-                       role, rows, says)
+from contactsep.model import thesis_design
+from docs_text import STUDIES, column, page, role, rows, says
 
 
 def test_figure_5_numbers_are_fig5_csv():
@@ -198,42 +195,41 @@ def test_the_convergence_study_converges_but_its_impulse_does_not():
 
 def test_the_energy_bound_numbers():
     """"0.026 in from a 0.02 in release of an identical spring (1.3-3.2
-    times the bound on four of the nine designs of the test suite's
-    design family at N = 4)": tests/design_family.py's FAMILY and UNSEEN."""
+    times the bound on four of the nine designs ...)": roles of
+    docs/studies/energy_bound.csv, which is its script's output now
+    (tests/project/test_docs_physics_values.py) and has one row per
+    design of tests/design_family.py's FAMILY and UNSEEN."""
     from design_family import FAMILY, UNSEEN
-
-    from contactsep.model.energy import y3_energy_bound
-    gives, release, low, high, count, total = quoted(
-        "model.md", rf"it gives {NUMBER} in from a {NUMBER} in release of "
-        rf"an identical spring \({NUMBER}-{NUMBER} times the bound on "
-        rf"(\w+) of the (\w+) designs of the test suite's design family "
-        rf"at N = 4\)")
-    words = {"three": 3, "four": 4, "five": 5, "seven": 7, "nine": 9}
-    designs = {**FAMILY, **UNSEEN}
-    assert words[total] == len(designs)
-    ratios = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for design in designs.values():
-            printed_form = design.replace(lower_response="as-printed")
-            ratios.append(float(evaluate(printed_form).y3_max
-                                / y3_energy_bound(printed_form)))
-        relay = FAMILY["steel_relay"].replace(lower_response="as-printed")
-        check([gives, release], [float(evaluate(relay).y3_max),
-                                 float(relay.ys)])
-    over = [r for r in ratios if r > 1]
-    assert len(over) == words[count]
-    check([low, high], [min(over), max(over)])
+    table = rows("energy_bound")
+    assert [r["design"] for r in table] == list({**FAMILY, **UNSEEN})
+    ratio = column("energy_bound", "ratio")
+    assert np.allclose(ratio, column("energy_bound", "y3_max_in")
+                       / column("energy_bound", "bound_in"), rtol=1e-12)
+    assert np.array_equal(column("energy_bound", "over"), ratio > 1)
+    # an identical spring: the bound is the release itself
+    relay = FAMILY["steel_relay"]
+    assert (relay.E1, relay.L1, relay.h1) == (relay.E3, relay.L3, relay.h3)
+    assert column("energy_bound", "bound_in", design="steel_relay") == \
+        pytest.approx(relay.ys, rel=1e-9)
+    e = "studies/energy_bound.csv"
+    says("model.md", f"it gives {{datum}}`{e}:y3_max_in@design=steel_relay"
+         f":.3f` in from a {{datum}}`{e}:ys_in@design=steel_relay:.2f` in "
+         f"release of an identical spring ({{datum}}`{e}:min(ratio)@over=1"
+         f":.1f`-{{datum}}`{e}:max(ratio)@over=1:.1f` times the bound on "
+         f"{{datum}}`{e}:rows@over=1` of the {{datum}}`{e}:rows` designs of "
+         "the test suite's design family at N = 4")
 
 
 def test_the_png_sizes():
-    """"default 100: 600 x 400 pixels, the tables 600 x 500"."""
+    """"default 100: 600 x 400 pixels, the tables 600 x 500": the dpi is
+    the package's constant, the sizes the committed PNGs' headers."""
     import struct
-    size, table = quoted("studies.md", r"default 100: (\d+ × \d+) pixels, "
-                         r"the tables (\d+ × \d+)\)")
-    for name, claim in (("fig5", size), ("table1", table)):
+    size = {}
+    for name in ("fig5", "table1"):
         head = (STUDIES / f"{name}.png").read_bytes()[16:24]
-        assert "{} × {}".format(*struct.unpack(">II", head)) == claim
+        size[name] = "{} × {}".format(*struct.unpack(">II", head))
+    says("studies.md", "(default {constant}`contactsep.cli.studies."
+         f"DEFAULT_DPI`: {size['fig5']} pixels, the tables {size['table1']})")
 
 
 # -- docs/studies.md, Table II explained --------------------------------------
