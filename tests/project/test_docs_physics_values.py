@@ -135,10 +135,12 @@ def test_the_formulas_constant_against_the_materials():
     assert np.allclose(lc, 2.5, rtol=1e-6), lc
 
 
-def test_the_n_4_error_on_the_studies_page():
+def test_the_n_4_error_on_the_studies_and_sweeps_pages():
     y3 = [f"[{LONG}:y3_max_in@N={n}]" for n in (4, 800, 1600)]
     says("studies.md", f"max y3 is {{datum}}`=100 * ({y3[0]} / (2 * "
          f"{y3[2]} - {y3[1]}) - 1):.1f` % above its N → ∞ limit")
+    says("sweeps.md", f"is {{datum}}`=100 * ({y3[0]} / (2 * {y3[2]} - "
+         f"{y3[1]}) - 1):.1f` % high at N = 4)")
 
 
 # -- docs/sweeps.md --------------------------------------------------------
