@@ -119,7 +119,7 @@ def test_a_mode_near_a_clamp_against_mpmath():
     spec.loader.exec_module(module)
     _mp_modes = module._mp_modes      # 120-digit roots and mode values
     says("model.md", "1e-16/(x/L)² relative round-off ("
-         f"{_datum('clamp_roundoff', '.0e')} at the limit, measured "
+         f"{_datum('clamp_roundoff', '.0sci')} at the limit, measured "
          "against mpmath)")
     claim = _model_numbers()["clamp_roundoff"]
     clear = design_module.SUPPORT_CLEARANCE

@@ -154,7 +154,7 @@ def convergence_table() -> dict:
 #: model.md's columns of the convergence table the study writes, and the
 #: page's formats (ψ·N is an expression of the row's ψ).
 CONVERGENCE_COLUMNS = (("t1_s", ".6g"), ("v_impact_in_s", ".3f"),
-                       ("psi_lb_s", ".4e"), (None, None),
+                       ("psi_lb_s", ".4sci"), (None, None),
                        ("v0_in_s", ".3f"), ("y3_max_in", ".6f"))
 
 
@@ -171,7 +171,7 @@ def test_the_convergence_table_to_n_50_is_convergence_csv():
             continue
         assert table[n] == [
             role("convergence", key, fmt, N=n) if key else
-            f"{{datum}}`=[studies/convergence.csv:psi_lb_s@N={n}] * {n}:.4e`"
+            f"{{datum}}`=[studies/convergence.csv:psi_lb_s@N={n}] * {n}:.4sci`"
             for key, fmt in CONVERGENCE_COLUMNS], n
 
 

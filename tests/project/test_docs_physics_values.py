@@ -86,7 +86,7 @@ def test_figure_7_coefficients_and_the_node():
     c098 = ", ".join(datum(f"figure7.c3_098_in[{i}]", ".4f")
                      for i in range(4))
     c078 = ", ".join(datum(f"figure7.c3_078_in[{i}]", fmt)
-                     for i, fmt in enumerate((".4f", ".1e", ".4f", ".4f")))
+                     for i, fmt in enumerate((".4f", ".1sci", ".4f", ".4f")))
     says("studies.md", f"c3_j (in) are {c098} at 0.98 and {c078} at 0.78: "
          f"mode 2 is {{datum}}`=round([{JSON}:figure7.mode2_weaker], -2):"
          ",.0f` times weaker (the node of the cantilever's mode 2 is at "
@@ -177,8 +177,8 @@ def test_the_convergence_table_beyond_n_50():
         says("model.md", f"| {n} | " + " | ".join([
             role("convergence_long", "t1_s", ".6g", N=n),
             role("convergence_long", "v_impact_in_s", ".3f", N=n),
-            role("convergence_long", "psi_lb_s", ".4e", N=n),
-            f"{{datum}}`=[{LONG}:psi_lb_s@N={n}] * {n}:.4e`",
+            role("convergence_long", "psi_lb_s", ".4sci", N=n),
+            f"{{datum}}`=[{LONG}:psi_lb_s@N={n}] * {n}:.4sci`",
             role("convergence_long", "v0_in_s", ".3f", N=n),
             role("convergence_long", "y3_max_in", ".6f", N=n)]) + " |")
     study = rows("convergence")[[int(r["N"]) for r in
@@ -206,9 +206,9 @@ def test_the_convergence_limits_are_expressions_of_the_table():
     says("model.md", "(t_max settles at "
          + role("convergence_long", "t_max_s", ".6f", N=1600) + " s.)")
     says("model.md", "(ψ·N → "
-         + expr(f"[{LONG}:psi_lb_s@N=1600] * 1600", ".2e") + " lb s)")
+         + expr(f"[{LONG}:psi_lb_s@N=1600] * 1600", ".2sci") + " lb s)")
     says("model.md", "max y3 falls by " + ", ".join(
-        expr(f"{y(n)} - {y(2 * n)}", ".2e") for n in (200, 400, 800))
+        expr(f"{y(n)} - {y(2 * n)}", ".2sci") for n in (200, 400, 800))
         + " in from N = 200 to 1600")
     says("model.md", "**v0 → " + expr(f"2 * {v(1600)} - {v(800)}", ".3f")
          + " in/s, max y3 → " + expr(f"2 * {y(1600)} - {y(800)}", ".5f")
