@@ -310,50 +310,58 @@ def fortran_parameters() -> dict:
     return found
 
 
-SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
-#: An exponent written in superscript digits.
-POWER = "([⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
+#: Superscript digits, for a power of two as the page writes one.
+SUPERSCRIPT = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def power_of_two(text: str) -> int:
+    """The exponent of a Fortran power of two: "2_int64**31" -> 31."""
+    (exponent,) = re.fullmatch(r"2(?:_int64|\.0_wp)?\*\*(\d+)",
+                               text).groups()
+    return int(exponent)
+
+
+def two_to(exponent: int) -> str:
+    return "2" + str(exponent).translate(SUPERSCRIPT)
 
 
 def test_the_searchs_constants_are_the_fortrans():
-    """The budgets and tolerances docs/model.md states are the
-    parameters of fortran/model/extremes*.f90."""
+    """The budgets and tolerances docs/model.md states are the Python
+    search's constants (shown by the constant role), each equal to its
+    parameter of fortran/model/extremes*.f90; the ones the Python side
+    has no constant for are the Fortran's, as the page writes them."""
+    from contactsep.model import twin_extremes as python
+    from contactsep.model import twin_extremes_cells as cells
     f = fortran_parameters()
-
-    def power(text):                  # "2_int64**31" -> 2**31
-        (exponent,) = re.fullmatch(r"2(?:_int64|\.0_wp)?\*\*(\d+)",
-                                   text).groups()
-        return 2 ** int(exponent)
-
-    work, turns = quoted("model.md", rf"gives up after 2{POWER} cell-mode "
-                         rf"evaluations .*? when p_max τ ≥ 2{POWER} rad")
-    assert 2 ** int(work.translate(SUPERSCRIPT)) == power(f["work_budget"])
-    assert 2 ** int(turns.translate(SUPERSCRIPT)) == power(f["two_52"])
-    modes, designs, fewest, most, block, segment = quoted(
-        "model.md", r"blocks of about (\d+) modes \((\d+) designs of 4 "
-        r"modes, 16 of 32; (\d+) to (\d+) designs\), each with at most "
-        rf"2{POWER} live cell-modes.*?more than 2{POWER} live cell-modes")
-    assert int(modes) == int(f["block_modes"])
-    assert int(designs) == min(int(f["block_size"]), int(modes) // 4)
-    assert (int(fewest), int(most)) == (8, int(f["block_size"]))
-    assert 2 ** int(block.translate(SUPERSCRIPT)) == power(
-        f["block_cell_budget"])
-    assert 2 ** int(segment.translate(SUPERSCRIPT)) == power(
-        f["cell_budget"])
-    tie, finished = quoted("model.md", r"cannot come within the tie "
-                           r"\(([\d.e-]+) S\) of the best value found is "
-                           r"dropped; one whose bound is within ([\d.e-]+) "
-                           r"S of a value it holds is finished")
-    assert float(tie) == float(f["tie"].removesuffix("_wp"))
-    assert float(finished) == float(f["converged"].removesuffix("_wp"))
-    steps, order = quoted("model.md", rf"first polished \((\w+) Newton "
-                          rf"steps .*? to x{POWER}\)")
-    words = {"two": 2, "three": 3, "four": 4}
-    assert words[steps] == int(f["polish_steps"])
+    module = "contactsep.model.twin_extremes"
+    for name, value in (("WORK_BUDGET", python.WORK_BUDGET),
+                        ("BLOCK_CELL_BUDGET", python.BLOCK_CELL_BUDGET),
+                        ("CELL_BUDGET", python.CELL_BUDGET)):
+        exponent = power_of_two(f[name.lower()])
+        assert value == 2 ** exponent, name
+        says("model.md", f"{{constant}}`{module}.{name}:,` "
+             f"({two_to(exponent)})")
+    assert python.TIE == float(f["tie"].removesuffix("_wp"))
+    assert cells.CONVERGED == float(f["converged"].removesuffix("_wp"))
+    assert cells.POLISH_STEPS == int(f["polish_steps"])
+    assert cells.PHI_POLISH == float(f["phi_polish"].removesuffix("_wp"))
+    says("model.md", f"cannot come within the tie ({{constant}}`{module}"
+         f".TIE:sci` S) of the best value found is dropped; one whose "
+         f"bound is within {{constant}}`{module}_cells.CONVERGED:sci` S "
+         f"of a value it holds is finished")
+    says("model.md", f"Cells with p_max r ≤ {{constant}}`{module}_cells."
+         f"PHI_POLISH:g` (every mode low) are first polished ({{constant}}"
+         f"`{module}_cells.POLISH_STEPS:words` Newton steps")
+    says("model.md", f"when p_max τ ≥ {two_to(power_of_two(f['two_52']))} "
+         "rad")
+    modes, size = int(f["block_modes"]), int(f["block_size"])
+    says("model.md", f"blocks of about {modes} modes ({min(size, modes // 4)}"
+         f" designs of 4 modes, {modes // 32} of 32; 8 to {size} designs)")
     # the sine's Taylor series: each factor 1/((2k)(2k+1)) one more term
     bounds = (ROOT / "fortran" / "model" / "extremes_bounds.f90").read_text()
     factors = int(re.search(r"inv_sin\((\d+)\)", bounds).group(1))
-    assert int(order.translate(SUPERSCRIPT)) == 2 * factors + 1
+    says("model.md", "Taylor series of the small angles, to x"
+         + str(2 * factors + 1).translate(SUPERSCRIPT) + ")")
 
 
 def test_the_listings_difference():
