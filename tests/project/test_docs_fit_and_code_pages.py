@@ -14,7 +14,7 @@ import pytest
 
 import contactsep
 from conftest import ROOT
-from docs_text import NUMBER, STUDIES, check, quoted, role, rows, says
+from docs_text import STUDIES, role, rows, says
 
 #: The page's model labels, as the CSV names them.
 FIT_MODELS = {"Bernoulli–Euler clamped": "bernoulli-euler-clamped",
@@ -29,7 +29,6 @@ LAST = "last-9000"
 
 
 def fit_rows() -> dict:
-    from docs_text import rows
     return {(r["model"], r["data"]): r for r in rows("separator-fit")}
 
 
@@ -364,78 +363,96 @@ def test_the_searchs_constants_are_the_fortrans():
          + str(2 * factors + 1).translate(SUPERSCRIPT) + ")")
 
 
+def listing_script():
+    """docs/studies/make_listing_difference.py, loaded as a module."""
+    path = STUDIES / "make_listing_difference.py"
+    spec = importlib.util.spec_from_file_location("_listing", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def test_the_listings_difference():
     """"not to 1e-8 but to 3.5e-5": the listing integrates the deck's
     9-decimal mode function; the worst ratio of its impact sum to the
     exact one over the thesis decks (the reference's two closed forms,
-    independent of the model)."""
+    independent of the model) is docs/studies/listing_difference.json,
+    what its script computes now over every thesis deck, and the page
+    shows it."""
     from conftest import THESIS_DECKS
-    from contactsep.restored import reference
-    (claim,) = quoted("model.md", rf"not to 1e-8 but to {NUMBER},")
-    worst = 0.0
-    for deck in THESIS_DECKS:
-        for r in contactsep.replay(deck, precision="double"):
-            ds = r.inputs
-            p = reference.frequencies(ds)[0]
-            ratio = np.sum(p * ds.c * reference.initial_amplitudes(
-                ds, "closed-form")) / np.sum(p * ds.c * reference
-                                             .initial_amplitudes(
-                                                 ds, "exact-mode"))
-            worst = max(worst, abs(ratio - 1))
-    check([claim], [worst])
+    committed = json.loads((STUDIES / "listing_difference.json")
+                           .read_text())
+    fresh = listing_script().difference()
+    assert fresh["decks"] == committed["decks"] == len(THESIS_DECKS)
+    assert fresh["worst_ratio_minus_1"] == pytest.approx(
+        committed["worst_ratio_minus_1"], rel=1e-10)
+    assert 1e-8 < committed["worst_ratio_minus_1"] < 1e-4
+    says("model.md", "not to 1e-8 but to {datum}`=[studies/listing_"
+         "difference.json:worst_ratio_minus_1] / 1e-5:.1f`e-5,")
+
+
+def shortest(number: float) -> str:
+    """A number as the page writes it: 8e-4, 500, 3.9e-8, 37.9."""
+    mantissa, _, exponent = f"{number:.15e}".partition("e")
+    power = f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+    plain = f"{number:.15g}"
+    return power if "e" in plain or len(power) < len(plain) else plain
 
 
 def test_the_domains_symmetry_corners_are_the_tests():
     """model.md's ranges of the exact symmetries are the corners
-    tests/hostile/test_domain.py checks."""
-    import importlib.util
+    tests/hostile/test_domain.py checks (its CORNERS, written as the
+    page writes them)."""
+    import math
     path = ROOT / "tests" / "hostile" / "test_domain.py"
     spec = importlib.util.spec_from_file_location("_domain_corners", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    lam, kappa, mu, sigma = (quoted("model.md", pattern) for pattern in (
-        rf"every length times λ \({NUMBER} to {NUMBER}\)",
-        rf"E and γ times κ \({NUMBER} to {NUMBER}\)",
-        r"\(μ from 10\^([-\d.]+) to (\d+)\)",
-        rf"y_s times σ \({NUMBER} to {NUMBER}\)"))
-    for name, (low, high) in (("lam", lam), ("kappa", kappa),
-                              ("sigma", sigma)):
+
+    def extremes(name):
         values = [c[name] for c in module.CORNERS if name in c]
-        assert (min(values), max(values)) == (float(low), float(high))
-    values = [c["mu"] for c in module.CORNERS if "mu" in c]
-    assert (min(values), max(values)) == (10 ** float(mu[0]), float(mu[1]))
+        return min(values), max(values)
+
+    (lam, lam_high), (kappa, kappa_high), (sigma, sigma_high) = (
+        extremes(name) for name in ("lam", "kappa", "sigma"))
+    mu, mu_high = extremes("mu")
+    says("model.md", f"every length times λ ({shortest(lam)} to "
+         f"{shortest(lam_high)}), E and γ times κ ({shortest(kappa)} to "
+         f"{shortest(kappa_high)}), E times μ² with τ / μ (μ from "
+         f"10^{math.log10(mu):g} to {mu_high:g}), y_s times σ "
+         f"({shortest(sigma)} to {shortest(sigma_high)})")
 
 
 def test_the_fe_tolerances_are_the_tests():
-    three, six = quoted("model.md", r"first three modes to ([\d.e-]+), six "
-                        r"to ([\d.e-]+),")
+    """The page's FE tolerances are the thresholds the tests assert."""
     source = (ROOT / "tests" / "shared" / "test_beams_timoshenko.py"
               ).read_text()
-    assert f"[:3] < {three})" in source and f"< {six})" in source
+    three, six = (re.search(pattern, source).group(1) for pattern in (
+        r"\[:3\] < ([\d.e-]+)\)", r"exact - 1\.0\) < ([\d.e-]+)\)"))
+    says("model.md", f"first three modes to {three}, six to {six},")
 
 
 def test_the_simulation_counts_of_the_long_studies():
-    """"study chatter ... # 45 simulations", "study preload --converge ...
-    # 2353 simulations": the chatter table's rows, the preload chart's count."""
-    chatter, chart = quoted("studies.md", r"contactsep study chatter --out "
-                            r"docs/studies # (\d+) simulations.*?contactsep "
-                            r"study preload --converge --out docs/studies # (\d+) "
-                            r"simulations")
-    assert int(chatter) == len(rows("chatter"))
+    """The commands' "# N simulations" (a code block, where no role
+    reaches): the chatter table's rows and the count the preload
+    chart's notes give."""
     notes = contactsep.read(STUDIES / "preload.csv").attrs["comments"]
-    assert f"{chart} simulations" in notes
+    (chart,) = (int(n.split()[0]) for n in notes
+                if re.fullmatch(r"\d+ simulations", n))
+    says("studies.md", "contactsep study chatter --out docs/studies # "
+         f"{len(rows('chatter'))} simulations contactsep study preload "
+         f"--converge --out docs/studies # {chart} simulations")
     says("studies.md", "Not a batch of eq. 23 but "
          + role("chatter", "rows", None) + " three-beam simulations")
 
 
 def test_a_converted_value_as_the_page_says():
     """"a converted value is rounded to 15 significant digits (`10us` is
-    exactly 1e-05 s)"."""
+    exactly 1e-05 s)": the page says so and the code does so."""
     pytest.importorskip("pint")
     from contactsep import units
-    digits, typed, exact = quoted(
-        "names-and-units.md", r"a converted value is rounded to (\d+) "
-        r"significant digits \(`(\w+)` is exactly ([\d.e-]+) s\)")
-    assert units.convert(typed, "s", "--min-open") == float(exact)
+    says("names-and-units.md", "a converted value is rounded to 15 "
+         "significant digits (`10us` is exactly 1e-05 s)")
+    assert units.convert("10us", "s", "--min-open") == 1e-05
     inches = units.convert("30.5mm", "in", "--L1")
-    assert inches == float(f"{30.5 / 25.4:.{digits}g}")
+    assert inches == float(f"{30.5 / 25.4:.15g}")
