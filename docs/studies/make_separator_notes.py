@@ -1,6 +1,7 @@
 """The numbers docs/studies.md's "Table II explained" section states
 beside the committed separator-fit.csv: the fitted parameters, the bare
-separator, Table I under both theories, Timoshenko with kappa = 5/6 and
+separator, Table I under both theories, the separator's Poisson ratio and
+Cowper's kappa, Timoshenko with kappa = 5/6 and
 the clamp stiffness fitted one row at a time.  Run from the repository
 root:
 
@@ -15,7 +16,7 @@ import json
 import numpy as np
 from scipy.optimize import brentq
 
-from contactsep.beams.member import MemberBeam, modal_model
+from contactsep.beams.member import MemberBeam, cowper_kappa, modal_model
 from contactsep.model import thesis_design
 from contactsep.studies.tables import (TABLE_I_LOWER, TABLE_I_UPPER,
                                        TABLE_II_D, TABLE_II_EXPERIMENTAL)
@@ -103,7 +104,9 @@ def per_row_kr2() -> dict:
 
 def notes() -> dict:
     fitted = fits()
+    nu = float(thesis_design().nu2)
     return {
+        "timoshenko": {"nu": nu, "cowper_kappa": cowper_kappa(nu)},
         "fits": fitted,
         "bare_printed": bare(fitted["timoshenko_kr2_mass2_printed"]["kr2"]),
         "bare_last_9000": bare(

@@ -263,7 +263,10 @@ def test_the_bare_separator_and_table_1_lines():
     """The bare separator's frequencies and lengths and Table I under
     both theories are data of separator_notes.json; the measured
     frequencies of Table I are the package's tables."""
-    from contactsep.studies.tables import TABLE_I_LOWER, TABLE_I_UPPER
+    from contactsep.studies.tables import (TABLE_I_LOWER, TABLE_I_UPPER,
+                                           TABLE_III_LC)
+    says("studies.md", "in, beside Table III's " + ", ".join(
+        f"{v:.2f}" for v in TABLE_III_LC) + ":")
     says("studies.md", "(k_r2 = {datum}`=[" + NOTES + ":bare_last_9000.kr2]"
          " / 1e4:.2f`e4 lb in/rad) its first frequencies are " + ", ".join(
              note(f"bare_last_9000.f1_{k}_cps", ".0f") for k in SEPARATORS)
@@ -300,6 +303,22 @@ def test_the_physical_separator_is_the_9000_fits_clamp():
     assert PHYSICAL_SEPARATOR["kr2"] == float(f"{fitted:.3g}")
     says("studies.md", "`beam2 = timoshenko`, `kr2` = {constant}`contactsep"
          ".studies.thesis.separator_fit.PHYSICAL_SEPARATOR[\"kr2\"]:sci`")
+
+
+def test_cowpers_kappa_is_the_published_formula():
+    """The page's ν and κ are the notes'; κ is Cowper's (1966)
+    10 (1 + ν) / (12 + 11 ν) of a rectangle, and the study's '#' line
+    gives the same."""
+    nu, kappa = (committed_notes()["timoshenko"][k]
+                 for k in ("nu", "cowper_kappa"))
+    assert kappa == pytest.approx(10 * (1 + nu) / (12 + 11 * nu),
+                                  rel=1e-15)
+    comments = contactsep.read(STUDIES / "separator-fit.csv").attrs[
+        "comments"]
+    assert any(f"nu = {nu:g}, Cowper's kappa = {kappa:.4f}" in c
+               for c in comments)
+    says("studies.md", "Timoshenko with ν = " + note("timoshenko.nu", "g")
+         + " and Cowper's κ = " + note("timoshenko.cowper_kappa", ".3f"))
 
 
 def test_the_kappa_five_sixths_and_per_row_clamps():
