@@ -19,7 +19,8 @@ from contactsep.model.energy import y3_energy_bound
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
 from design_family import FAMILY, UNSEEN  # noqa: E402
 
-COLUMNS = ("design", "ys_in", "y3_max_in", "bound_in", "ratio", "over")
+COLUMNS = ("design", "ys_in", "y3_max_in", "bound_in", "bound_ratio",
+           "above_bound")
 
 
 def table() -> list[list]:

@@ -202,10 +202,10 @@ def test_the_energy_bound_numbers():
     from design_family import FAMILY, UNSEEN
     table = rows("energy_bound")
     assert [r["design"] for r in table] == list({**FAMILY, **UNSEEN})
-    ratio = column("energy_bound", "ratio")
+    ratio = column("energy_bound", "bound_ratio")
     assert np.allclose(ratio, column("energy_bound", "y3_max_in")
                        / column("energy_bound", "bound_in"), rtol=1e-12)
-    assert np.array_equal(column("energy_bound", "over"), ratio > 1)
+    assert np.array_equal(column("energy_bound", "above_bound"), ratio > 1)
     # an identical spring: the bound is the release itself
     relay = FAMILY["steel_relay"]
     assert (relay.E1, relay.L1, relay.h1) == (relay.E3, relay.L3, relay.h3)
@@ -214,9 +214,11 @@ def test_the_energy_bound_numbers():
     e = "studies/energy_bound.csv"
     says("model.md", f"it gives {{datum}}`{e}:y3_max_in@design=steel_relay"
          f":.3f` in from a {{datum}}`{e}:ys_in@design=steel_relay:.2f` in "
-         f"release of an identical spring ({{datum}}`{e}:min(ratio)@over=1"
-         f":.1f`-{{datum}}`{e}:max(ratio)@over=1:.1f` times the bound on "
-         f"{{datum}}`{e}:rows@over=1` of the {{datum}}`{e}:rows` designs of "
+         "release of an identical spring ("
+         f"{{datum}}`{e}:min(bound_ratio)@above_bound=1:.1f`-"
+         f"{{datum}}`{e}:max(bound_ratio)@above_bound=1:.1f` times the "
+         f"bound on {{datum}}`{e}:rows@above_bound=1` of the "
+         f"{{datum}}`{e}:rows` designs of "
          "the test suite's design family at N = 4")
 
 

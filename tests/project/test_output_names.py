@@ -28,6 +28,7 @@ SUFFIX = re.compile(r"^[A-Za-z0-9_]+_(in|s|lb|lb_s|in_s|psi|lb_in3|rad_s|"
                     r"cps|lb_s2_in|in_lb|lbin|s_per_in|lb_per_in|lb_in_rad|hz|pct)$")
 DIMENSIONLESS = {
     "e", "R", "r", "N", "n_modes", "energy_ratio", "relative_difference",
+    "bound_ratio", "above_bound",
     "p_exceed", "p_open", "status", "n", "n_failed", "n_open", "n_events",
     "seed", "samples", "designs", "count", "chatters", "at_window_end",
     "t_max_tied", "t_min_tied", "fixed_steps", "flight_steps",
