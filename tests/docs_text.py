@@ -5,7 +5,9 @@ committed CSV, and the rows of docs/studies's CSVs."""
 from __future__ import annotations
 
 import csv
+import importlib.util
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -80,3 +82,12 @@ def says(name: str, text: str) -> None:
     assert text in page(name), f"{name}: no longer says {text!r}"
 
 
+
+
+def script_module(path: Path):
+    """The Python file ``path`` (a docs/studies/make_*.py script, or a
+    test module whose constants a page quotes) loaded as a module."""
+    spec = importlib.util.spec_from_file_location(f"_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

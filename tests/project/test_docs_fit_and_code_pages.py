@@ -5,7 +5,6 @@ test_docs_pages.py for the figures and the convergence study)."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import re
 
@@ -14,7 +13,7 @@ import pytest
 
 import contactsep
 from conftest import ROOT
-from docs_text import STUDIES, role, rows, says
+from docs_text import STUDIES, role, rows, says, script_module
 
 #: The page's model labels, as the CSV names them.
 FIT_MODELS = {"Bernoulli–Euler clamped": "bernoulli-euler-clamped",
@@ -38,11 +37,7 @@ def residuals(row) -> list[float]:
 
 def notes_script():
     """docs/studies/make_separator_notes.py, loaded as a module."""
-    path = STUDIES / "make_separator_notes.py"
-    spec = importlib.util.spec_from_file_location("_separator_notes", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return script_module(STUDIES / "make_separator_notes.py")
 
 
 def committed_notes() -> dict:
@@ -419,11 +414,7 @@ def test_the_searchs_constants_are_the_fortrans():
 
 def listing_script():
     """docs/studies/make_listing_difference.py, loaded as a module."""
-    path = STUDIES / "make_listing_difference.py"
-    spec = importlib.util.spec_from_file_location("_listing", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return script_module(STUDIES / "make_listing_difference.py")
 
 
 def test_the_listings_difference():
@@ -458,10 +449,7 @@ def test_the_domains_symmetry_corners_are_the_tests():
     tests/hostile/test_domain.py checks (its CORNERS, written as the
     page writes them)."""
     import math
-    path = ROOT / "tests" / "hostile" / "test_domain.py"
-    spec = importlib.util.spec_from_file_location("_domain_corners", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = script_module(ROOT / "tests" / "hostile" / "test_domain.py")
 
     def extremes(name):
         values = [c[name] for c in module.CORNERS if name in c]

@@ -11,13 +11,12 @@ themselves; a reworded sentence fails."""
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
 import json
 import re
 
 import numpy as np
 import pytest
-from docs_text import quoted, says
+from docs_text import quoted, says, script_module
 
 import contactsep
 from conftest import ROOT, THESIS_DECKS
@@ -40,12 +39,7 @@ def _datum(path: str, fmt: str) -> str:
 
 
 def _make_model_numbers():
-    spec = importlib.util.spec_from_file_location(
-        "make_model_numbers", ROOT / "docs" / "studies" /
-        "make_model_numbers.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return script_module(ROOT / "docs" / "studies" / "make_model_numbers.py")
 
 
 def test_the_model_numbers_are_what_their_command_prints():
@@ -112,11 +106,8 @@ def test_a_mode_near_a_clamp_against_mpmath():
     (every end condition with a clamp, N = 32) against the tests'
     independent 120-digit mpmath, to the digit the page shows."""
     pytest.importorskip("mpmath")
-    spec = importlib.util.spec_from_file_location(
-        "mpmath_modes", ROOT / "tests" / "model" /
-        "test_model_compiled_cases.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = script_module(ROOT / "tests" / "model" /
+                           "test_model_compiled_cases.py")
     _mp_modes = module._mp_modes      # 120-digit roots and mode values
     says("model.md", "1e-16/(x/L)² relative round-off ("
          f"{_datum('clamp_roundoff', '.0sci')} at the limit, measured "

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from docs_text import page, quoted, says
+from docs_text import page, quoted, says, script_module
 
 from contactsep.cli import main as cli_main
 
@@ -25,7 +25,6 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path):
     from the committed bytes a chunk, as `python
     docs/studies/make_resume_bytes.py` measures them now (the slope of a
     file's bytes over its designs, docs/studies/make_resume_bytes.py)."""
-    import importlib.util
     import json
 
     import numpy as np
@@ -37,11 +36,7 @@ def test_a_resumable_sweeps_chunks_take_the_quoted_bytes(tmp_path):
          "varied field: `docs/studies/resume_bytes.json`, printed by "
          "`python docs/studies/make_resume_bytes.py`)")
     committed = json.loads((STUDIES / "resume_bytes.json").read_text())
-    spec = importlib.util.spec_from_file_location(
-        "make_resume_bytes", ROOT / "docs" / "studies" /
-        "make_resume_bytes.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = script_module(STUDIES / "make_resume_bytes.py")
     assert committed["designs"] == module.DESIGNS
     sizes, sizes_bytes = module.chunks(tmp_path)
     assert sum(sizes) == module.DESIGNS and len(set(sizes)) >= 2, sizes
@@ -138,15 +133,8 @@ C8 = "studies/conclusion8_convergence.json"
 
 
 def _make_conclusion8_convergence():
-    import importlib.util
-
-    from conftest import ROOT
-    spec = importlib.util.spec_from_file_location(
-        "make_conclusion8_convergence", ROOT / "docs" / "studies" /
-        "make_conclusion8_convergence.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    from docs_text import STUDIES
+    return script_module(STUDIES / "make_conclusion8_convergence.py")
 
 
 def _conclusion8_convergence() -> dict:
