@@ -16,7 +16,7 @@ import json
 import numpy as np
 from scipy.optimize import brentq
 
-from contactsep.beams.member import MemberBeam, cowper_kappa, modal_model
+from contactsep.beams.member import cowper_kappa, modal_model
 from contactsep.model import thesis_design
 from contactsep.studies.tables import (TABLE_I_LOWER, TABLE_I_UPPER,
                                        TABLE_II_D, TABLE_II_EXPERIMENTAL)
@@ -67,13 +67,7 @@ def bare(kr2: float) -> dict:
 def table_i() -> dict:
     """The contacts' first four frequencies under both theories, and the
     Timoshenko model's gap to the measured ones (upper and lower)."""
-    rig = thesis_design()
-    values = {}
-    for theory in ("bernoulli-euler", "timoshenko"):
-        beam = MemberBeam(float(rig.L1), float(rig.b1), float(rig.h1),
-                          float(rig.gamma1), float(rig.E1), rig.end1,
-                          theory, float(rig.nu1))
-        values[theory] = modal_model(beam, 4, [float(rig.L1)]).f_hz
+    values = sf.table_i_frequencies()
     shift = 100 * (values["timoshenko"] / values["bernoulli-euler"] - 1)
     gaps = 100 * (values["timoshenko"] / np.array(
         [TABLE_I_UPPER, TABLE_I_LOWER], dtype=float) - 1)
